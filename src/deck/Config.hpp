@@ -1,0 +1,126 @@
+// The validated contents of an input deck, as plain C++ data.
+// Only src/deck/ sees Teuchos; everything else reads this struct.
+// docs/deck.md documents every field (names in quotes are the XML parameter names).
+#pragma once
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace stentor {
+
+// Every user-facing input error (deck, mesh, group names): the message names the
+// file/parameter path and what was expected. main() prints it and exits with status 2.
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Time function multiplying a load: "linear" (t / end time), "constant" (1), or
+// "table" (piecewise linear through (times[i], factors[i]), constant beyond the ends).
+struct Ramp {
+  enum class Kind { Linear, Constant, Table } kind = Kind::Linear;
+  std::vector<double> times, factors;
+  double operator()(double t, double end_time) const;  // defined in deck/Config.cpp
+};
+
+struct ProblemConfig {
+  std::string title;                 // "Problem"->"title"
+  std::string analysis = "static";   // "Problem"->"analysis": "static" (dynamic comes with the time schemes)
+};
+
+struct MeshConfig {
+  std::string file;        // "Mesh"->"file", resolved relative to the deck's folder (absolute here)
+  double size = 0.0;       // "Mesh"->"size": target element size when meshing a .geo (0: the .geo's own)
+  int order = 1;           // "Mesh"->"order": 1 (P1/Q1) or 2 (P2), for .geo meshing
+  bool recombine = false;  // "Mesh"->"recombine": quads (2D) / hexes (3D) from a .geo
+  int dimension = 0;       // "Mesh"->"dimension": 2 or 3; 0 = highest dimension found in the mesh
+};
+
+struct MaterialConfig {
+  std::string name;                       // sublist name under "Materials"
+  std::string model = "Ciarlet-Geymonat"; // "model"
+  double C1 = 0, C2 = 0, D = 0;           // "C1", "C2", "D" [Pa], all > 0 (C2 >= 0 allowed)
+  double density = 0;                     // "density" [kg/m^3], >= 0
+  double viscosity = 0;                   // "viscosity" eta (Curnier), >= 0; unused in statics
+};
+
+struct BodyConfig {
+  std::string name;      // sublist name under "Bodies"
+  std::string group;     // "physical group" (default: the sublist name)
+  std::string material;  // "material": name of a sublist of "Materials"
+};
+
+// One entry of "Boundary Conditions" (sublist name = name).
+struct LoadConfig {
+  enum class Type { Dirichlet, Traction, Pressure, BodyForce } type = Type::Dirichlet;
+  std::string name;
+  std::string group;                   // "boundary" (Dirichlet/Traction/Pressure) or "body" (BodyForce, "" = all)
+  std::array<bool, 3> components{};    // Dirichlet: "components", e.g. "x y" or "x" or "all"
+  std::array<double, 3> vector{};      // Dirichlet "values" / Traction "traction" / BodyForce "force": per component
+  double value = 0.0;                  // Pressure "pressure" [Pa]: acts against the current outward normal (follower)
+  Ramp ramp;                           // "ramp" (+ "ramp times", "ramp factors" for "table")
+};
+
+struct SteppingConfig {
+  double end_time = 1.0;   // "Stepping"->"end time" > 0
+  int num_steps = 1;       // "Stepping"->"steps" >= 1 (initial step = end time / steps)
+  int max_cutbacks = 6;    // "Stepping"->"max cutbacks" >= 0: halvings of a failed step before giving up
+};
+
+struct NewtonConfig {
+  int max_iterations = 25;             // "Newton"->"max iterations"
+  double residual_tolerance = 1e-10;   // "relative residual tolerance": ||r|| <= tol * ||r_0|| ...
+  double absolute_tolerance = 1e-12;   // "absolute residual tolerance": ... or ||r|| <= tol
+  double increment_tolerance = 1e-10;  // "increment tolerance": ||du|| <= tol * ||u|| (with residual small)
+  bool line_search = true;             // "line search": backtracking on ||r||
+  int line_search_max = 6;             // "line search max halvings"
+};
+
+struct LinearSolverConfig {
+  std::string method = "gmres";          // "Linear Solver"->"method": "gmres" | "direct"
+  std::string preconditioner = "schwarz";// "preconditioner": "schwarz" | "muelu" | "none"
+  double tolerance = 1e-10;              // "tolerance": relative residual of each linear solve
+  int max_iterations = 1000;             // "max iterations"
+  int restart = 200;                     // "restart": GMRES Krylov subspace size
+  int overlap = 1;                       // "overlap": Schwarz overlap
+  std::string subdomain_solver = "RILUK";// "subdomain solver": "RILUK" | "ILUT" | "KLU2"(Amesos2)
+  int fill_level = 1;                    // "fill level": RILUK level of fill
+  // Pass-through sublists "Belos", "Ifpack2", "MueLu", "Amesos2" as XML text ("" if absent);
+  // their entries override the values above.
+  std::string belos_xml, ifpack2_xml, muelu_xml, amesos2_xml;
+};
+
+struct ProbeConfig {
+  std::string name;                  // sublist name under "Output"->"Probes"
+  std::array<double, 3> point{};     // "point": reference coordinates; the nearest node is probed
+};
+
+struct OutputConfig {
+  std::string directory = "results";  // "Output"->"directory" (relative to the working dir); --output overrides
+  std::string basename = "stentor";   // "Output"->"basename": file name stem
+  int every = 1;                      // "Output"->"every": write fields every N converged steps (and the last)
+  bool fields = true;                 // "Output"->"fields": HDF5/XDMF output on/off
+  std::vector<ProbeConfig> probes;    // "Output"->"Probes"
+};
+
+struct Config {
+  std::string deck_path;  // absolute path of the deck file
+  ProblemConfig problem;
+  MeshConfig mesh;
+  std::vector<MaterialConfig> materials;
+  std::vector<BodyConfig> bodies;
+  std::vector<LoadConfig> loads;
+  SteppingConfig stepping;
+  NewtonConfig newton;
+  LinearSolverConfig linear;
+  OutputConfig output;
+
+  const MaterialConfig& material(const std::string& name) const;  // throws InputError
+};
+
+// Reads and validates a deck. Throws InputError naming the file, the parameter path
+// (e.g. "Materials->steel->C1") and what was expected; misspelled names get the
+// nearest valid name suggested.
+Config read_deck(const std::string& path);
+
+}  // namespace stentor
