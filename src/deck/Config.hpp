@@ -56,6 +56,7 @@ struct LoadConfig {
   std::string name;
   std::string group;                   // "boundary" (Dirichlet/Traction/Pressure) or "body" (BodyForce, "" = all)
   std::array<bool, 3> components{};    // Dirichlet: "components", e.g. "x y" or "x" or "all"
+  bool all_components = false;         // Dirichlet "all": components = {x, y, z}; z is to be dropped in 2D
   std::array<double, 3> vector{};      // Dirichlet "values" / Traction "traction" / BodyForce "force": per component
   double value = 0.0;                  // Pressure "pressure" [Pa]: acts against the current outward normal (follower)
   Ramp ramp;                           // "ramp" (+ "ramp times", "ramp factors" for "table")

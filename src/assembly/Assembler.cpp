@@ -1,0 +1,430 @@
+#include "assembly/Assembler.hpp"
+
+#include <algorithm>
+#include <set>
+#include <unordered_set>
+
+#include <Teuchos_CommHelpers.hpp>
+
+#include "assembly/HyperelasticElement.hpp"
+
+namespace stentor {
+namespace {
+
+using DeviceMatrix = la::CrsMatrix::local_matrix_device_type;
+
+// Gathers a cell's reference coordinates and displacements from overlap-local arrays.
+template <class Conn, class Coords, class UView>
+KOKKOS_INLINE_FUNCTION void gather_cell(int c, int nn, int dim, const Conn& conn, const Coords& X, const UView& u,
+                                        double (*Xe)[3], double (*Ue)[3], int* dofs) {
+  for (int a = 0; a < nn; ++a) {
+    const int l = conn(c, a);
+    for (int d = 0; d < 3; ++d) {
+      Xe[a][d] = X(l, d);
+      Ue[a][d] = 0.0;
+    }
+    for (int d = 0; d < dim; ++d) {
+      dofs[a * dim + d] = l * dim + d;
+      Ue[a][d] = u(l * dim + d, 0);
+    }
+  }
+}
+
+// Sums an element vector/matrix into overlap storage, skipping constrained rows.
+template <bool WithTangent, class RView, class Flags>
+KOKKOS_INLINE_FUNCTION void scatter(int nd, const int* dofs, const double* re, const double (*ke)[kMaxCellDofs],
+                                    const RView& r, const DeviceMatrix& K, const Flags& flag) {
+  for (int i = 0; i < nd; ++i) {
+    Kokkos::atomic_add(&r(dofs[i], 0), re[i]);
+    if (WithTangent && !flag(dofs[i])) K.sumIntoValues(dofs[i], dofs, nd, ke[i], false, true);
+  }
+}
+
+}  // namespace
+
+Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& cfg, const Loads& loads,
+                     const std::vector<int>& block_material)
+    : dist_(dist), loads_(loads), dim_(dist.dim()) {
+  for (std::size_t b = 0; b < mesh.volumes.size(); ++b) {
+    const MaterialConfig& m = cfg.materials[static_cast<std::size_t>(block_material[b])];
+    block_mat_.push_back(CiarletGeymonat{m.C1, m.C2, m.D});
+    quad_degree_.push_back(default_quadrature_degree(mesh.volumes[b].type));
+  }
+  exporter_ = Teuchos::rcp(new la::Export(dist.overlap_map(), dist.owned_map()));
+  u_overlap_ = Teuchos::rcp(new la::Vector(dist.overlap_map()));
+  r_overlap_ = Teuchos::rcp(new la::Vector(dist.overlap_map()));
+  failures_ = Kokkos::View<int*, la::ExecSpace>("failures", 2);
+  build_graph();
+
+  // Dirichlet flags (all overlap dofs, so ghost rows are skipped too) and owned values.
+  const la::LO nloc = dist.num_local_nodes();
+  dirichlet_flag_ = Kokkos::View<int*, la::ExecSpace>("dirichlet", static_cast<std::size_t>(nloc) * dim_);
+  auto fh = Kokkos::create_mirror_view(dirichlet_flag_);
+  Kokkos::deep_copy(fh, 0);
+  std::vector<int> owned_set(static_cast<std::size_t>(dist.num_owned_nodes()) * dim_, -1);
+  std::vector<double> owned_val(owned_set.size(), 0.0);
+  dirichlet_owned_nodes_.resize(loads.dirichlet.size());
+  for (std::size_t s = 0; s < loads.dirichlet.size(); ++s) {
+    const DirichletSet& d = loads.dirichlet[s];
+    for (gid_t g : d.nodes) {
+      const la::LO l = dist.local_node(g);
+      if (l < 0) continue;
+      if (l < dist.num_owned_nodes()) dirichlet_owned_nodes_[s].push_back(l);
+      for (int c = 0; c < dim_; ++c) {
+        if (!d.components[static_cast<std::size_t>(c)]) continue;
+        fh(static_cast<std::size_t>(l) * dim_ + c) = 1;
+        if (l < dist.num_owned_nodes()) {  // later sets override earlier ones on shared nodes
+          owned_set[static_cast<std::size_t>(l) * dim_ + c] = static_cast<int>(s);
+          owned_val[static_cast<std::size_t>(l) * dim_ + c] = d.values[static_cast<std::size_t>(c)];
+        }
+      }
+    }
+  }
+  Kokkos::deep_copy(dirichlet_flag_, fh);
+  for (std::size_t i = 0; i < owned_set.size(); ++i)
+    if (owned_set[i] >= 0) {
+      owned_dirichlet_dofs_.push_back(static_cast<la::LO>(i));
+      owned_dirichlet_value_.push_back(owned_val[i]);
+      owned_dirichlet_set_.push_back(owned_set[i]);
+    }
+  reactions_.assign(loads.dirichlet.size(), {0.0, 0.0, 0.0});
+  setup_loads(mesh);
+}
+
+void Assembler::build_graph() {
+  // Node adjacency through cells, then one row per dof with all dofs of adjacent nodes.
+  const la::LO nloc = dist_.num_local_nodes();
+  std::vector<std::vector<int>> adj(static_cast<std::size_t>(nloc));
+  for (const auto& b : dist_.blocks()) {
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.conn);
+    for (std::size_t c = 0; c < h.extent(0); ++c)
+      for (int a = 0; a < b.nodes_per_cell; ++a)
+        for (int bb = 0; bb < b.nodes_per_cell; ++bb) adj[static_cast<std::size_t>(h(c, a))].push_back(h(c, bb));
+  }
+  std::size_t maxrow = 0;
+  for (auto& v : adj) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+    maxrow = std::max(maxrow, v.size() * dim_);
+  }
+  // Overlap graph: column map = overlap map, so local column index = overlap dof index.
+  auto overlap_graph = Teuchos::rcp(new Tpetra::CrsGraph<la::LO, la::GO, la::Node>(dist_.overlap_map(), dist_.overlap_map(), maxrow));
+  std::vector<la::LO> cols;
+  for (la::LO n = 0; n < nloc; ++n) {
+    cols.clear();
+    for (int m : adj[static_cast<std::size_t>(n)])
+      for (int d = 0; d < dim_; ++d) cols.push_back(m * dim_ + d);
+    for (int d = 0; d < dim_; ++d) overlap_graph->insertLocalIndices(n * dim_ + d, Teuchos::ArrayView<const la::LO>(cols));
+  }
+  overlap_graph->fillComplete(dist_.owned_map(), dist_.owned_map());
+  K_overlap_ = Teuchos::rcp(new la::CrsMatrix(overlap_graph));
+  K_overlap_->fillComplete(dist_.owned_map(), dist_.owned_map());
+
+  auto owned_graph = Teuchos::rcp(new Tpetra::CrsGraph<la::LO, la::GO, la::Node>(dist_.owned_map(), 0));
+  owned_graph->doExport(*overlap_graph, *exporter_, Tpetra::INSERT);
+  owned_graph->fillComplete(dist_.owned_map(), dist_.owned_map());
+  K_ = Teuchos::rcp(new la::CrsMatrix(owned_graph));
+  K_->fillComplete(dist_.owned_map(), dist_.owned_map());
+}
+
+void Assembler::setup_loads(const Mesh& mesh) {
+  std::unordered_set<gid_t> local_cells;
+  for (const auto& b : dist_.blocks()) local_cells.insert(b.cell_ids.begin(), b.cell_ids.end());
+  const auto Xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dist_.coords());
+
+  for (const FacetLoad& fl : loads_.facet_loads) {
+    std::vector<std::size_t> mine;
+    for (std::size_t f = 0; f < fl.num_facets(); ++f)
+      if (local_cells.count(fl.adjacent_cell[f])) mine.push_back(f);
+    const int nn = fl.nodes_per_facet;
+    const QuadRule q = make_rule(fl.facet_type, 2 * cell_order(fl.facet_type) + 1);
+    if (fl.type == LoadConfig::Type::Traction) {
+      // Dead traction on the reference surface: f_a = int N_a t dA, assembled once.
+      DeadLoad dl{fl.ramp, Teuchos::rcp(new la::Vector(dist_.overlap_map()))};
+      auto f = dl.f->getLocalViewHost(Tpetra::Access::ReadWrite);
+      for (std::size_t f_i : mine) {
+        double X[kMaxCellNodes][3], N[kMaxCellNodes], dN[kMaxCellNodes][3], n[3];
+        int l[kMaxCellNodes];
+        for (int a = 0; a < nn; ++a) {
+          l[a] = dist_.local_node(fl.conn[f_i * nn + a]);
+          for (int d = 0; d < 3; ++d) X[a][d] = Xh(l[a], d);
+        }
+        for (int g = 0; g < q.n; ++g) {
+          shape_functions(fl.facet_type, q.xi[g], N, dN);
+          const double dA = facet_measure_and_normal(dim_, nn, X, dN, n);
+          for (int a = 0; a < nn; ++a)
+            for (int d = 0; d < dim_; ++d) f(l[a] * dim_ + d, 0) += q.w[g] * dA * N[a] * fl.traction[static_cast<std::size_t>(d)];
+        }
+      }
+      dead_.push_back(dl);
+    } else {
+      PressureLoad pl;
+      pl.ramp = fl.ramp;
+      pl.pressure = fl.pressure;
+      pl.type = fl.facet_type;
+      pl.nn = nn;
+      pl.conn = Kokkos::View<int**, Kokkos::LayoutRight, la::ExecSpace>("pconn", mine.size(), nn);
+      pl.orientation = Kokkos::View<double*, la::ExecSpace>("porient", mine.size());
+      auto ch = Kokkos::create_mirror_view(pl.conn);
+      auto oh = Kokkos::create_mirror_view(pl.orientation);
+      for (std::size_t i = 0; i < mine.size(); ++i) {
+        for (int a = 0; a < nn; ++a) ch(i, a) = dist_.local_node(fl.conn[mine[i] * nn + a]);
+        oh(i) = fl.orientation[mine[i]];
+      }
+      Kokkos::deep_copy(pl.conn, ch);
+      Kokkos::deep_copy(pl.orientation, oh);
+      pressures_.push_back(pl);
+    }
+  }
+  for (const BodyForce& bf : loads_.body_forces) {
+    DeadLoad dl{bf.ramp, Teuchos::rcp(new la::Vector(dist_.overlap_map()))};
+    auto f = dl.f->getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (const auto& lb : dist_.blocks()) {
+      if (std::find(bf.volume_blocks.begin(), bf.volume_blocks.end(), lb.volume_block) == bf.volume_blocks.end()) continue;
+      const QuadRule q = make_rule(lb.type, quad_degree_[static_cast<std::size_t>(lb.volume_block)]);
+      auto conn = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lb.conn);
+      const int nn = lb.nodes_per_cell;
+      for (std::size_t c = 0; c < conn.extent(0); ++c) {
+        double X[kMaxCellNodes][3], N[kMaxCellNodes], dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
+        for (int a = 0; a < nn; ++a)
+          for (int d = 0; d < 3; ++d) X[a][d] = Xh(conn(c, a), d);
+        for (int g = 0; g < q.n; ++g) {
+          shape_functions(lb.type, q.xi[g], N, dN);
+          const double detJ = reference_gradients(dim_, nn, X, dN, dNdX);
+          for (int a = 0; a < nn; ++a)
+            for (int d = 0; d < dim_; ++d) f(conn(c, a) * dim_ + d, 0) += q.w[g] * detJ * N[a] * bf.force[static_cast<std::size_t>(d)];
+        }
+      }
+    }
+    dead_.push_back(dl);
+  }
+  (void)mesh;
+}
+
+void Assembler::apply_dirichlet(la::Vector& u, double t, double end_time) const {
+  auto uh = u.getLocalViewHost(Tpetra::Access::ReadWrite);
+  for (std::size_t i = 0; i < owned_dirichlet_dofs_.size(); ++i) {
+    const DirichletSet& d = loads_.dirichlet[static_cast<std::size_t>(owned_dirichlet_set_[i])];
+    uh(owned_dirichlet_dofs_[i], 0) = owned_dirichlet_value_[i] * d.ramp(t, end_time);
+  }
+}
+
+Assembler::Stats Assembler::assemble(const la::Vector& u, double t, double end_time, la::Vector& r, bool with_tangent) {
+  u_overlap_->doImport(u, *dist_.importer(), Tpetra::INSERT);
+  r_overlap_->putScalar(0.0);
+  Kokkos::deep_copy(failures_, 0);
+  const int dim = dim_;
+  auto flags = dirichlet_flag_;
+  auto fails = failures_;
+  auto X = dist_.coords();
+  DeviceMatrix Kl;
+  if (with_tangent) {
+    Kl = K_overlap_->getLocalMatrixDevice();
+    Kokkos::deep_copy(Kl.values, 0.0);
+  }
+  double energy = 0.0;
+  {
+    auto uv = u_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
+    auto rv = r_overlap_->getLocalViewDevice(Tpetra::Access::ReadWrite);
+    for (const auto& lb : dist_.blocks()) {
+      const std::size_t nc = lb.cell_ids.size();
+      if (nc == 0) continue;
+      const CiarletGeymonat mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
+      const QuadRule q = make_rule(lb.type, quad_degree_[static_cast<std::size_t>(lb.volume_block)]);
+      const CellType type = lb.type;
+      const int nn = lb.nodes_per_cell;
+      auto conn = lb.conn;
+      double e_block = 0.0;
+      auto body = [=](const int c, double& e, auto tangent_tag) {
+        constexpr bool T = decltype(tangent_tag)::value;
+        double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], re[kMaxCellDofs];
+        double ke[T ? kMaxCellDofs : 1][kMaxCellDofs];
+        int dofs[kMaxCellDofs];
+        gather_cell(c, nn, dim, conn, X, uv, Xe, Ue, dofs);
+        double ec = 0.0;
+        const int status = hyperelastic_element<T>(dim, type, nn, Xe, Ue, mat, q, re, ke, ec);
+        if (status != kElementOk) {
+          Kokkos::atomic_increment(&fails(status == kElementInverted ? 0 : 1));
+          return;
+        }
+        e += ec;
+        scatter<T>(nn * dim, dofs, re, ke, rv, Kl, flags);
+      };
+      if (with_tangent)
+        Kokkos::parallel_reduce(
+            "stentor::hyperelastic_residual_tangent", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
+            KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::true_type{}); }, e_block);
+      else
+        Kokkos::parallel_reduce(
+            "stentor::hyperelastic_residual", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
+            KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::false_type{}); }, e_block);
+      energy += e_block;
+    }
+
+    // Follower pressure p on the current surface: r_a += p N_a n da, n da = orientation *
+    // (x_,xi_y, -x_,xi_x) dxi in 2D, (x_,xi x x_,eta) dxi deta in 3D; tangent from d(n da)/du.
+    for (const auto& pl : pressures_) {
+      const double p = pl.pressure * pl.ramp(t, end_time);
+      const std::size_t nf = pl.conn.extent(0);
+      if (nf == 0 || p == 0.0) continue;
+      const QuadRule q = make_rule(pl.type, 2 * cell_order(pl.type) + 1);
+      const CellType type = pl.type;
+      const int nn = pl.nn;
+      auto conn = pl.conn;
+      auto orient = pl.orientation;
+      const bool T = with_tangent;
+      Kokkos::parallel_for(
+          "stentor::follower_pressure", Kokkos::RangePolicy<la::ExecSpace>(0, nf), KOKKOS_LAMBDA(const int f) {
+            double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], re[kMaxCellDofs], ke[kMaxCellDofs][kMaxCellDofs];
+            double N[kMaxCellNodes], dN[kMaxCellNodes][3];
+            int dofs[kMaxCellDofs];
+            gather_cell(f, nn, dim, conn, X, uv, Xe, Ue, dofs);
+            const int nd = nn * dim;
+            for (int i = 0; i < nd; ++i) {
+              re[i] = 0.0;
+              for (int j = 0; j < nd; ++j) ke[i][j] = 0.0;
+            }
+            const double ps = p * orient(f);
+            for (int g = 0; g < q.n; ++g) {
+              shape_functions(type, q.xi[g], N, dN);
+              double t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0};
+              for (int a = 0; a < nn; ++a)
+                for (int d = 0; d < 3; ++d) {
+                  t1[d] += dN[a][0] * (Xe[a][d] + Ue[a][d]);
+                  t2[d] += dN[a][1] * (Xe[a][d] + Ue[a][d]);
+                }
+              const double w = q.w[g] * ps;
+              if (dim == 2) {
+                const double n[2] = {t1[1], -t1[0]};
+                for (int a = 0; a < nn; ++a) {
+                  re[a * 2 + 0] += w * N[a] * n[0];
+                  re[a * 2 + 1] += w * N[a] * n[1];
+                  for (int b = 0; b < nn; ++b) {
+                    ke[a * 2 + 0][b * 2 + 1] += w * N[a] * dN[b][0];
+                    ke[a * 2 + 1][b * 2 + 0] -= w * N[a] * dN[b][0];
+                  }
+                }
+              } else {
+                const double n[3] = {t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]};
+                for (int a = 0; a < nn; ++a)
+                  for (int i = 0; i < 3; ++i) {
+                    re[a * 3 + i] += w * N[a] * n[i];
+                    for (int b = 0; b < nn; ++b)
+                      for (int k = 0; k < 3; ++k) {
+                        // d(t1 x t2)_i/du_bk = dN_b,xi (e_k x t2)_i + dN_b,eta (t1 x e_k)_i
+                        double ek_x_t2 = 0.0, t1_x_ek = 0.0;
+                        const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
+                        if (k == i1) { ek_x_t2 = -t2[i2]; t1_x_ek = t1[i2]; }
+                        if (k == i2) { ek_x_t2 = t2[i1]; t1_x_ek = -t1[i1]; }
+                        ke[a * 3 + i][b * 3 + k] += w * N[a] * (dN[b][0] * ek_x_t2 + dN[b][1] * t1_x_ek);
+                      }
+                  }
+              }
+            }
+            if (T)
+              scatter<true>(nd, dofs, re, ke, rv, Kl, flags);
+            else
+              scatter<false>(nd, dofs, re, ke, rv, Kl, flags);
+          });
+    }
+  }
+  // Dead loads: r -= ramp(t) f.
+  for (const auto& dl : dead_) r_overlap_->update(-dl.ramp(t, end_time), *dl.f, 1.0);
+
+  auto fh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), failures_);
+  long local_fail[2] = {fh(0), fh(1)}, global_fail[2] = {0, 0};
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 2, local_fail, global_fail);
+  if (global_fail[1] > 0)
+    throw std::runtime_error(std::to_string(global_fail[1]) + " cells have a non-positive reference Jacobian (mesh check missed them)");
+  Stats st;
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &energy, &st.energy);
+  st.inverted = global_fail[0];
+  if (st.inverted > 0) return st;
+
+  r.putScalar(0.0);
+  r.doExport(*r_overlap_, *exporter_, Tpetra::ADD);
+  {
+    // Reactions, then zero the constrained rows.
+    auto rh = r.getLocalViewHost(Tpetra::Access::ReadWrite);
+    std::vector<double> loc(3 * reactions_.size(), 0.0), glob(loc.size(), 0.0);
+    for (std::size_t s = 0; s < dirichlet_owned_nodes_.size(); ++s)
+      for (la::LO l : dirichlet_owned_nodes_[s])
+        for (int d = 0; d < dim_; ++d) loc[3 * s + d] += rh(l * dim_ + d, 0);
+    if (!loc.empty()) Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), glob.data());
+    for (std::size_t s = 0; s < reactions_.size(); ++s) reactions_[s] = {glob[3 * s], glob[3 * s + 1], glob[3 * s + 2]};
+    for (la::LO i : owned_dirichlet_dofs_) rh(i, 0) = 0.0;
+  }
+  if (with_tangent) {
+    // Identity on owned constrained rows (owned dofs are a prefix of the overlap dofs).
+    const la::LO ndir = static_cast<la::LO>(owned_dirichlet_dofs_.size());
+    Kokkos::View<la::LO*, la::ExecSpace> rows("dirichlet_rows", ndir);
+    auto rh = Kokkos::create_mirror_view(rows);
+    for (la::LO i = 0; i < ndir; ++i) rh(i) = owned_dirichlet_dofs_[static_cast<std::size_t>(i)];
+    Kokkos::deep_copy(rows, rh);
+    Kokkos::parallel_for(
+        "stentor::dirichlet_rows", Kokkos::RangePolicy<la::ExecSpace>(0, ndir), KOKKOS_LAMBDA(const int i) {
+          const la::LO row = rows(i);
+          const double one = 1.0;
+          Kl.replaceValues(row, &row, 1, &one, false, true);
+        });
+    K_->resumeFill();
+    K_->setAllToScalar(0.0);
+    K_->doExport(*K_overlap_, *exporter_, Tpetra::ADD);
+    K_->fillComplete(dist_.owned_map(), dist_.owned_map());
+  }
+  return st;
+}
+
+Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
+  u_overlap_->doImport(u, *dist_.importer(), Tpetra::INSERT);
+  CellFields out;
+  const int dim = dim_;
+  auto X = dist_.coords();
+  auto uv = u_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
+  for (const auto& lb : dist_.blocks()) {
+    const std::size_t nc = lb.cell_ids.size();
+    out.cell_ids.insert(out.cell_ids.end(), lb.cell_ids.begin(), lb.cell_ids.end());
+    if (nc == 0) continue;
+    const CiarletGeymonat mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
+    const QuadRule q = make_rule(lb.type, quad_degree_[static_cast<std::size_t>(lb.volume_block)]);
+    const CellType type = lb.type;
+    const int nn = lb.nodes_per_cell;
+    auto conn = lb.conn;
+    Kokkos::View<double* [8], Kokkos::LayoutRight, la::ExecSpace> res("cell_fields", nc);
+    Kokkos::parallel_for(
+        "stentor::cell_fields", Kokkos::RangePolicy<la::ExecSpace>(0, nc), KOKKOS_LAMBDA(const int c) {
+          double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], N[kMaxCellNodes], dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
+          int dofs[kMaxCellDofs];
+          gather_cell(c, nn, dim, conn, X, uv, Xe, Ue, dofs);
+          Mat3 sig = Mat3::zero();
+          double Jm = 0.0, vol = 0.0;
+          for (int g = 0; g < q.n; ++g) {
+            shape_functions(type, q.xi[g], N, dN);
+            const double w = q.w[g] * reference_gradients(dim, nn, Xe, dN, dNdX);
+            const Mat3 F = deformation_gradient(dim, nn, Ue, dNdX);
+            const double J = det(F);
+            vol += w;
+            Jm += w * J;
+            if (J > 0.0) sig = sig + w * cauchy_stress(F, matmul(F, mat.stress(tmul(F, F))));
+          }
+          sig = (1.0 / vol) * sig;
+          res(c, 0) = sig(0, 0);
+          res(c, 1) = sig(1, 1);
+          res(c, 2) = sig(2, 2);
+          res(c, 3) = sig(0, 1);
+          res(c, 4) = sig(1, 2);
+          res(c, 5) = sig(0, 2);
+          res(c, 6) = von_mises(sig);
+          res(c, 7) = Jm / vol;
+        });
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), res);
+    for (std::size_t c = 0; c < nc; ++c) {
+      for (int k = 0; k < 6; ++k) out.stress.push_back(h(c, k));
+      out.von_mises.push_back(h(c, 6));
+      out.J.push_back(h(c, 7));
+    }
+  }
+  return out;
+}
+
+}  // namespace stentor

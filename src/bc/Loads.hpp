@@ -1,0 +1,56 @@
+// Loads and constraints resolved against the mesh: deck names -> node and facet lists.
+// Trilinos-free; the assembler turns these into local index arrays.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "deck/Config.hpp"
+#include "mesh/Mesh.hpp"
+
+namespace stentor {
+
+struct DirichletSet {
+  std::string name, group;
+  std::vector<gid_t> nodes;            // sorted, unique
+  std::array<bool, 3> components{};
+  std::array<double, 3> values{};      // full value, multiplied by ramp(t)
+  Ramp ramp;
+};
+
+// Traction (dead load on the reference area) or follower pressure on boundary facets.
+struct FacetLoad {
+  LoadConfig::Type type = LoadConfig::Type::Traction;
+  std::string name, group;
+  CellType facet_type = CellType::Invalid;
+  int nodes_per_facet = 0;
+  std::vector<gid_t> conn;             // facet nodes, gmsh order
+  std::vector<double> orientation;     // +1 if the reference normal (see fem/Geometry.hpp) points out of the body, else -1
+  std::vector<gid_t> adjacent_cell;    // global id of the volume cell the facet bounds (decides which rank integrates it)
+  std::array<double, 3> traction{};    // Traction: force per reference area
+  double pressure = 0.0;               // Pressure: acts along -n (current configuration)
+  Ramp ramp;
+  std::size_t num_facets() const { return nodes_per_facet ? conn.size() / nodes_per_facet : 0; }
+};
+
+struct BodyForce {
+  std::string name;
+  std::vector<int> volume_blocks;      // indices into Mesh::volumes
+  std::array<double, 3> force{};       // per unit reference volume
+  Ramp ramp;
+};
+
+struct Loads {
+  std::vector<DirichletSet> dirichlet;
+  std::vector<FacetLoad> facet_loads;
+  std::vector<BodyForce> body_forces;
+};
+
+// Throws InputError naming the load and the missing/unsuitable physical group.
+Loads resolve_loads(const Config& cfg, const Mesh& mesh);
+
+// Material of each volume block (index into cfg.materials), from the deck's bodies.
+// Throws InputError when a body names no group of the mesh or a volume group has no body.
+std::vector<int> block_materials(const Config& cfg, const Mesh& mesh);
+
+}  // namespace stentor

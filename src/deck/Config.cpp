@@ -1,0 +1,895 @@
+// Input deck reader: Teuchos ParameterList XML -> stentor::Config, validated against
+// the schema of deck/Schema.cpp. Every problem throws InputError("<deck>: ...").
+#include "deck/Config.hpp"
+
+#include <Teuchos_Array.hpp>
+#include <Teuchos_FileInputSource.hpp>
+#include <Teuchos_ParameterList.hpp>
+#include <Teuchos_XMLObject.hpp>
+#include <Teuchos_XMLParameterListCoreHelpers.hpp>
+#include <Teuchos_XMLParameterListReader.hpp>
+#include <Teuchos_XMLParameterListHelpers.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "deck/Schema.hpp"
+
+namespace stentor {
+
+double Ramp::operator()(double t, double end_time) const {
+  switch (kind) {
+    case Kind::Constant: return 1.0;
+    case Kind::Linear: return end_time > 0.0 ? t / end_time : 1.0;
+    case Kind::Table: {
+      if (times.empty() || factors.size() != times.size()) return 1.0;
+      if (t <= times.front()) return factors.front();
+      if (t >= times.back()) return factors.back();
+      const auto it = std::upper_bound(times.begin(), times.end(), t);  // times[i-1] <= t < times[i]
+      const std::size_t i = static_cast<std::size_t>(it - times.begin());
+      const double t0 = times[i - 1], t1 = times[i];
+      const double w = (t - t0) / (t1 - t0);
+      return (1.0 - w) * factors[i - 1] + w * factors[i];
+    }
+  }
+  return 1.0;
+}
+
+const MaterialConfig& Config::material(const std::string& name) const {
+  std::string defined;
+  for (const auto& m : materials) {
+    if (m.name == name) return m;
+    defined += (defined.empty() ? "" : ", ") + m.name;
+  }
+  throw InputError(deck_path + ": no material named '" + name + "'; defined materials: " +
+                   (defined.empty() ? "(none)" : defined));
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+using Teuchos::ParameterEntry;
+using Teuchos::ParameterList;
+using Teuchos::XMLObject;
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+std::string upper(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return s;
+}
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r\n");
+  return s.substr(b, e - b + 1);
+}
+std::string num(double v) {
+  std::ostringstream os;
+  os.precision(15);
+  os << v;
+  return os.str();
+}
+std::string join(const std::vector<std::string>& v, const std::string& sep = ", ") {
+  std::string out;
+  for (std::size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];
+  return out;
+}
+std::string child_path(const std::string& path, const std::string& name) {
+  return path.empty() ? name : path + "->" + name;
+}
+std::string quoted(const std::string& path) { return "'" + path + "'"; }
+
+bool parse_ll(const std::string& s0, long long& out) {
+  const std::string s = trim(s0);
+  if (s.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  out = std::strtoll(s.c_str(), &end, 10);
+  return errno == 0 && end == s.c_str() + s.size();
+}
+bool parse_dbl(const std::string& s0, double& out) {
+  const std::string s = trim(s0);
+  if (s.empty()) return false;
+  char* end = nullptr;
+  out = std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size();
+}
+
+// Teuchos types a deck may use outside the pass-through sublists.
+const std::vector<std::string> kScalarTypes = {"int", "short", "long long", "double", "float", "bool", "string"};
+const std::vector<std::string> kXmlTypes = {"int",           "short",        "long long",   "double",
+                                            "float",         "bool",         "string",      "Array(int)",
+                                            "Array(double)", "Array(float)", "Array(string)"};
+
+// Checks that `value` really is a `type` (Teuchos silently turns "abc" into 0 for a
+// double and "2.5" into 2 for an int). Returns "" if fine, else what it should be.
+std::string check_xml_value(const std::string& type, const std::string& value) {
+  long long ll;
+  double d;
+  if (type == "int" || type == "short" || type == "long long") {
+    if (!parse_ll(value, ll)) return "an integer";
+    if (type == "int" && (ll < INT_MIN || ll > INT_MAX)) return "an integer that fits an int";
+    if (type == "short" && (ll < SHRT_MIN || ll > SHRT_MAX)) return "an integer that fits a short";
+    return "";
+  }
+  if (type == "double" || type == "float") return parse_dbl(value, d) ? "" : "a number";
+  if (type == "bool") {
+    const std::string u = upper(trim(value));
+    return (u == "TRUE" || u == "FALSE" || u == "YES" || u == "NO" || u == "1" || u == "0") ? ""
+                                                                                              : "true or false";
+  }
+  if (type.rfind("Array(", 0) == 0 && type.back() == ')') {
+    const std::string elem = type.substr(6, type.size() - 7);
+    const std::string v = trim(value);
+    if (v.size() < 2 || v.front() != '{' || v.back() != '}') return "an array written as {a, b, ...}";
+    const std::string inner = v.substr(1, v.size() - 2);
+    if (trim(inner).empty() || elem == "string") return "";
+    std::stringstream ss(inner);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+      const std::string bad = check_xml_value(elem, item);
+      if (!bad.empty()) return "an array {a, b, ...} of " + elem + " values ('" + trim(item) + "' is not " + bad + ")";
+    }
+    if (trim(inner).back() == ',') return "an array written as {a, b, ...} (trailing comma)";
+    return "";
+  }
+  return "";
+}
+
+class DeckReader {
+ public:
+  explicit DeckReader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& msg) const { throw InputError(file_ + ": " + msg); }
+
+  Config read();
+
+ private:
+  std::string file_;  // as given by the user: every message starts with it
+  Config cfg_;
+
+  // ---- pass 1: the raw XML tree (before Teuchos converts and merges values) ----
+  void check_xml(const XMLObject& x, const std::string& path, bool passthrough) const;
+
+  // ---- pass 2: the ParameterList against the schema ----
+  void check_list(const ParameterList& pl, const std::string& path, const std::vector<const ListSpec*>& specs) const;
+  void check_param(const ParameterEntry& e, const std::string& path, const ParamSpec& p) const;
+  void require(const ParameterList& pl, const std::string& path, const std::vector<const ListSpec*>& specs) const;
+
+  // Typed access (after check_list): the value, or the schema default when absent.
+  static const ParamSpec& spec(const ListSpec& ls, const std::string& name) {
+    const ParamSpec* p = ls.find(name);
+    if (!p) throw std::logic_error("stentor deck: no parameter '" + name + "' in schema list '" + ls.key + "'");
+    return *p;
+  }
+  double get_double(const ParameterList& pl, const ListSpec& ls, const std::string& name) const;
+  int get_int(const ParameterList& pl, const ListSpec& ls, const std::string& name) const;
+  bool get_bool(const ParameterList& pl, const ListSpec& ls, const std::string& name) const;
+  std::string get_string(const ParameterList& pl, const ListSpec& ls, const std::string& name) const;
+  std::vector<double> get_array(const ParameterList& pl, const ListSpec& ls, const std::string& name) const;
+
+  void read_problem(const ParameterList& pl);
+  void read_mesh(const ParameterList& pl);
+  void read_materials(const ParameterList& pl);
+  void read_bodies(const ParameterList& pl);
+  void read_loads(const ParameterList& pl);
+  void read_stepping(const ParameterList& pl);
+  void read_newton(const ParameterList& pl);
+  void read_linear(const ParameterList& pl);
+  void read_output(const ParameterList& pl);
+  Ramp read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls) const;
+  void check_dim_length(const std::vector<double>& v, const std::string& path) const;
+};
+
+// ------------------------------------------------------------------------------------
+// Pass 1: raw XML.
+
+void DeckReader::check_xml(const XMLObject& x, const std::string& path, bool passthrough) const {
+  const std::string where = path.empty() ? "the root list" : quoted(path);
+  std::set<std::string> seen;
+  for (int i = 0; i < x.numChildren(); ++i) {
+    const XMLObject& c = x.getChild(i);
+    const std::string& tag = c.getTag();
+    if (tag != "Parameter" && tag != "ParameterList")
+      fail("unexpected element <" + tag + "> in " + where + "; a list holds only <Parameter> and <ParameterList> elements");
+    if (!c.hasAttribute("name") || trim(c.getAttribute("name")).empty())
+      fail("a <" + tag + "> in " + where + " has no name attribute");
+    const std::string& name = c.getAttribute("name");
+    const std::string p = child_path(path, name);
+    if (!seen.insert(name).second) fail(quoted(p) + " is given twice; each name may appear once per list");
+    if (tag == "ParameterList") {
+      check_xml(c, p, passthrough || (path == "Linear Solver" && (name == "Belos" || name == "Ifpack2" ||
+                                                                  name == "MueLu" || name == "Amesos2")));
+      continue;
+    }
+    if (!c.hasAttribute("type"))
+      fail("parameter " + quoted(p) + " has no type attribute (e.g. type=\"double\"; types: int, double, bool, "
+           "string, Array(double))");
+    if (!c.hasAttribute("value")) fail("parameter " + quoted(p) + " has no value attribute");
+    const std::string& type = c.getAttribute("type");
+    const std::string& value = c.getAttribute("value");
+    const bool known = std::find(kXmlTypes.begin(), kXmlTypes.end(), type) != kXmlTypes.end();
+    if (!known && !passthrough) {
+      const std::string near = nearest_name(type, kXmlTypes);
+      fail("parameter " + quoted(p) + " has unknown type '" + type +
+           "'; deck types are int, double, bool, string, Array(double)" +
+           (near.empty() ? std::string() : "; did you mean '" + near + "'?"));
+    }
+    if (known) {
+      const std::string bad = check_xml_value(type, value);
+      if (!bad.empty())
+        fail("wrong value for " + quoted(p) + ": type=\"" + type + "\" needs " + bad + ", got '" + value + "'");
+    }
+  }
+}
+
+// Strips Teuchos' exception boilerplate (source location, throw number, test text).
+std::string clean_teuchos_message(const std::string& what) {
+  std::istringstream is(what);
+  std::string line, out;
+  while (std::getline(is, line)) {
+    const std::string t = trim(line);
+    if (t.empty() || t.rfind("Throw number", 0) == 0 || t.rfind("Throw test that evaluated to true", 0) == 0) continue;
+    if ((t.find(".cpp:") != std::string::npos || t.find(".hpp:") != std::string::npos) && t.back() == ':' &&
+        t.find(' ') == std::string::npos)
+      continue;  // "./packages/teuchos/.../Teuchos_XMLParser.cpp:435:"
+    out += (out.empty() ? "" : " ") + t;
+  }
+  return out.empty() ? what : out;
+}
+
+std::string rewrap_xml_error(const std::string& what) {
+  std::string msg = clean_teuchos_message(what);
+  const std::string marker = "XML parse error at line ";
+  const auto pos = msg.find(marker);
+  if (pos != std::string::npos) {
+    std::size_t e = pos + marker.size();
+    std::size_t q = e;
+    while (q < msg.size() && std::isdigit(static_cast<unsigned char>(msg[q]))) ++q;
+    const std::string line = msg.substr(e, q - e);
+    std::string rest = msg.substr(q);
+    if (rest.rfind(": ", 0) == 0) rest = rest.substr(2);
+    return "malformed XML at line " + line + ": " + rest;
+  }
+  return "malformed XML: " + msg;
+}
+
+// ------------------------------------------------------------------------------------
+// Pass 2: schema validation.
+
+std::string xml_type_of(const Teuchos::any& a) {
+  const auto& t = a.type();
+  if (t == typeid(int)) return "int";
+  if (t == typeid(short)) return "short";
+  if (t == typeid(long long)) return "long long";
+  if (t == typeid(double)) return "double";
+  if (t == typeid(float)) return "float";
+  if (t == typeid(bool)) return "bool";
+  if (t == typeid(std::string)) return "string";
+  if (t == typeid(Teuchos::Array<double>)) return "Array(double)";
+  if (t == typeid(Teuchos::Array<float>)) return "Array(float)";
+  if (t == typeid(Teuchos::Array<int>)) return "Array(int)";
+  if (t == typeid(Teuchos::Array<std::string>)) return "Array(string)";
+  return a.typeName();
+}
+
+bool as_double(const Teuchos::any& a, double& v);
+bool as_array(const Teuchos::any& a, std::vector<double>& v);
+
+std::string value_text(const Teuchos::any& a) {
+  std::ostringstream os;
+  std::vector<double> v;
+  double d;
+  if (a.type() == typeid(std::string))
+    os << "'" << Teuchos::any_cast<std::string>(a) << "'";
+  else if (a.type() == typeid(bool))
+    os << (Teuchos::any_cast<bool>(a) ? "true" : "false");
+  else if (as_array(a, v)) {
+    os << "{";
+    for (std::size_t i = 0; i < v.size(); ++i) os << (i ? ", " : "") << num(v[i]);
+    os << "}";
+  } else if (as_double(a, d))
+    os << num(d);
+  else
+    os << a;
+  return os.str();
+}
+
+bool as_double(const Teuchos::any& a, double& v) {
+  const auto& t = a.type();
+  if (t == typeid(double)) v = Teuchos::any_cast<double>(a);
+  else if (t == typeid(float)) v = Teuchos::any_cast<float>(a);
+  else if (t == typeid(int)) v = Teuchos::any_cast<int>(a);
+  else if (t == typeid(short)) v = Teuchos::any_cast<short>(a);
+  else if (t == typeid(long long)) v = static_cast<double>(Teuchos::any_cast<long long>(a));
+  else return false;
+  return true;
+}
+
+bool as_int(const Teuchos::any& a, long long& v) {
+  const auto& t = a.type();
+  if (t == typeid(int)) v = Teuchos::any_cast<int>(a);
+  else if (t == typeid(short)) v = Teuchos::any_cast<short>(a);
+  else if (t == typeid(long long)) v = Teuchos::any_cast<long long>(a);
+  else return false;
+  return true;
+}
+
+bool as_array(const Teuchos::any& a, std::vector<double>& v) {
+  const auto& t = a.type();
+  v.clear();
+  if (t == typeid(Teuchos::Array<double>)) {
+    for (double x : Teuchos::any_cast<Teuchos::Array<double>>(a)) v.push_back(x);
+  } else if (t == typeid(Teuchos::Array<float>)) {
+    for (float x : Teuchos::any_cast<Teuchos::Array<float>>(a)) v.push_back(x);
+  } else if (t == typeid(Teuchos::Array<int>)) {
+    for (int x : Teuchos::any_cast<Teuchos::Array<int>>(a)) v.push_back(x);
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// Canonical spelling of `s` among `choices` (case-insensitive), or "".
+std::string match_choice(const std::string& s, const std::vector<std::string>& choices) {
+  for (const auto& c : choices)
+    if (lower(trim(s)) == lower(c)) return c;
+  return "";
+}
+
+void DeckReader::check_param(const ParameterEntry& e, const std::string& path, const ParamSpec& p) const {
+  const Teuchos::any& a = e.getAny();
+  auto wrong_type = [&]() {
+    fail("wrong type for " + quoted(path) + ": expected " + param_type_name(p.type) + ", got " + xml_type_of(a) +
+         " " + value_text(a));
+  };
+  auto out_of_range = [&](const std::string& what) {
+    fail(quoted(path) + " must be " + p.range_text() + ", got " + what);
+  };
+  auto not_a_choice = [&](const std::string& given) {
+    const bool is_str = p.type == ParamType::String;
+    std::string msg = quoted(path) + " must be one of " + join(p.choices) + "; got " + (is_str ? "'" + given + "'" : given);
+    const std::string near = nearest_name(trim(given), p.choices);
+    if (!near.empty() && is_str) msg += "; did you mean '" + near + "'?";
+    fail(msg);
+  };
+  switch (p.type) {
+    case ParamType::Double: {
+      double v;
+      if (!as_double(a, v)) wrong_type();
+      if (!std::isfinite(v)) fail(quoted(path) + " must be a finite number, got " + num(v));
+      if (!p.in_range(v)) out_of_range(num(v));
+      break;
+    }
+    case ParamType::Int: {
+      long long v;
+      if (!as_int(a, v)) wrong_type();
+      if (v < INT_MIN || v > INT_MAX) fail(quoted(path) + " does not fit an int, got " + std::to_string(v));
+      if (!p.in_range(static_cast<double>(v))) out_of_range(std::to_string(v));
+      if (!p.choices.empty() &&
+          std::find(p.choices.begin(), p.choices.end(), std::to_string(v)) == p.choices.end())
+        not_a_choice(std::to_string(v));
+      break;
+    }
+    case ParamType::Bool:
+      if (a.type() != typeid(bool)) wrong_type();
+      break;
+    case ParamType::String: {
+      if (a.type() != typeid(std::string)) wrong_type();
+      const auto& s = Teuchos::any_cast<std::string>(a);
+      if (!p.choices.empty() && match_choice(s, p.choices).empty()) not_a_choice(s);
+      if (p.required && trim(s).empty()) fail(quoted(path) + " must not be empty");
+      break;
+    }
+    case ParamType::DoubleArray: {
+      std::vector<double> v;
+      if (!as_array(a, v)) wrong_type();
+      const int n = static_cast<int>(v.size());
+      if ((p.min_len > 0 && n < p.min_len) || (p.max_len > 0 && n > p.max_len)) {
+        std::string want;
+        if (p.min_len == p.max_len) want = std::to_string(p.min_len);
+        else if (p.max_len == 0) want = "at least " + std::to_string(p.min_len);
+        else want = std::to_string(p.min_len) + " to " + std::to_string(p.max_len);
+        fail(quoted(path) + " must have " + want + " values, got " + std::to_string(n) + " " + value_text(a));
+      }
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        if (!std::isfinite(v[i])) fail(quoted(path) + " must hold finite numbers, got " + value_text(a));
+        if (!p.in_range(v[i]))
+          fail("each value of " + quoted(path) + " must be " + p.range_text() + ", got " + num(v[i]) + " at position " +
+               std::to_string(i + 1));
+      }
+      break;
+    }
+  }
+}
+
+void DeckReader::check_list(const ParameterList& pl, const std::string& path,
+                            const std::vector<const ListSpec*>& specs) const {
+  std::vector<std::string> param_names, fixed_sublists;
+  std::string named;  // what a user-named sublist is ("material", ...), "" if none allowed
+  for (const ListSpec* s : specs) {
+    if (s->passthrough) return;
+    for (const auto& p : s->params) param_names.push_back(p.name);
+    fixed_sublists.insert(fixed_sublists.end(), s->sublists.begin(), s->sublists.end());
+    if (!s->named_sublists.empty()) named = s->named_sublists;
+  }
+  auto find_param = [&](const std::string& n) -> const ParamSpec* {
+    for (const ListSpec* s : specs)
+      if (const ParamSpec* p = s->find(n)) return p;
+    return nullptr;
+  };
+  const std::string where = path.empty() ? "the root list" : quoted(path);
+
+  for (auto it = pl.begin(); it != pl.end(); ++it) {
+    const std::string& name = pl.name(it);
+    const ParameterEntry& e = pl.entry(it);
+    const std::string p = child_path(path, name);
+    const bool is_fixed = std::find(fixed_sublists.begin(), fixed_sublists.end(), name) != fixed_sublists.end();
+    if (e.isList()) {
+      if (is_fixed || !named.empty()) continue;  // validated by the caller
+      if (const ParamSpec* ps = find_param(name))
+        fail(quoted(p) + " must be a parameter (" + param_type_name(ps->type) + "), not a sublist");
+      std::vector<std::string> cands = fixed_sublists;
+      cands.insert(cands.end(), param_names.begin(), param_names.end());
+      const std::string near = nearest_name(name, cands);
+      if (!near.empty()) fail("unknown sublist " + quoted(p) + "; did you mean '" + near + "'?");
+      fail("unknown sublist " + quoted(p) + "; " +
+           (fixed_sublists.empty() ? where + " has no sublists"
+                                   : "valid sublists of " + where + ": " + join(fixed_sublists)));
+    }
+    if (const ParamSpec* ps = find_param(name)) {
+      check_param(e, p, *ps);
+      continue;
+    }
+    if (is_fixed) fail(quoted(p) + " must be a sublist (<ParameterList name=\"" + name + "\">), not a parameter");
+    if (!named.empty() && param_names.empty())
+      fail(quoted(p) + " is a parameter, but " + where + " holds only sublists, one per " + named +
+           " (<ParameterList name=\"...\">)");
+    std::vector<std::string> cands = param_names;
+    cands.insert(cands.end(), fixed_sublists.begin(), fixed_sublists.end());
+    const std::string near = nearest_name(name, cands);
+    if (!near.empty()) fail("unknown parameter " + quoted(p) + "; did you mean '" + near + "'?");
+    fail("unknown parameter " + quoted(p) + "; " +
+         (param_names.empty() ? where + " takes no parameters" : "valid parameters of " + where + ": " + join(param_names)));
+  }
+}
+
+void DeckReader::require(const ParameterList& pl, const std::string& path,
+                         const std::vector<const ListSpec*>& specs) const {
+  for (const ListSpec* s : specs) {
+    for (const auto& p : s->params)
+      if (p.required && !pl.isParameter(p.name)) {
+        std::string what = param_type_name(p.type);
+        const std::string allowed = p.allowed_text();
+        if (allowed != "any") what += ", " + allowed;
+        fail("missing required parameter " + quoted(child_path(path, p.name)) + " (" + what + "): " + p.doc);
+      }
+    for (const auto& l : s->required_sublists)
+      if (!pl.isSublist(l)) fail("missing required sublist " + quoted(child_path(path, l)));
+  }
+}
+
+double DeckReader::get_double(const ParameterList& pl, const ListSpec& ls, const std::string& name) const {
+  const ParamSpec& p = spec(ls, name);
+  double v = p.num;
+  if (pl.isParameter(name)) as_double(pl.getEntry(name).getAny(), v);
+  return v;
+}
+int DeckReader::get_int(const ParameterList& pl, const ListSpec& ls, const std::string& name) const {
+  const ParamSpec& p = spec(ls, name);
+  long long v = static_cast<long long>(p.num);
+  if (pl.isParameter(name)) as_int(pl.getEntry(name).getAny(), v);
+  return static_cast<int>(v);
+}
+bool DeckReader::get_bool(const ParameterList& pl, const ListSpec& ls, const std::string& name) const {
+  const ParamSpec& p = spec(ls, name);
+  return pl.isParameter(name) ? pl.get<bool>(name) : p.num != 0.0;
+}
+std::string DeckReader::get_string(const ParameterList& pl, const ListSpec& ls, const std::string& name) const {
+  const ParamSpec& p = spec(ls, name);
+  std::string s = pl.isParameter(name) ? trim(pl.get<std::string>(name)) : p.str;
+  if (!p.choices.empty()) {
+    const std::string c = match_choice(s, p.choices);
+    if (!c.empty()) s = c;
+  }
+  return s;
+}
+std::vector<double> DeckReader::get_array(const ParameterList& pl, const ListSpec& ls, const std::string& name) const {
+  spec(ls, name);
+  std::vector<double> v;
+  if (pl.isParameter(name)) as_array(pl.getEntry(name).getAny(), v);
+  return v;
+}
+
+void DeckReader::check_dim_length(const std::vector<double>& v, const std::string& path) const {
+  const int dim = cfg_.mesh.dimension;
+  if (dim != 0 && static_cast<int>(v.size()) != dim)
+    fail(quoted(path) + " must have " + std::to_string(dim) + " values ('Mesh->dimension' = " + std::to_string(dim) +
+         "), got " + std::to_string(v.size()));
+}
+
+// ------------------------------------------------------------------------------------
+// Sections.
+
+void DeckReader::read_problem(const ParameterList& pl) {
+  const ListSpec& ls = deck_list_spec("Problem");
+  check_list(pl, "Problem", {&ls});
+  cfg_.problem.title = get_string(pl, ls, "title");
+  cfg_.problem.analysis = get_string(pl, ls, "analysis");
+}
+
+void DeckReader::read_mesh(const ParameterList& pl) {
+  const ListSpec& ls = deck_list_spec("Mesh");
+  check_list(pl, "Mesh", {&ls});
+  require(pl, "Mesh", {&ls});
+  auto& m = cfg_.mesh;
+  const std::string file = get_string(pl, ls, "file");
+  fs::path f(file);
+  if (f.is_relative()) f = fs::path(cfg_.deck_path).parent_path() / f;
+  f = f.lexically_normal();
+  m.file = f.string();
+  const std::string ext = lower(f.extension().string());
+  if (ext != ".msh" && ext != ".geo")
+    fail("'Mesh->file' must be a gmsh .msh or .geo file, got '" + file + "'");
+  std::error_code ec;
+  if (!fs::exists(f, ec)) fail("'Mesh->file': mesh file '" + m.file + "' does not exist (resolved from '" + file +
+                               "' relative to the deck's folder)");
+  if (!fs::is_regular_file(f, ec)) fail("'Mesh->file': '" + m.file + "' is not a regular file");
+  m.size = get_double(pl, ls, "size");
+  m.order = get_int(pl, ls, "order");
+  m.recombine = get_bool(pl, ls, "recombine");
+  m.dimension = get_int(pl, ls, "dimension");
+  if (m.recombine && m.order == 2)
+    fail("'Mesh->recombine' = true needs 'Mesh->order' = 1 (quad8/hex20 bodies are not supported)");
+}
+
+void DeckReader::read_materials(const ParameterList& pl) {
+  const ListSpec& top = deck_list_spec("Materials");
+  const ListSpec& ls = deck_list_spec("Materials/*");
+  check_list(pl, "Materials", {&top});
+  for (auto it = pl.begin(); it != pl.end(); ++it) {
+    const std::string& name = pl.name(it);
+    const std::string path = "Materials->" + name;
+    const ParameterList& sub = pl.sublist(name);
+    check_list(sub, path, {&ls});
+    require(sub, path, {&ls});
+    MaterialConfig m;
+    m.name = name;
+    m.model = get_string(sub, ls, "model");
+    m.C1 = get_double(sub, ls, "C1");
+    m.C2 = get_double(sub, ls, "C2");
+    m.D = get_double(sub, ls, "D");
+    m.density = get_double(sub, ls, "density");
+    m.viscosity = get_double(sub, ls, "viscosity");
+    cfg_.materials.push_back(m);
+  }
+  if (cfg_.materials.empty()) fail("'Materials' defines no material; add one sublist per material");
+}
+
+void DeckReader::read_bodies(const ParameterList& pl) {
+  const ListSpec& top = deck_list_spec("Bodies");
+  const ListSpec& ls = deck_list_spec("Bodies/*");
+  check_list(pl, "Bodies", {&top});
+  std::vector<std::string> defined;
+  for (const auto& m : cfg_.materials) defined.push_back(m.name);
+  std::map<std::string, std::string> group_owner;
+  for (auto it = pl.begin(); it != pl.end(); ++it) {
+    const std::string& name = pl.name(it);
+    const std::string path = "Bodies->" + name;
+    const ParameterList& sub = pl.sublist(name);
+    check_list(sub, path, {&ls});
+    require(sub, path, {&ls});
+    BodyConfig b;
+    b.name = name;
+    b.group = sub.isParameter("physical group") ? get_string(sub, ls, "physical group") : name;
+    if (b.group.empty()) fail(quoted(path + "->physical group") + " must not be empty");
+    b.material = get_string(sub, ls, "material");
+    if (std::find(defined.begin(), defined.end(), b.material) == defined.end()) {
+      std::string msg = quoted(path + "->material") + " names undefined material '" + b.material +
+                        "'; defined materials: " + join(defined);
+      const std::string near = nearest_name(b.material, defined);
+      if (!near.empty()) msg += "; did you mean '" + near + "'?";
+      fail(msg);
+    }
+    const auto [pos, fresh] = group_owner.emplace(b.group, name);
+    if (!fresh)
+      fail("'Bodies->" + pos->second + "' and " + quoted(path) + " both use physical group '" + b.group +
+           "'; a physical group belongs to one body");
+    cfg_.bodies.push_back(b);
+  }
+  if (cfg_.bodies.empty()) fail("'Bodies' defines no body; add one sublist per body");
+}
+
+Ramp DeckReader::read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls) const {
+  Ramp r;
+  const std::string kind = get_string(pl, ls, "ramp");
+  const bool has_t = pl.isParameter("ramp times"), has_f = pl.isParameter("ramp factors");
+  if (kind != "table") {
+    r.kind = kind == "constant" ? Ramp::Kind::Constant : Ramp::Kind::Linear;
+    if (has_t || has_f)
+      fail(quoted(path + (has_t ? "->ramp times" : "->ramp factors")) + " is only used with \"ramp\" = table (ramp is " +
+           kind + ")");
+    return r;
+  }
+  r.kind = Ramp::Kind::Table;
+  if (!has_t) fail("missing required parameter " + quoted(path + "->ramp times") + " (Array(double)) for \"ramp\" = table");
+  if (!has_f) fail("missing required parameter " + quoted(path + "->ramp factors") + " (Array(double)) for \"ramp\" = table");
+  r.times = get_array(pl, ls, "ramp times");
+  r.factors = get_array(pl, ls, "ramp factors");
+  if (r.times.size() != r.factors.size())
+    fail(quoted(path + "->ramp factors") + " must have as many values as 'ramp times' (" + std::to_string(r.times.size()) +
+         "), got " + std::to_string(r.factors.size()));
+  for (std::size_t i = 1; i < r.times.size(); ++i)
+    if (!(r.times[i] > r.times[i - 1]))
+      fail(quoted(path + "->ramp times") + " must be strictly increasing, got " + num(r.times[i - 1]) + " then " +
+           num(r.times[i]) + " at positions " + std::to_string(i) + ", " + std::to_string(i + 1));
+  return r;
+}
+
+void DeckReader::read_loads(const ParameterList& pl) {
+  const ListSpec& top = deck_list_spec("Boundary Conditions");
+  const ListSpec& common = deck_list_spec("Boundary Conditions/*");
+  const std::vector<std::string> types = spec(common, "type").choices;
+  check_list(pl, "Boundary Conditions", {&top});
+  for (auto it = pl.begin(); it != pl.end(); ++it) {
+    const std::string& name = pl.name(it);
+    const std::string path = "Boundary Conditions->" + name;
+    const ParameterList& sub = pl.sublist(name);
+    if (!sub.isParameter("type"))
+      fail("missing required parameter " + quoted(path + "->type") + " (string, one of " + join(types) + ")");
+    check_param(sub.getEntry("type"), path + "->type", spec(common, "type"));
+    const std::string type = get_string(sub, common, "type");
+    const ListSpec& typed = deck_list_spec("Boundary Conditions/*/" + type);
+    // A parameter of another load type gets a specific message.
+    for (auto jt = sub.begin(); jt != sub.end(); ++jt) {
+      const std::string& pn = sub.name(jt);
+      if (common.find(pn) || typed.find(pn)) continue;
+      for (const auto& other : types)
+        if (other != type && deck_list_spec("Boundary Conditions/*/" + other).find(pn)) {
+          std::vector<std::string> valid;
+          for (const auto& p : typed.params) valid.push_back(p.name);
+          for (const auto& p : common.params) valid.push_back(p.name);
+          fail("unknown parameter " + quoted(path + "->" + pn) + " for a load of type '" + type + "' ('" + pn +
+               "' belongs to type '" + other + "'); a " + type + " load takes: " + join(valid));
+        }
+    }
+    check_list(sub, path, {&common, &typed});
+    require(sub, path, {&common, &typed});
+
+    LoadConfig lc;
+    lc.name = name;
+    lc.ramp = read_ramp(sub, path, common);
+    if (type == "Dirichlet") {
+      lc.type = LoadConfig::Type::Dirichlet;
+      lc.group = get_string(sub, typed, "boundary");
+      const std::string comp = get_string(sub, typed, "components");
+      const std::string cpath = path + "->components";
+      std::string tokens = comp;
+      std::replace(tokens.begin(), tokens.end(), ',', ' ');
+      std::istringstream is(tokens);
+      std::string tok;
+      std::vector<int> listed;
+      bool all = false;
+      const std::string expect = " must list components x, y, z (separated by spaces or commas) or be 'all'";
+      while (is >> tok) {
+        const std::string t = lower(tok);
+        if (t == "all") {
+          all = true;
+          continue;
+        }
+        if (t != "x" && t != "y" && t != "z") fail(quoted(cpath) + expect + "; got '" + comp + "' ('" + tok + "' is not a component)");
+        const int c = t[0] - 'x';
+        if (std::find(listed.begin(), listed.end(), c) != listed.end())
+          fail(quoted(cpath) + " lists '" + tok + "' twice; got '" + comp + "'");
+        listed.push_back(c);
+      }
+      if (all && !listed.empty()) fail(quoted(cpath) + ": 'all' cannot be combined with other components; got '" + comp + "'");
+      if (!all && listed.empty()) fail(quoted(cpath) + expect + "; got '" + comp + "'");
+      const int dim = cfg_.mesh.dimension;
+      if (dim == 2 && std::find(listed.begin(), listed.end(), 2) != listed.end())
+        fail(quoted(cpath) + ": 'z' is not a component of a 2D problem ('Mesh->dimension' = 2)");
+      lc.all_components = all;
+      if (all) {
+        lc.components = {true, true, dim != 2};
+      } else {
+        for (int c : listed) lc.components[static_cast<std::size_t>(c)] = true;
+      }
+      if (sub.isParameter("values")) {
+        const auto v = get_array(sub, typed, "values");
+        const std::string vpath = path + "->values";
+        if (all) {
+          if (v.size() < 2 || v.size() > 3 || (dim != 0 && static_cast<int>(v.size()) != dim))
+            fail(quoted(vpath) + " must have one value per dimension (" +
+                 (dim ? std::to_string(dim) : std::string("2 or 3")) + ") for components 'all', got " +
+                 std::to_string(v.size()));
+          for (std::size_t c = 0; c < v.size(); ++c) lc.vector[c] = v[c];
+        } else {
+          if (v.size() != listed.size())
+            fail(quoted(vpath) + " must have one value per listed component (" + std::to_string(listed.size()) + " for '" +
+                 comp + "'), got " + std::to_string(v.size()));
+          for (std::size_t k = 0; k < listed.size(); ++k) lc.vector[static_cast<std::size_t>(listed[k])] = v[k];
+        }
+      }
+    } else if (type == "traction") {
+      lc.type = LoadConfig::Type::Traction;
+      lc.group = get_string(sub, typed, "boundary");
+      const auto v = get_array(sub, typed, "traction");
+      check_dim_length(v, path + "->traction");
+      for (std::size_t c = 0; c < v.size(); ++c) lc.vector[c] = v[c];
+    } else if (type == "pressure") {
+      lc.type = LoadConfig::Type::Pressure;
+      lc.group = get_string(sub, typed, "boundary");
+      lc.value = get_double(sub, typed, "pressure");
+    } else {  // body force
+      lc.type = LoadConfig::Type::BodyForce;
+      const auto v = get_array(sub, typed, "force");
+      check_dim_length(v, path + "->force");
+      for (std::size_t c = 0; c < v.size(); ++c) lc.vector[c] = v[c];
+      const std::string body = get_string(sub, typed, "body");
+      if (!body.empty()) {
+        // A body's name or its physical group; stored as the physical group.
+        std::vector<std::string> names;
+        for (const auto& b : cfg_.bodies) {
+          if (b.name == body || b.group == body) lc.group = b.group;
+          names.push_back(b.name);
+        }
+        if (lc.group.empty()) {
+          std::string msg = quoted(path + "->body") + " names undefined body '" + body + "'; defined bodies: " + join(names);
+          const std::string near = nearest_name(body, names);
+          if (!near.empty()) msg += "; did you mean '" + near + "'?";
+          fail(msg);
+        }
+      }
+    }
+    cfg_.loads.push_back(lc);
+  }
+}
+
+void DeckReader::read_stepping(const ParameterList& pl) {
+  const ListSpec& ls = deck_list_spec("Stepping");
+  check_list(pl, "Stepping", {&ls});
+  cfg_.stepping.end_time = get_double(pl, ls, "end time");
+  cfg_.stepping.num_steps = get_int(pl, ls, "steps");
+  cfg_.stepping.max_cutbacks = get_int(pl, ls, "max cutbacks");
+}
+
+void DeckReader::read_newton(const ParameterList& pl) {
+  const ListSpec& ls = deck_list_spec("Newton");
+  check_list(pl, "Newton", {&ls});
+  auto& n = cfg_.newton;
+  n.max_iterations = get_int(pl, ls, "max iterations");
+  n.residual_tolerance = get_double(pl, ls, "relative residual tolerance");
+  n.absolute_tolerance = get_double(pl, ls, "absolute residual tolerance");
+  n.increment_tolerance = get_double(pl, ls, "increment tolerance");
+  n.line_search = get_bool(pl, ls, "line search");
+  n.line_search_max = get_int(pl, ls, "line search max halvings");
+}
+
+void DeckReader::read_linear(const ParameterList& pl) {
+  const ListSpec& ls = deck_list_spec("Linear Solver");
+  check_list(pl, "Linear Solver", {&ls});
+  auto& l = cfg_.linear;
+  l.method = get_string(pl, ls, "method");
+  l.preconditioner = get_string(pl, ls, "preconditioner");
+  l.tolerance = get_double(pl, ls, "tolerance");
+  l.max_iterations = get_int(pl, ls, "max iterations");
+  l.restart = get_int(pl, ls, "restart");
+  l.overlap = get_int(pl, ls, "overlap");
+  l.subdomain_solver = get_string(pl, ls, "subdomain solver");
+  l.fill_level = get_int(pl, ls, "fill level");
+#ifndef STENTOR_HAVE_MUELU
+  if (l.preconditioner == "muelu")
+    fail("'Linear Solver->preconditioner' = muelu needs Trilinos with MueLu, which this build lacks; use schwarz");
+#endif
+#ifndef STENTOR_HAVE_AMESOS2
+  if (l.method == "direct")
+    fail("'Linear Solver->method' = direct needs Trilinos with Amesos2, which this build lacks; use gmres");
+  if (l.subdomain_solver == "KLU2")
+    fail("'Linear Solver->subdomain solver' = KLU2 needs Trilinos with Amesos2, which this build lacks; use RILUK or ILUT");
+#endif
+  auto xml_of = [&](const char* name) -> std::string {
+    if (!pl.isSublist(name)) return "";
+    ParameterList copy = pl.sublist(name);
+    copy.setName(name);
+    std::ostringstream os;
+    Teuchos::writeParameterListToXmlOStream(copy, os);
+    return os.str();
+  };
+  l.belos_xml = xml_of("Belos");
+  l.ifpack2_xml = xml_of("Ifpack2");
+  l.muelu_xml = xml_of("MueLu");
+  l.amesos2_xml = xml_of("Amesos2");
+}
+
+void DeckReader::read_output(const ParameterList& pl) {
+  const ListSpec& ls = deck_list_spec("Output");
+  check_list(pl, "Output", {&ls});
+  auto& o = cfg_.output;
+  o.directory = get_string(pl, ls, "directory");
+  o.basename = get_string(pl, ls, "basename");
+  o.every = get_int(pl, ls, "every");
+  o.fields = get_bool(pl, ls, "fields");
+  if (o.directory.empty()) fail("'Output->directory' must not be empty");
+  if (o.basename.empty()) fail("'Output->basename' must not be empty");
+  if (o.basename.find('/') != std::string::npos)
+    fail("'Output->basename' must be a file name stem without '/', got '" + o.basename + "'");
+  if (pl.isSublist("Probes")) {
+    const ParameterList& probes = pl.sublist("Probes");
+    const ListSpec& pls = deck_list_spec("Output/Probes/*");
+    check_list(probes, "Output->Probes", {&deck_list_spec("Output/Probes")});
+    for (auto it = probes.begin(); it != probes.end(); ++it) {
+      const std::string& name = probes.name(it);
+      const std::string path = "Output->Probes->" + name;
+      const ParameterList& sub = probes.sublist(name);
+      check_list(sub, path, {&pls});
+      require(sub, path, {&pls});
+      ProbeConfig p;
+      p.name = name;
+      const auto v = get_array(sub, pls, "point");
+      check_dim_length(v, path + "->point");
+      for (std::size_t c = 0; c < v.size(); ++c) p.point[c] = v[c];
+      o.probes.push_back(p);
+    }
+  }
+}
+
+Config DeckReader::read() {
+  std::error_code ec;
+  const fs::path abs = fs::absolute(fs::path(file_), ec).lexically_normal();
+  cfg_.deck_path = abs.string();
+  if (!fs::exists(abs, ec)) fail("cannot read the deck: no such file (" + cfg_.deck_path + ")");
+  if (!fs::is_regular_file(abs, ec)) fail("cannot read the deck: not a regular file (" + cfg_.deck_path + ")");
+
+  XMLObject xml;
+  try {
+    xml = Teuchos::FileInputSource(cfg_.deck_path).getObject();
+  } catch (const std::exception& e) {
+    fail(rewrap_xml_error(e.what()));
+  }
+  if (xml.getTag() != "ParameterList")
+    fail("the root element must be <ParameterList name=\"stentor\">, found <" + xml.getTag() + ">");
+  check_xml(xml, "", false);
+
+  ParameterList root;
+  try {
+    // What Teuchos::getParametersFromXmlFile does, on the tree already read and checked.
+    Teuchos::XMLParameterListReader reader;
+    root = reader.toParameterList(xml);
+  } catch (const std::exception& e) {
+    fail("invalid parameter list: " + clean_teuchos_message(e.what()));
+  }
+
+  const std::vector<const ListSpec*> root_spec = {&deck_list_spec("")};
+  check_list(root, "", root_spec);
+  require(root, "", root_spec);
+  if (root.isSublist("Problem")) read_problem(root.sublist("Problem"));
+  read_mesh(root.sublist("Mesh"));
+  read_materials(root.sublist("Materials"));
+  read_bodies(root.sublist("Bodies"));
+  if (root.isSublist("Boundary Conditions")) read_loads(root.sublist("Boundary Conditions"));
+  if (root.isSublist("Stepping")) read_stepping(root.sublist("Stepping"));
+  if (root.isSublist("Newton")) read_newton(root.sublist("Newton"));
+  if (root.isSublist("Linear Solver")) read_linear(root.sublist("Linear Solver"));
+  if (root.isSublist("Output")) read_output(root.sublist("Output"));
+  return cfg_;
+}
+
+}  // namespace
+
+Config read_deck(const std::string& path) {
+  DeckReader reader(path);
+  return reader.read();
+}
+
+}  // namespace stentor

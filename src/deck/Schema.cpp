@@ -1,0 +1,371 @@
+#include "deck/Schema.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+namespace stentor {
+
+const char* param_type_name(ParamType t) {
+  switch (t) {
+    case ParamType::Int: return "int";
+    case ParamType::Double: return "double";
+    case ParamType::Bool: return "bool";
+    case ParamType::String: return "string";
+    case ParamType::DoubleArray: return "Array(double)";
+  }
+  return "?";
+}
+
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+std::string lower(std::string s) {
+  for (auto& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+ParamSpec make(std::string name, ParamType t, std::string doc) {
+  ParamSpec p;
+  p.name = std::move(name);
+  p.type = t;
+  p.doc = std::move(doc);
+  return p;
+}
+ParamSpec dbl(std::string name, double d, std::string doc) {
+  auto p = make(std::move(name), ParamType::Double, std::move(doc));
+  p.num = d;
+  return p;
+}
+ParamSpec integer(std::string name, int d, std::string doc) {
+  auto p = make(std::move(name), ParamType::Int, std::move(doc));
+  p.num = d;
+  return p;
+}
+ParamSpec boolean(std::string name, bool d, std::string doc) {
+  auto p = make(std::move(name), ParamType::Bool, std::move(doc));
+  p.num = d ? 1.0 : 0.0;
+  return p;
+}
+ParamSpec str(std::string name, std::string d, std::string doc) {
+  auto p = make(std::move(name), ParamType::String, std::move(doc));
+  p.str = std::move(d);
+  return p;
+}
+ParamSpec arr(std::string name, std::string doc) {
+  return make(std::move(name), ParamType::DoubleArray, std::move(doc));
+}
+
+ListSpec list(std::string key, std::string title, std::string doc, std::vector<ParamSpec> params = {}) {
+  ListSpec l;
+  l.key = std::move(key);
+  l.title = std::move(title);
+  l.doc = std::move(doc);
+  l.params = std::move(params);
+  return l;
+}
+
+std::vector<ListSpec> build_schema() {
+  std::vector<ListSpec> s;
+
+  {
+    auto root = list("", "(root)",
+                     "The root `<ParameterList>` (any name) holds only sublists; `Mesh`, `Materials` "
+                     "and `Bodies` are required.");
+    root.sublists = {"Problem", "Mesh", "Materials", "Bodies", "Boundary Conditions",
+                     "Stepping", "Newton", "Linear Solver", "Output"};
+    root.required_sublists = {"Mesh", "Materials", "Bodies"};
+    s.push_back(root);
+  }
+
+  s.push_back(list("Problem", "Problem", "What is solved.",
+                   {str("title", "", "Free text, echoed in the log and the output files."),
+                    str("analysis", "static", "Kind of analysis.").one_of({"static"})}));
+
+  s.push_back(list(
+      "Mesh", "Mesh", "The gmsh mesh; physical groups name the bodies and the boundaries.",
+      {str("file", "", "Mesh file, relative to the deck's folder.")
+           .req()
+           .allowed("existing `.msh` or `.geo` file"),
+       dbl("size", 0.0, "Target element size when meshing a `.geo` (0: the `.geo`'s own).").ge(0.0),
+       integer("order", 1, "Element order when meshing a `.geo`: 1 (P1/Q1) or 2 (P2).").one_of({"1", "2"}),
+       boolean("recombine", false, "Quadrilaterals (2D) / hexahedra (3D) when meshing a `.geo`."),
+       integer("dimension", 0, "Spatial dimension; 0: the highest dimension found in the mesh.")
+           .one_of({"0", "2", "3"})}));
+
+  {
+    auto l = list("Materials", "Materials", "Material definitions, referred to by `Bodies-><body>->material`.");
+    l.named_sublists = "material";
+    s.push_back(l);
+  }
+  s.push_back(list(
+      "Materials/*", "Materials-><material>",
+      "A hyperelastic material. Ciarlet-Geymonat: W = C1 (I1 - 3) + C2 (I2 - 3) + D (I3 - 1) "
+      "- (C1 + 2 C2 + D) ln I3; small-strain mu = 2 (C1 + C2), lambda = 4 (C2 + D). Plane strain in 2D.",
+      {str("model", "Ciarlet-Geymonat", "Constitutive law.").one_of({"Ciarlet-Geymonat"}),
+       dbl("C1", 0.0, "First invariant coefficient [Pa].").req().gt(0.0),
+       dbl("C2", 0.0, "Second invariant coefficient [Pa].").ge(0.0),
+       dbl("D", 0.0, "Volumetric coefficient [Pa].").req().gt(0.0),
+       dbl("density", 0.0, "Mass density [kg/m^3] (dynamics).").ge(0.0),
+       dbl("viscosity", 0.0, "Viscosity eta [Pa s] (Curnier); unused in statics.").ge(0.0)}));
+
+  {
+    auto l = list("Bodies", "Bodies", "The bodies to simulate (at least one): each is a mesh physical group made of one material.");
+    l.named_sublists = "body";
+    s.push_back(l);
+  }
+  s.push_back(list("Bodies/*", "Bodies-><body>", "One body; the sublist name is the body's name.",
+                   {str("physical group", "", "Mesh physical group of the body's elements.").allowed("physical group name")
+                        .dflt_doc("the sublist name"),
+                    str("material", "", "Name of a sublist of `Materials`.").req().allowed("a defined material")}));
+
+  {
+    auto l = list("Boundary Conditions", "Boundary Conditions",
+                  "Loads and prescribed displacements. Parameters common to all types are in the "
+                  "next table, type-specific ones in the tables after it.");
+    l.named_sublists = "load";
+    s.push_back(l);
+  }
+  s.push_back(list(
+      "Boundary Conditions/*", "Boundary Conditions-><load>",
+      "Parameters of every load. The load is multiplied by the ramp factor at time t.",
+      {str("type", "", "Kind of load (case-insensitive).")
+           .req()
+           .one_of({"Dirichlet", "traction", "pressure", "body force"}),
+       str("ramp", "linear", "Time function: `linear` (t / end time), `constant` (1), `table`.")
+           .one_of({"linear", "constant", "table"}),
+       arr("ramp times", "`table` ramp: strictly increasing times [s].")
+           .len(2, 0)
+           .dflt_doc("required for `table`"),
+       arr("ramp factors", "`table` ramp: factors at `ramp times` (same length); constant beyond the ends.")
+           .len(2, 0)
+           .dflt_doc("required for `table`")}));
+  s.push_back(list("Boundary Conditions/*/Dirichlet", "Boundary Conditions-><load> (type = Dirichlet)",
+                   "Prescribed displacement of a boundary.",
+                   {str("boundary", "", "Mesh physical group of the constrained boundary.").req().allowed("physical group name"),
+                    str("components", "all", "Constrained displacement components.")
+                        .allowed("`x`, `y`, `z` separated by spaces or commas, or `all`"),
+                    arr("values", "Displacement [m] of each listed component, in the order listed.")
+                        .len(1, 3)
+                        .dflt_doc("zeros")
+                        .allowed("one per listed component (for `all`: one per dimension)")}));
+  s.push_back(list("Boundary Conditions/*/traction", "Boundary Conditions-><load> (type = traction)",
+                   "Dead load: a fixed traction per unit reference area.",
+                   {str("boundary", "", "Mesh physical group of the loaded boundary.").req().allowed("physical group name"),
+                    arr("traction", "Traction vector [Pa], one value per dimension.").req().len(2, 3)}));
+  s.push_back(list("Boundary Conditions/*/pressure", "Boundary Conditions-><load> (type = pressure)",
+                   "Follower pressure: acts against the current outward normal.",
+                   {str("boundary", "", "Mesh physical group of the loaded boundary.").req().allowed("physical group name"),
+                    dbl("pressure", 0.0, "Pressure [Pa]; positive pushes into the body.").req()}));
+  s.push_back(list("Boundary Conditions/*/body force", "Boundary Conditions-><load> (type = body force)",
+                   "Force per unit reference volume.",
+                   {str("body", "", "A body: its `Bodies` sublist name or its physical group.").dflt_doc("all bodies"),
+                    arr("force", "Force density [N/m^3], one value per dimension.").req().len(2, 3)}));
+
+  s.push_back(list("Stepping", "Stepping", "Load/time stepping.",
+                   {dbl("end time", 1.0, "Final time [s].").gt(0.0),
+                    integer("steps", 1, "Number of steps (initial step = end time / steps).").ge(1),
+                    integer("max cutbacks", 6, "Halvings of a failed step before giving up.").ge(0)}));
+
+  s.push_back(list(
+      "Newton", "Newton",
+      "Newton-Raphson on the residual. Converged when (relative or absolute residual test) "
+      "and the increment test hold.",
+      {integer("max iterations", 25, "Iterations per step before a cutback.").ge(1),
+       dbl("relative residual tolerance", 1e-10, "Converged if norm(r) <= tol * norm(r_0) ...").ge(0.0).lt(1.0),
+       dbl("absolute residual tolerance", 1e-12, "... or if norm(r) <= tol.").ge(0.0),
+       dbl("increment tolerance", 1e-10, "And norm(du) <= tol * norm(u).").ge(0.0),
+       boolean("line search", true, "Backtracking line search on norm(r)."),
+       integer("line search max halvings", 6, "Maximum halvings of the Newton step.").ge(0)}));
+
+  {
+    auto l = list(
+        "Linear Solver", "Linear Solver",
+        "Linear solves inside Newton. The optional sublists `Belos`, `Ifpack2`, `MueLu` and "
+        "`Amesos2` are passed to Trilinos unchanged and override the values here.",
+        {str("method", "gmres", "Krylov (Belos GMRES) or sparse direct (Amesos2).").one_of({"gmres", "direct"}),
+         str("preconditioner", "schwarz", "Additive Schwarz (Ifpack2), algebraic multigrid (MueLu) or none.")
+             .one_of({"schwarz", "muelu", "none"}),
+         dbl("tolerance", 1e-10, "Relative residual of each linear solve.").gt(0.0).lt(1.0),
+         integer("max iterations", 1000, "Krylov iterations per solve.").ge(1),
+         integer("restart", 200, "GMRES Krylov subspace size.").ge(1),
+         integer("overlap", 1, "Schwarz overlap (layers).").ge(0),
+         str("subdomain solver", "RILUK", "Schwarz subdomain solver (KLU2 via Amesos2).")
+             .one_of({"RILUK", "ILUT", "KLU2"}),
+         integer("fill level", 1, "RILUK level of fill.").ge(0)});
+    l.sublists = {"Belos", "Ifpack2", "MueLu", "Amesos2"};
+    s.push_back(l);
+  }
+  for (const char* pkg : {"Belos", "Ifpack2", "MueLu", "Amesos2"}) {
+    auto l = list(std::string("Linear Solver/") + pkg, std::string("Linear Solver->") + pkg,
+                  std::string("Passed to ") + pkg + " unchanged (see the Trilinos documentation); not validated here.");
+    l.passthrough = true;
+    s.push_back(l);
+  }
+
+  {
+    auto l = list("Output", "Output", "Result files.",
+                  {str("directory", "results", "Output folder (relative to the working directory); `--output` overrides."),
+                   str("basename", "stentor", "File name stem."),
+                   integer("every", 1, "Write fields every N converged steps (and the last).").ge(1),
+                   boolean("fields", true, "HDF5/XDMF field output on/off.")});
+    l.sublists = {"Probes"};
+    s.push_back(l);
+  }
+  {
+    auto l = list("Output/Probes", "Output->Probes", "Points whose displacement history is recorded.");
+    l.named_sublists = "probe";
+    s.push_back(l);
+  }
+  s.push_back(list("Output/Probes/*", "Output->Probes-><probe>", "One probe; the sublist name names its output column. The nearest node is probed.",
+                   {arr("point", "Reference coordinates [m] (2 or 3 values).").req().len(2, 3)}));
+  return s;
+}
+
+}  // namespace
+
+bool ParamSpec::in_range(double v) const {
+  if (std::isnan(v)) return false;
+  if (has_min && (min_open ? !(v > min) : !(v >= min))) return false;
+  if (has_max && (max_open ? !(v < max) : !(v <= max))) return false;
+  return true;
+}
+
+std::string ParamSpec::range_text() const {
+  if (has_min && has_max)
+    return std::string("in ") + (min_open ? "(" : "[") + fmt(min) + ", " + fmt(max) + (max_open ? ")" : "]");
+  if (has_min) return std::string(min_open ? "> " : ">= ") + fmt(min);
+  if (has_max) return std::string(max_open ? "< " : "<= ") + fmt(max);
+  return "";
+}
+
+std::string ParamSpec::default_text() const {
+  if (required) return "**required**";
+  if (!default_doc.empty()) return default_doc;
+  switch (type) {
+    case ParamType::Int:
+    case ParamType::Double: return "`" + fmt(num) + "`";
+    case ParamType::Bool: return num != 0.0 ? "`true`" : "`false`";
+    case ParamType::String: return str.empty() ? "`\"\"`" : "`" + str + "`";
+    case ParamType::DoubleArray: return "none";
+  }
+  return "";
+}
+
+std::string ParamSpec::allowed_text() const {
+  std::vector<std::string> parts;
+  if (!choices.empty()) {
+    std::string c;
+    for (size_t i = 0; i < choices.size(); ++i) c += (i ? ", `" : "`") + choices[i] + "`";
+    parts.push_back(c);
+  }
+  if (has_range()) parts.push_back(type == ParamType::DoubleArray ? "each " + range_text() : range_text());
+  if (type == ParamType::DoubleArray && (min_len > 0 || max_len > 0)) {
+    if (min_len == max_len)
+      parts.push_back(std::to_string(min_len) + " values");
+    else if (max_len == 0)
+      parts.push_back(">= " + std::to_string(min_len) + " values");
+    else
+      parts.push_back(std::to_string(min_len) + (max_len == min_len + 1 ? " or " : " to ") + std::to_string(max_len) +
+                      " values");
+  }
+  if (type == ParamType::Bool) parts.push_back("`true`, `false`");
+  if (!allowed_doc.empty()) parts.push_back(allowed_doc);
+  std::string out;
+  for (size_t i = 0; i < parts.size(); ++i) out += (i ? "; " : "") + parts[i];
+  return out.empty() ? "any" : out;
+}
+
+const ParamSpec* ListSpec::find(const std::string& n) const {
+  for (const auto& p : params)
+    if (p.name == n) return &p;
+  return nullptr;
+}
+
+const std::vector<ListSpec>& deck_schema() {
+  static const std::vector<ListSpec> schema = build_schema();
+  return schema;
+}
+
+const ListSpec& deck_list_spec(const std::string& key) {
+  for (const auto& l : deck_schema())
+    if (l.key == key) return l;
+  throw std::logic_error("stentor: no deck schema entry '" + key + "'");
+}
+
+void print_deck_schema_markdown(std::ostream& os) {
+  os << "<!-- BEGIN parameter tables: generated by stentor::deck_schema_markdown() "
+        "(src/deck/Schema.cpp); do not edit by hand -->\n";
+  for (const auto& l : deck_schema()) {
+    if (l.key.empty()) continue;  // the root is described in the hand-written part
+    os << "\n### `" << l.title << "`\n\n" << l.doc << "\n";
+    if (!l.named_sublists.empty())
+      os << "\nContains one sublist per " << l.named_sublists << " (any name).\n";
+    if (!l.sublists.empty()) {
+      os << "\nSublists:";
+      for (size_t i = 0; i < l.sublists.size(); ++i) os << (i ? ", `" : " `") << l.sublists[i] << "`";
+      os << ".\n";
+    }
+    if (!l.params.empty()) {
+      os << "\n| Parameter | Type | Default | Allowed | Description |\n"
+            "|---|---|---|---|---|\n";
+      auto cell = [](std::string t) {
+        for (std::size_t i = 0; (i = t.find('|', i)) != std::string::npos; i += 2) t.insert(i, "\\");
+        return t;
+      };
+      for (const auto& p : l.params)
+        os << "| `" << cell(p.name) << "` | " << param_type_name(p.type) << " | " << cell(p.default_text()) << " | "
+           << cell(p.allowed_text()) << " | " << cell(p.doc) << " |\n";
+    }
+  }
+  os << "\n<!-- END parameter tables -->\n";
+}
+
+std::string deck_schema_markdown() {
+  std::ostringstream os;
+  print_deck_schema_markdown(os);
+  return os.str();
+}
+
+int edit_distance_ci(const std::string& a0, const std::string& b0) {
+  const std::string a = lower(a0), b = lower(b0);
+  std::vector<int> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = static_cast<int>(j);
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = static_cast<int>(i);
+    for (size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string nearest_name(const std::string& name, const std::vector<std::string>& candidates) {
+  std::string best;
+  int best_d = 1 << 30;
+  for (const auto& c : candidates) {
+    const int d = edit_distance_ci(name, c);
+    if (d < best_d) best_d = d, best = c;
+  }
+  if (best.empty()) return "";
+  const int limit = std::max<int>(2, static_cast<int>(name.size()) / 3);
+  if (best_d <= limit) return best;
+  // A name that contains (or is contained in) a candidate is a likely abbreviation.
+  const std::string ln = lower(name);
+  if (ln.size() >= 3)
+    for (const auto& c : candidates) {
+      const std::string lc = lower(c);
+      if (lc.find(ln) != std::string::npos || ln.find(lc) != std::string::npos) return c;
+    }
+  return "";
+}
+
+}  // namespace stentor

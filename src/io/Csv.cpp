@@ -1,0 +1,59 @@
+#include "io/Csv.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <stdexcept>
+
+namespace stentor {
+
+namespace {
+
+std::string csv_quote(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string r = "\"";
+  for (char c : s) {
+    if (c == '"') r += '"';
+    r += c;
+  }
+  return r + '"';
+}
+
+}  // namespace
+
+CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns)
+    : path_(path), columns_(std::move(columns)) {
+  if (columns_.empty()) throw std::runtime_error("CsvWriter: no columns for " + path_);
+  file_.reset(std::fopen(path_.c_str(), "w"));
+  if (!file_)
+    throw std::runtime_error("CsvWriter: cannot open " + path_ + " for writing: " +
+                             std::strerror(errno));
+  std::string header;
+  for (std::size_t i = 0; i < columns_.size(); ++i) {
+    if (i) header += ',';
+    header += csv_quote(columns_[i]);
+  }
+  header += '\n';
+  if (std::fputs(header.c_str(), file_.get()) < 0 || std::fflush(file_.get()) != 0)
+    throw std::runtime_error("CsvWriter: writing the header of " + path_ + " failed: " +
+                             std::strerror(errno));
+}
+
+void CsvWriter::row(const std::vector<double>& values) {
+  if (values.size() != columns_.size())
+    throw std::runtime_error("CsvWriter: row of " + std::to_string(values.size()) +
+                             " values for " + std::to_string(columns_.size()) + " columns in " +
+                             path_);
+  std::string line;
+  char buf[40];
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i) line += ',';
+    std::snprintf(buf, sizeof buf, "%.17g", values[i]);
+    line += buf;
+  }
+  line += '\n';
+  if (std::fputs(line.c_str(), file_.get()) < 0 || std::fflush(file_.get()) != 0)
+    throw std::runtime_error("CsvWriter: writing a row to " + path_ + " failed: " +
+                             std::strerror(errno));
+}
+
+}  // namespace stentor

@@ -1,0 +1,32 @@
+// Time series as CSV: a header line, then one line per row, every value at full
+// precision (%.17g, so doubles round-trip exactly). Each row is flushed as it is written:
+// a long run that crashes keeps every row written so far.
+#pragma once
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace stentor {
+
+class CsvWriter {
+ public:
+  // Creates (truncates) `path` and writes the header. Column names containing ',', '"'
+  // or line breaks are quoted (RFC 4180). Throws std::runtime_error naming the file.
+  CsvWriter(const std::string& path, std::vector<std::string> columns);
+  // Throws std::runtime_error if values.size() != number of columns, or on a write error.
+  void row(const std::vector<double>& values);
+
+  const std::string& path() const { return path_; }
+  const std::vector<std::string>& columns() const { return columns_; }
+
+ private:
+  struct Closer {
+    void operator()(std::FILE* f) const { if (f) std::fclose(f); }
+  };
+  std::string path_;
+  std::vector<std::string> columns_;
+  std::unique_ptr<std::FILE, Closer> file_;
+};
+
+}  // namespace stentor

@@ -1,0 +1,428 @@
+#include "io/XdmfWriter.hpp"
+
+#include <hdf5.h>
+
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace stentor {
+
+const char* xdmf_topology_name(CellType t) {
+  switch (t) {
+    case CellType::Tri3: return "Triangle";
+    case CellType::Tri6: return "Triangle_6";
+    case CellType::Quad4: return "Quadrilateral";
+    case CellType::Quad8: return "Quadrilateral_8";
+    case CellType::Tet4: return "Tetrahedron";
+    case CellType::Tet10: return "Tetrahedron_10";
+    case CellType::Hex8: return "Hexahedron";
+    default: return nullptr;
+  }
+}
+
+int xdmf_node_permutation(CellType t, int perm[kMaxCellNodes]) {
+  if (!xdmf_topology_name(t)) return 0;
+  const int n = cell_num_nodes(t);
+  for (int j = 0; j < n; ++j) perm[j] = j;
+  // gmsh tet10 edge nodes: 4(0,1) 5(1,2) 6(2,0) 7(3,0) 8(3,2) 9(3,1);
+  // XDMF/VTK:              4(0,1) 5(1,2) 6(2,0) 7(0,3) 8(1,3) 9(2,3).
+  // Vertices, tri6, quad8 (edges (0,1),(1,2),(2,3),(3,0)) and hex8 agree.
+  if (t == CellType::Tet10) {
+    perm[8] = 9;
+    perm[9] = 8;
+  }
+  return n;
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Owns one HDF5 identifier.
+class H5Id {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  H5Id() = default;
+  H5Id(hid_t id, Closer c) : id_(id), close_(c) {}
+  H5Id(const H5Id&) = delete;
+  H5Id& operator=(const H5Id&) = delete;
+  H5Id(H5Id&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = -1; }
+  H5Id& operator=(H5Id&& o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = o.id_;
+      close_ = o.close_;
+      o.id_ = -1;
+    }
+    return *this;
+  }
+  ~H5Id() { reset(); }
+  // Closes now, reporting failure (the destructor cannot).
+  herr_t close() {
+    herr_t s = 0;
+    if (id_ >= 0 && close_) s = close_(id_);
+    id_ = -1;
+    return s;
+  }
+  void reset() { (void)close(); }
+  hid_t get() const { return id_; }
+
+ private:
+  hid_t id_ = -1;
+  Closer close_ = nullptr;
+};
+
+std::string xml_escape(const std::string& s) {
+  std::string r;
+  r.reserve(s.size());
+  for (char c : s) {
+    switch (c) {
+      case '&': r += "&amp;"; break;
+      case '<': r += "&lt;"; break;
+      case '>': r += "&gt;"; break;
+      case '"': r += "&quot;"; break;
+      case '\'': r += "&apos;"; break;
+      default:
+        // Control characters are not allowed in XML 1.0 (except tab/newline/CR).
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r')
+          r += '?';
+        else
+          r += c;
+    }
+  }
+  return r;
+}
+
+// HDF5 dataset name for a field: characters other than [A-Za-z0-9_.+-] become '_' (XDMF
+// readers split "file.h5:/path" references and some trim or tokenize them).
+std::string dataset_name(const std::string& field) {
+  std::string r = field;
+  for (char& c : r)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '+' ||
+          c == '-'))
+      c = '_';
+  return r;
+}
+
+std::string fmt_double(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+}  // namespace
+
+struct XdmfWriter::Impl {
+  struct Block {
+    std::string grid_name;     // unique within a step
+    const char* topology = nullptr;
+    int npc = 0;
+    std::size_t ncells = 0;
+    std::size_t offset = 0;    // first cell in the block-ordered cell numbering
+    std::string conn_path;     // HDF5 path
+  };
+  struct Field {
+    std::string name;
+    bool on_nodes = true;
+    int ncomp = 1;             // as stored (6 expanded to 9)
+    std::string path;
+  };
+  struct Step {
+    double time = 0.0;
+    std::string group;
+    std::vector<Field> fields;
+  };
+
+  std::string h5_path, h5_name, xdmf_path;
+  std::size_t num_nodes = 0, num_cells = 0;
+  std::vector<Block> blocks;
+  std::vector<Step> steps;  // completed
+  bool in_step = false;
+  Step current;
+  H5Id file;
+  H5Id step_group;
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw std::runtime_error("XdmfWriter: " + what + " (file " + h5_path + ")");
+  }
+  hid_t check(hid_t id, const std::string& what) const {
+    if (id < 0) fail(what + " failed");
+    return id;
+  }
+  void check_status(herr_t s, const std::string& what) const {
+    if (s < 0) fail(what + " failed");
+  }
+
+  // Creates dataset `name` under `loc` and writes `data` (may be empty).
+  void write_dataset(hid_t loc, const std::string& name, hid_t type, int rank, const hsize_t* dims,
+                     const void* data, const std::string& label) {
+    H5Id space(check(H5Screate_simple(rank, dims, nullptr), "H5Screate_simple for " + label),
+               H5Sclose);
+    H5Id dset(check(H5Dcreate2(loc, name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                               H5P_DEFAULT),
+                    "creating dataset " + label),
+              H5Dclose);
+    hsize_t count = 1;
+    for (int i = 0; i < rank; ++i) count *= dims[i];
+    if (count > 0)
+      check_status(H5Dwrite(dset.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
+                   "writing dataset " + label);
+    check_status(dset.close(), "closing dataset " + label);
+  }
+
+  void write_string_attr(hid_t loc, const char* attr, const std::string& value,
+                         const std::string& label) {
+    H5Id type(check(H5Tcopy(H5T_C_S1), "H5Tcopy"), H5Tclose);
+    check_status(H5Tset_size(type.get(), value.empty() ? 1 : value.size()), "H5Tset_size");
+    H5Id space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
+    H5Id a(check(H5Acreate2(loc, attr, type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                 "creating attribute " + label + "@" + attr),
+           H5Aclose);
+    const std::string v = value.empty() ? std::string(1, '\0') : value;
+    check_status(H5Awrite(a.get(), type.get(), v.data()), "writing attribute " + label + "@" + attr);
+  }
+
+  void write_double_attr(hid_t loc, const char* attr, double value, const std::string& label) {
+    H5Id space(check(H5Screate(H5S_SCALAR), "H5Screate"), H5Sclose);
+    H5Id a(check(H5Acreate2(loc, attr, H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                 "creating attribute " + label + "@" + attr),
+           H5Aclose);
+    check_status(H5Awrite(a.get(), H5T_NATIVE_DOUBLE, &value),
+                 "writing attribute " + label + "@" + attr);
+  }
+
+  void add_field(const std::string& name, bool on_nodes, int ncomp,
+                 const std::vector<double>& data) {
+    const char* kind = on_nodes ? "node_field" : "cell_field";
+    if (!in_step) fail(std::string(kind) + "('" + name + "') called outside begin_step/end_step");
+    if (name.empty()) fail(std::string(kind) + ": empty field name");
+    const std::string dset = dataset_name(name);
+    if (dset == "." || dset == "..") fail(std::string(kind) + ": invalid field name '" + name + "'");
+    for (const auto& f : current.fields)
+      if (f.name == name || dataset_name(f.name) == dset)
+        fail(std::string(kind) + ": field '" + name + "' written twice in one step" +
+             (f.name == name ? "" : " (same dataset name as '" + f.name + "')"));
+    if (ncomp != 1 && ncomp != 3 && ncomp != 6 && ncomp != 9)
+      fail(std::string(kind) + "('" + name + "'): ncomp must be 1, 3, 6 or 9, got " +
+           std::to_string(ncomp));
+    const std::size_t n = on_nodes ? num_nodes : num_cells;
+    if (data.size() != n * static_cast<std::size_t>(ncomp))
+      fail(std::string(kind) + "('" + name + "'): expected " + std::to_string(n) + " x " +
+           std::to_string(ncomp) + " values, got " + std::to_string(data.size()));
+
+    Field f;
+    f.name = name;
+    f.on_nodes = on_nodes;
+    f.ncomp = ncomp == 6 ? 9 : ncomp;
+    f.path = current.group + "/" + dset;
+    const double* src = data.data();
+    std::vector<double> full;
+    if (ncomp == 6) {  // xx,yy,zz,xy,yz,xz -> row-major 3x3
+      full.resize(n * 9);
+      for (std::size_t i = 0; i < n; ++i) {
+        const double* s = &data[6 * i];
+        double* t = &full[9 * i];
+        t[0] = s[0]; t[1] = s[3]; t[2] = s[5];
+        t[3] = s[3]; t[4] = s[1]; t[5] = s[4];
+        t[6] = s[5]; t[7] = s[4]; t[8] = s[2];
+      }
+      src = full.data();
+    }
+    hsize_t dims[2] = {static_cast<hsize_t>(n), static_cast<hsize_t>(f.ncomp)};
+    write_dataset(step_group.get(), dset, H5T_NATIVE_DOUBLE, f.ncomp == 1 ? 1 : 2, dims, src,
+                  f.path);
+    current.fields.push_back(std::move(f));
+  }
+
+  std::string data_item(const std::string& path, std::size_t rows, int ncomp, bool is_int,
+                        const std::string& indent) const {
+    std::ostringstream o;
+    o << indent << "<DataItem Dimensions=\"" << rows;
+    if (ncomp != 1 || is_int) o << ' ' << ncomp;
+    o << "\" NumberType=\"" << (is_int ? "Int" : "Float") << "\" Precision=\"8\" Format=\"HDF\">"
+      << xml_escape(h5_name) << ':' << xml_escape(path) << "</DataItem>\n";
+    return o.str();
+  }
+
+  std::string xdmf_text() const {
+    std::ostringstream o;
+    o << "<?xml version=\"1.0\" ?>\n"
+      << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+      << "<Xdmf Version=\"3.0\">\n"
+      << "  <Domain>\n"
+      << "    <Grid Name=\"TimeSeries\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    const bool several = blocks.size() > 1;
+    for (const auto& s : steps) {
+      o << "      <Grid Name=\"" << s.group.substr(1)
+        << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
+        << "        <Time Value=\"" << fmt_double(s.time) << "\"/>\n";
+      for (const auto& b : blocks) {
+        if (b.ncells == 0) continue;
+        const std::string in = "            ";
+        o << "        <Grid Name=\"" << xml_escape(b.grid_name) << "\" GridType=\"Uniform\">\n"
+          << "          <Topology TopologyType=\"" << b.topology << "\" NumberOfElements=\""
+          << b.ncells << "\">\n"
+          << data_item(b.conn_path, b.ncells, b.npc, true, in) << "          </Topology>\n"
+          << "          <Geometry GeometryType=\"XYZ\">\n"
+          << data_item("/mesh/coordinates", num_nodes, 3, false, in) << "          </Geometry>\n";
+        for (const auto& f : s.fields) {
+          const char* at = f.ncomp == 1 ? "Scalar" : f.ncomp == 3 ? "Vector" : "Tensor";
+          o << "          <Attribute Name=\"" << xml_escape(f.name) << "\" AttributeType=\"" << at
+            << "\" Center=\"" << (f.on_nodes ? "Node" : "Cell") << "\">\n";
+          if (f.on_nodes || !several) {
+            o << data_item(f.path, f.on_nodes ? num_nodes : num_cells, f.ncomp, false, in);
+          } else {
+            // Rows [offset, offset+ncells) of the all-cells dataset.
+            const bool one_d = f.ncomp == 1;
+            o << in << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << b.ncells;
+            if (!one_d) o << ' ' << f.ncomp;
+            o << "\" Type=\"HyperSlab\">\n";
+            o << in << "  <DataItem Dimensions=\"3 " << (one_d ? 1 : 2)
+              << "\" NumberType=\"Int\" Format=\"XML\">";
+            if (one_d)
+              o << b.offset << ' ' << 1 << ' ' << b.ncells;
+            else
+              o << b.offset << " 0 1 1 " << b.ncells << ' ' << f.ncomp;
+            o << "</DataItem>\n"
+              << data_item(f.path, num_cells, f.ncomp, false, in + "  ") << in << "</DataItem>\n";
+          }
+          o << "          </Attribute>\n";
+        }
+        o << "        </Grid>\n";
+      }
+      o << "      </Grid>\n";
+    }
+    o << "    </Grid>\n"
+      << "  </Domain>\n"
+      << "</Xdmf>\n";
+    return o.str();
+  }
+
+  void write_xdmf() const {
+    const std::string tmp = xdmf_path + ".tmp";
+    {
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      if (!out) throw std::runtime_error("XdmfWriter: cannot open " + tmp + " for writing");
+      out << xdmf_text();
+      out.flush();
+      if (!out) throw std::runtime_error("XdmfWriter: writing " + tmp + " failed");
+    }
+    std::error_code ec;
+    fs::rename(tmp, xdmf_path, ec);
+    if (ec)
+      throw std::runtime_error("XdmfWriter: renaming " + tmp + " to " + xdmf_path +
+                               " failed: " + ec.message());
+  }
+};
+
+XdmfWriter::XdmfWriter(const std::string& dir, const std::string& basename, const Mesh& mesh)
+    : impl_(std::make_unique<Impl>()) {
+  Impl& m = *impl_;
+  if (basename.empty() || basename.find_first_of("/: \t\r\n") != std::string::npos)
+    throw std::runtime_error("XdmfWriter: invalid basename '" + basename + "' in " + dir);
+  m.h5_name = basename + ".h5";
+  m.h5_path = (fs::path(dir) / m.h5_name).string();
+  m.xdmf_path = (fs::path(dir) / (basename + ".xdmf")).string();
+  if (mesh.x.size() % 3 != 0) m.fail("mesh coordinates are not 3 per node");
+  m.num_nodes = mesh.num_nodes();
+
+  // Validate blocks before creating anything.
+  std::set<std::string> used;
+  for (std::size_t i = 0; i < mesh.volumes.size(); ++i) {
+    const CellBlock& cb = mesh.volumes[i];
+    Impl::Block b;
+    b.topology = xdmf_topology_name(cb.type);
+    if (!b.topology)
+      m.fail("volume block '" + cb.name + "' has a cell type without XDMF topology");
+    b.npc = cell_num_nodes(cb.type);
+    if (cb.nodes_per_cell != b.npc || cb.conn.size() % b.npc != 0)
+      m.fail("volume block '" + cb.name + "': connectivity size does not match its cell type");
+    b.ncells = cb.num_cells();
+    b.offset = m.num_cells;
+    m.num_cells += b.ncells;
+    for (gid_t n : cb.conn)
+      if (n < 0 || static_cast<std::size_t>(n) >= m.num_nodes)
+        m.fail("volume block '" + cb.name + "': node " + std::to_string(n) + " out of range");
+    b.grid_name = cb.name.empty() ? "block_" + std::to_string(i) : cb.name;
+    if (!used.insert(b.grid_name).second) {
+      b.grid_name += "_" + std::to_string(i);
+      used.insert(b.grid_name);
+    }
+    b.conn_path = "/mesh/block_" + std::to_string(i) + "/connectivity";
+    m.blocks.push_back(std::move(b));
+  }
+
+  m.file = H5Id(m.check(H5Fcreate(m.h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
+                        "creating the HDF5 file"),
+                H5Fclose);
+  H5Id g(m.check(H5Gcreate2(m.file.get(), "/mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                 "creating group /mesh"),
+         H5Gclose);
+  hsize_t dims[2] = {static_cast<hsize_t>(m.num_nodes), 3};
+  m.write_dataset(g.get(), "coordinates", H5T_NATIVE_DOUBLE, 2, dims, mesh.x.data(),
+                  "/mesh/coordinates");
+  for (std::size_t i = 0; i < mesh.volumes.size(); ++i) {
+    const CellBlock& cb = mesh.volumes[i];
+    const Impl::Block& b = m.blocks[i];
+    const std::string gname = "/mesh/block_" + std::to_string(i);
+    H5Id bg(m.check(H5Gcreate2(m.file.get(), gname.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                    "creating group " + gname),
+            H5Gclose);
+    m.write_string_attr(bg.get(), "name", cb.name, gname);
+    m.write_string_attr(bg.get(), "topology", b.topology, gname);
+    int perm[kMaxCellNodes];
+    xdmf_node_permutation(cb.type, perm);
+    std::vector<long long> conn(cb.conn.size());
+    for (std::size_t c = 0; c < b.ncells; ++c)
+      for (int j = 0; j < b.npc; ++j) conn[c * b.npc + j] = cb.conn[c * b.npc + perm[j]];
+    hsize_t cd[2] = {static_cast<hsize_t>(b.ncells), static_cast<hsize_t>(b.npc)};
+    m.write_dataset(bg.get(), "connectivity", H5T_NATIVE_LLONG, 2, cd, conn.data(), b.conn_path);
+  }
+  m.check_status(H5Fflush(m.file.get(), H5F_SCOPE_GLOBAL), "H5Fflush");
+}
+
+XdmfWriter::~XdmfWriter() = default;  // Impl's handles close the step group, then the file
+
+void XdmfWriter::begin_step(double time) {
+  Impl& m = *impl_;
+  if (m.in_step) m.fail("begin_step called twice without end_step");
+  m.current = Impl::Step{};
+  m.current.time = time;
+  m.current.group = "/step_" + std::to_string(m.steps.size());
+  m.step_group = H5Id(m.check(H5Gcreate2(m.file.get(), m.current.group.c_str(), H5P_DEFAULT,
+                                         H5P_DEFAULT, H5P_DEFAULT),
+                              "creating group " + m.current.group),
+                      H5Gclose);
+  m.write_double_attr(m.step_group.get(), "time", time, m.current.group);
+  m.in_step = true;
+}
+
+void XdmfWriter::node_field(const std::string& name, int ncomp, const std::vector<double>& data) {
+  impl_->add_field(name, true, ncomp, data);
+}
+
+void XdmfWriter::cell_field(const std::string& name, int ncomp, const std::vector<double>& data) {
+  impl_->add_field(name, false, ncomp, data);
+}
+
+void XdmfWriter::end_step() {
+  Impl& m = *impl_;
+  if (!m.in_step) m.fail("end_step called without begin_step");
+  m.check_status(m.step_group.close(), "closing group " + m.current.group);
+  m.in_step = false;
+  m.check_status(H5Fflush(m.file.get(), H5F_SCOPE_GLOBAL), "H5Fflush");
+  m.steps.push_back(std::move(m.current));
+  m.current = Impl::Step{};
+  m.write_xdmf();
+}
+
+const std::string& XdmfWriter::h5_path() const { return impl_->h5_path; }
+const std::string& XdmfWriter::xdmf_path() const { return impl_->xdmf_path; }
+int XdmfWriter::num_steps() const { return static_cast<int>(impl_->steps.size()); }
+
+}  // namespace stentor

@@ -1,0 +1,42 @@
+// Reading a mesh through the gmsh C++ API (.msh 4.1/2.2 ascii or binary, or a
+// .geo meshed on the fly). Call on one rank only (gmsh is a process-wide
+// singleton; not thread-safe) and broadcast_mesh() the result.
+#pragma once
+#include "deck/Config.hpp"
+#include "mesh/Mesh.hpp"
+
+namespace stentor {
+
+// Reads cfg.file into a Mesh.
+//  * .msh: read as is (cfg.size/order/recombine are ignored).
+//  * .geo (anything else gmsh can open as a model is treated the same way):
+//    meshed with
+//      - cfg.size > 0: a uniform target size: Mesh.MeshSizeMax = size and
+//        Mesh.MeshSizeFromPoints = 0, so the .geo's own point sizes ("h") are
+//        ignored (transfinite curves/surfaces in the .geo still win);
+//        cfg.size == 0: the .geo's own sizes;
+//      - Mesh.ElementOrder = cfg.order, Mesh.SecondOrderIncomplete = 1
+//        (P2 = tri6 / tet10);
+//      - cfg.recombine: 2D: Mesh.RecombineAll = 1 (Blossom: quad4, normally
+//        all quads; any leftover triangles are kept in their own block); 3D: Mesh.SubdivisionAlgorithm = 2 (every tet split into 4
+//        hexes, so the hexes are about half the size). Recombine needs
+//        order 1 (quad8/hex20 bodies are not supported).
+//  * Dimension: cfg.dimension, or (0) the highest dimension of any physical group.
+//  * Physical groups of that dimension -> Mesh::volumes (one CellBlock per
+//    (group, cell type), groups in gmsh's (dim, tag) order, types in gmsh type
+//    order); lower-dimension groups -> Mesh::boundaries (facets, edges, points
+//    as node sets). Names from the .geo/.msh, or "tag<N>" when unnamed.
+//  * Nodes: every node used by a kept cell, numbered 0..N-1 in increasing gmsh
+//    node tag order (deterministic).
+//  * Volume cell ids: 0..Nc-1 over Mesh::volumes in block order; boundary cell
+//    ids: 0..Nf-1 over Mesh::boundaries in block order (a separate numbering).
+// Throws InputError (message starting with the file path) when the file is
+// missing or unreadable, gmsh fails to parse/mesh it (gmsh's message is
+// quoted), there is no physical group of the mesh dimension, a cell type is not
+// supported, two volume groups share an entity, or a 2D mesh is not in the
+// z = 0 plane. Orientation is NOT fixed here: a clockwise 2D surface gives
+// det J < 0 everywhere, which check_mesh() reports.
+// verbose: let gmsh print its progress to the terminal.
+Mesh read_mesh(const MeshConfig& cfg, bool verbose = false);
+
+}  // namespace stentor

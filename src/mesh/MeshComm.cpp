@@ -1,0 +1,221 @@
+#include "mesh/MeshComm.hpp"
+
+#include <metis.h>
+
+#include <algorithm>
+#include <climits>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+#include "mesh/GmshReader.hpp"
+#include "mesh/MeshCheck.hpp"
+
+namespace stentor {
+namespace {
+
+// Minimal byte (de)serialiser for the broadcast.
+struct Writer {
+  std::vector<char> buf;
+  template <class T>
+  void pod(const T& v) {
+    const char* p = reinterpret_cast<const char*>(&v);
+    buf.insert(buf.end(), p, p + sizeof(T));
+  }
+  template <class T>
+  void vec(const std::vector<T>& v) {
+    pod<std::uint64_t>(v.size());
+    const char* p = reinterpret_cast<const char*>(v.data());
+    buf.insert(buf.end(), p, p + v.size() * sizeof(T));
+  }
+  void str(const std::string& s) {
+    pod<std::uint64_t>(s.size());
+    buf.insert(buf.end(), s.begin(), s.end());
+  }
+};
+
+struct Reader {
+  const std::vector<char>& buf;
+  std::size_t pos = 0;
+  template <class T>
+  T pod() {
+    T v;
+    std::memcpy(&v, buf.data() + pos, sizeof(T));
+    pos += sizeof(T);
+    return v;
+  }
+  template <class T>
+  std::vector<T> vec() {
+    const auto n = pod<std::uint64_t>();
+    std::vector<T> v(n);
+    if (n) std::memcpy(v.data(), buf.data() + pos, n * sizeof(T));
+    pos += n * sizeof(T);
+    return v;
+  }
+  std::string str() {
+    const auto n = pod<std::uint64_t>();
+    std::string s(buf.data() + pos, n);
+    pos += n;
+    return s;
+  }
+};
+
+void write_blocks(Writer& w, const std::vector<CellBlock>& blocks) {
+  w.pod<std::uint64_t>(blocks.size());
+  for (const auto& b : blocks) {
+    w.str(b.name);
+    w.pod<int>(b.physical_tag);
+    w.pod<int>(static_cast<int>(b.type));
+    w.pod<int>(b.nodes_per_cell);
+    w.vec(b.conn);
+    w.vec(b.cell_id);
+  }
+}
+
+std::vector<CellBlock> read_blocks(Reader& r) {
+  std::vector<CellBlock> blocks(r.pod<std::uint64_t>());
+  for (auto& b : blocks) {
+    b.name = r.str();
+    b.physical_tag = r.pod<int>();
+    b.type = static_cast<CellType>(r.pod<int>());
+    b.nodes_per_cell = r.pod<int>();
+    b.conn = r.vec<gid_t>();
+    b.cell_id = r.vec<gid_t>();
+  }
+  return blocks;
+}
+
+void bcast_bytes(std::vector<char>& buf, MPI_Comm comm, int root) {
+  std::uint64_t n = buf.size();
+  MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm);
+  buf.resize(n);
+  const std::uint64_t chunk = 1u << 30;
+  for (std::uint64_t off = 0; off < n; off += chunk) {
+    const int len = static_cast<int>(std::min(chunk, n - off));
+    MPI_Bcast(buf.data() + off, len, MPI_CHAR, root, comm);
+  }
+}
+
+int num_vertices(CellType t) {
+  switch (t) {
+    case CellType::Tri3:
+    case CellType::Tri6: return 3;
+    case CellType::Quad4:
+    case CellType::Quad8: return 4;
+    case CellType::Tet4:
+    case CellType::Tet10: return 4;
+    case CellType::Hex8: return 8;
+    case CellType::Line2:
+    case CellType::Line3: return 2;
+    case CellType::Point1: return 1;
+    default: return 0;
+  }
+}
+
+}  // namespace
+
+void broadcast_mesh(Mesh& m, MPI_Comm comm, int root) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::vector<char> buf;
+  if (rank == root) {
+    Writer w;
+    w.pod<int>(m.dim);
+    w.str(m.source);
+    w.vec(m.x);
+    write_blocks(w, m.volumes);
+    write_blocks(w, m.boundaries);
+    buf.swap(w.buf);
+  }
+  bcast_bytes(buf, comm, root);
+  if (rank == root) return;
+  Reader r{buf};
+  Mesh out;
+  out.dim = r.pod<int>();
+  out.source = r.str();
+  out.x = r.vec<double>();
+  out.volumes = read_blocks(r);
+  out.boundaries = read_blocks(r);
+  m = std::move(out);
+}
+
+Mesh read_mesh_on_root(const MeshConfig& cfg, MPI_Comm comm, bool check, bool verbose, int root) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  Mesh m;
+  std::vector<char> err;
+  if (rank == root) {
+    try {
+      m = read_mesh(cfg, verbose);
+      if (check) check_mesh(m);
+    } catch (const InputError& e) {
+      const std::string s = e.what();
+      err.assign(s.begin(), s.end());
+      if (err.empty()) err.push_back('?');
+    }
+  }
+  bcast_bytes(err, comm, root);
+  if (!err.empty()) throw InputError(std::string(err.begin(), err.end()));
+  broadcast_mesh(m, comm, root);
+  return m;
+}
+
+std::vector<int> partition_cells(const Mesh& m, int nparts) {
+  const std::size_t nc = m.num_volume_cells();
+  if (nparts < 1) throw std::invalid_argument("partition_cells: nparts must be >= 1");
+  if (nparts == 1) return std::vector<int>(nc, 0);
+  if (static_cast<std::size_t>(nparts) > nc)
+    throw InputError(m.source + ": cannot split " + std::to_string(nc) + " cells into " +
+                     std::to_string(nparts) + " parts (use fewer MPI ranks or a finer mesh)");
+  if (nc > static_cast<std::size_t>(INT32_MAX) || m.num_nodes() > static_cast<std::size_t>(INT32_MAX))
+    throw std::runtime_error("partition_cells: mesh too large for 32-bit METIS indices");
+
+  // Cells in global id order, vertex nodes only.
+  std::vector<idx_t> eptr(nc + 1, 0);
+  std::vector<std::pair<const CellBlock*, std::size_t>> cell(nc, {nullptr, 0});
+  for (const auto& b : m.volumes)
+    for (std::size_t c = 0; c < b.num_cells(); ++c) {
+      const gid_t id = b.cell_id[c];
+      if (id < 0 || static_cast<std::size_t>(id) >= nc || cell[id].first)
+        throw std::runtime_error("partition_cells: volume cell ids are not 0..N-1");
+      cell[id] = {&b, c};
+    }
+  std::vector<idx_t> eind;
+  eind.reserve(nc * 4);
+  for (std::size_t e = 0; e < nc; ++e) {
+    const CellBlock& b = *cell[e].first;
+    const int nv = num_vertices(b.type);
+    for (int a = 0; a < nv; ++a) eind.push_back(static_cast<idx_t>(b.conn[cell[e].second * b.nodes_per_cell + a]));
+    eptr[e + 1] = static_cast<idx_t>(eind.size());
+  }
+  idx_t ne = static_cast<idx_t>(nc), nn = static_cast<idx_t>(m.num_nodes());
+  idx_t ncommon = m.dim == 2 ? 2 : 3, np = nparts, objval = 0;
+  idx_t options[METIS_NOPTIONS];
+  METIS_SetDefaultOptions(options);
+  options[METIS_OPTION_SEED] = 12345;
+  options[METIS_OPTION_NUMBERING] = 0;
+  std::vector<idx_t> epart(nc), npart(m.num_nodes());
+  const int status = METIS_PartMeshDual(&ne, &nn, eptr.data(), eind.data(), nullptr, nullptr, &ncommon, &np,
+                                        nullptr, options, &objval, epart.data(), npart.data());
+  if (status != METIS_OK)
+    throw std::runtime_error("partition_cells: METIS_PartMeshDual failed (status " + std::to_string(status) + ")");
+  return std::vector<int>(epart.begin(), epart.end());
+}
+
+std::vector<int> node_owners(const Mesh& m, const std::vector<int>& cell_part) {
+  std::vector<int> owner(m.num_nodes(), INT_MAX);
+  for (const auto& b : m.volumes)
+    for (std::size_t c = 0; c < b.num_cells(); ++c) {
+      const int p = cell_part.at(static_cast<std::size_t>(b.cell_id[c]));
+      for (int a = 0; a < b.nodes_per_cell; ++a) {
+        int& o = owner[b.conn[c * b.nodes_per_cell + a]];
+        o = std::min(o, p);
+      }
+    }
+  for (auto& o : owner)
+    if (o == INT_MAX) o = 0;
+  return owner;
+}
+
+}  // namespace stentor

@@ -1,0 +1,33 @@
+// Distributing the replicated Mesh and partitioning its cells (METIS).
+#pragma once
+#include <mpi.h>
+
+#include <vector>
+
+#include "deck/Config.hpp"
+#include "mesh/Mesh.hpp"
+
+namespace stentor {
+
+// Copies root's mesh to every rank of comm (all fields; other ranks' m is replaced).
+void broadcast_mesh(Mesh& m, MPI_Comm comm, int root = 0);
+
+// Rank root reads cfg (read_mesh) and, if check, runs check_mesh; the mesh is
+// broadcast. An InputError on root is rethrown, with the same message, on every
+// rank (so no rank hangs). Collective.
+Mesh read_mesh_on_root(const MeshConfig& cfg, MPI_Comm comm, bool check = true, bool verbose = false,
+                       int root = 0);
+
+// Part (0..nparts-1) of each global volume cell (index = CellBlock::cell_id),
+// from METIS_PartMeshDual on the vertex nodes (2 shared nodes make neighbours
+// in 2D, 3 in 3D), with a fixed seed: deterministic for a given mesh.
+// nparts == 1 gives all zeros. Throws InputError if nparts > number of cells,
+// std::runtime_error if METIS fails.
+std::vector<int> partition_cells(const Mesh& m, int nparts);
+
+// Owner of each node: the smallest part among the volume cells that contain it
+// (so the owner always has a cell touching the node). Nodes in no volume cell
+// (check_mesh rejects them on boundaries) get part 0.
+std::vector<int> node_owners(const Mesh& m, const std::vector<int>& cell_part);
+
+}  // namespace stentor

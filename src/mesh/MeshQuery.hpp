@@ -1,0 +1,26 @@
+// Looking up physical groups of a Mesh by name. The throwing lookups raise
+// InputError "physical group 'left' not found in mesh <file>; available boundary
+// groups: bottom, left, ..." so a misspelled deck name is easy to fix.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "mesh/Mesh.hpp"
+
+namespace stentor {
+
+bool has_volume_group(const Mesh& m, const std::string& group);
+bool has_boundary_group(const Mesh& m, const std::string& group);
+
+// All blocks (one per cell type) of the named group; throws InputError if none.
+std::vector<const CellBlock*> volume_blocks(const Mesh& m, const std::string& group);
+std::vector<const CellBlock*> boundary_blocks(const Mesh& m, const std::string& group);
+
+// Sorted, unique node ids of all cells of the named boundary group (facets,
+// edges or points); throws InputError if the group is missing.
+std::vector<gid_t> boundary_nodes(const Mesh& m, const std::string& group);
+
+// Sorted, unique node ids of all cells of the named volume group; throws if missing.
+std::vector<gid_t> volume_nodes(const Mesh& m, const std::string& group);
+
+}  // namespace stentor

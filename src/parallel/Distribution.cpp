@@ -1,0 +1,92 @@
+#include "parallel/Distribution.hpp"
+
+#include <algorithm>
+
+#include "mesh/MeshComm.hpp"
+
+namespace stentor {
+
+Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm)
+    : dim_(mesh.dim), rank_(comm->getRank()), nranks_(comm->getSize()), comm_(comm) {
+  const std::size_t nn = mesh.num_nodes();
+  // Every rank computes the same partition (METIS is deterministic with a fixed seed),
+  // so no communication is needed to agree on it.
+  const std::vector<int> cell_part = partition_cells(mesh, nranks_);
+  const std::vector<int> owner = node_owners(mesh, cell_part);
+
+  // Nodes touched by this rank's cells, and by any cell (nodes of boundary or point
+  // groups that no volume cell uses carry no dof).
+  std::vector<char> touched(nn, 0), used(nn, 0);
+  for (const auto& b : mesh.volumes)
+    for (std::size_t c = 0; c < b.num_cells(); ++c) {
+      const bool mine = cell_part[static_cast<std::size_t>(b.cell_id[c])] == rank_;
+      for (int a = 0; a < b.nodes_per_cell; ++a) {
+        const auto g = static_cast<std::size_t>(b.conn[c * b.nodes_per_cell + a]);
+        used[g] = 1;
+        if (mine) touched[g] = 1;
+      }
+    }
+
+  std::vector<gid_t> owned, ghost;
+  for (std::size_t g = 0; g < nn; ++g) {
+    if (!used[g]) continue;
+    if (owner[g] == rank_)
+      owned.push_back(static_cast<gid_t>(g));
+    else if (touched[g])
+      ghost.push_back(static_cast<gid_t>(g));
+  }
+  num_owned_ = static_cast<la::LO>(owned.size());
+  local_nodes_ = owned;
+  local_nodes_.insert(local_nodes_.end(), ghost.begin(), ghost.end());
+  node_g2l_.assign(nn, -1);
+  for (std::size_t l = 0; l < local_nodes_.size(); ++l) node_g2l_[static_cast<std::size_t>(local_nodes_[l])] = static_cast<la::LO>(l);
+
+  // DOF maps.
+  auto dof_gids = [this](const std::vector<gid_t>& nodes) {
+    std::vector<la::GO> g;
+    g.reserve(nodes.size() * dim_);
+    for (gid_t n : nodes)
+      for (int c = 0; c < dim_; ++c) g.push_back(static_cast<la::GO>(n * dim_ + c));
+    return g;
+  };
+  const auto inv = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+  const auto owned_g = dof_gids(owned);
+  const auto overlap_g = dof_gids(local_nodes_);
+  owned_map_ = Teuchos::rcp(new la::Map(inv, Teuchos::ArrayView<const la::GO>(owned_g), 0, comm_));
+  overlap_map_ = Teuchos::rcp(new la::Map(inv, Teuchos::ArrayView<const la::GO>(overlap_g), 0, comm_));
+  importer_ = Teuchos::rcp(new la::Import(owned_map_, overlap_map_));
+
+  coords_ = Kokkos::View<double* [3], Kokkos::LayoutRight, la::ExecSpace>("coords", local_nodes_.size());
+  auto ch = Kokkos::create_mirror_view(coords_);
+  for (std::size_t l = 0; l < local_nodes_.size(); ++l)
+    for (int d = 0; d < 3; ++d) ch(l, d) = mesh.x[3 * static_cast<std::size_t>(local_nodes_[l]) + d];
+  Kokkos::deep_copy(coords_, ch);
+
+  for (std::size_t bi = 0; bi < mesh.volumes.size(); ++bi) {
+    const CellBlock& b = mesh.volumes[bi];
+    LocalBlock lb;
+    lb.volume_block = static_cast<int>(bi);
+    lb.type = b.type;
+    lb.nodes_per_cell = b.nodes_per_cell;
+    for (std::size_t c = 0; c < b.num_cells(); ++c)
+      if (cell_part[static_cast<std::size_t>(b.cell_id[c])] == rank_) {
+        lb.cell_ids.push_back(b.cell_id[c]);
+        lb.cell_index.push_back(static_cast<gid_t>(c));
+      }
+    lb.conn = Kokkos::View<int**, Kokkos::LayoutRight, la::ExecSpace>("conn", lb.cell_ids.size(), b.nodes_per_cell);
+    auto h = Kokkos::create_mirror_view(lb.conn);
+    for (std::size_t lc = 0; lc < lb.cell_index.size(); ++lc)
+      for (int a = 0; a < b.nodes_per_cell; ++a)
+        h(lc, a) = node_g2l_[static_cast<std::size_t>(b.conn[static_cast<std::size_t>(lb.cell_index[lc]) * b.nodes_per_cell + a])];
+    Kokkos::deep_copy(lb.conn, h);
+    blocks_.push_back(std::move(lb));
+  }
+}
+
+std::size_t Distribution::num_local_cells() const {
+  std::size_t n = 0;
+  for (const auto& b : blocks_) n += b.cell_ids.size();
+  return n;
+}
+
+}  // namespace stentor

@@ -1,0 +1,339 @@
+#include "run/Simulation.hpp"
+
+#include <mpi.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+
+#include "assembly/Assembler.hpp"
+#include "bc/Loads.hpp"
+#include "io/Csv.hpp"
+#include "io/OutputDir.hpp"
+#include "io/Plot.hpp"
+#include "io/XdmfWriter.hpp"
+#include "mesh/MeshComm.hpp"
+#include "parallel/Distribution.hpp"
+#include "solver/LinearSolver.hpp"
+#include "solver/Newton.hpp"
+
+namespace stentor {
+namespace {
+
+// Wall-clock timers, printed in the end-of-run summary.
+class Timers {
+ public:
+  struct Scope {
+    Timers& t;
+    std::string name;
+    std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+    ~Scope() { t.add(name, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()); }
+  };
+  void add(const std::string& n, double s) {
+    if (!acc_.count(n)) order_.push_back(n);
+    acc_[n] += s;
+  }
+  double get(const std::string& n) const {
+    auto it = acc_.find(n);
+    return it == acc_.end() ? 0.0 : it->second;
+  }
+  const std::vector<std::string>& names() const { return order_; }
+
+ private:
+  std::map<std::string, double> acc_;
+  std::vector<std::string> order_;
+};
+
+// The static equilibrium residual at load time t, for Newton.
+class StaticSystem : public NewtonSystem {
+ public:
+  StaticSystem(Assembler& a, Timers& timers) : a_(a), timers_(timers) {}
+  double t = 0.0, end_time = 1.0;
+  Assembler::Stats last;
+  bool evaluate(const la::Vector& u, la::Vector& r, bool tangent) override {
+    Timers::Scope s{timers_, "assembly"};
+    last = a_.assemble(u, t, end_time, r, tangent);
+    return last.inverted == 0;
+  }
+  la::RCP<la::CrsMatrix> matrix() override { return a_.matrix(); }
+
+ private:
+  Assembler& a_;
+  Timers& timers_;
+};
+
+// Linear solver wrapper that times setup and solve separately.
+const char* kAxes[3] = {"x", "y", "z"};
+
+std::string fmt(double v, int prec = 4) {
+  std::ostringstream os;
+  os << std::scientific << std::setprecision(prec) << v;
+  return os.str();
+}
+
+}  // namespace
+
+int run_simulation(const Config& cfg, const RunOptions& opts) {
+  auto comm = Tpetra::getDefaultComm();
+  const int rank = comm->getRank();
+  const int nranks = comm->getSize();
+  std::ostringstream null_stream;
+  std::ostream& out = (rank == 0) ? std::cout : null_stream;
+  Timers timers;
+  const auto t_start = std::chrono::steady_clock::now();
+
+  // ---- Mesh, bodies, loads: everything the deck names must exist in the mesh.
+  Mesh mesh;
+  {
+    Timers::Scope s{timers, "mesh"};
+    mesh = read_mesh_on_root(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
+  }
+  const std::vector<int> block_mat = block_materials(cfg, mesh);
+  const Loads loads = resolve_loads(cfg, mesh);
+  const int dim = mesh.dim;
+  std::vector<gid_t> probe_node;
+  for (const auto& p : cfg.output.probes) {
+    gid_t best = 0;
+    double bd = 1e300;
+    for (std::size_t n = 0; n < mesh.num_nodes(); ++n) {
+      double d = 0.0;
+      for (int k = 0; k < 3; ++k) d += std::pow(mesh.x[3 * n + k] - p.point[static_cast<std::size_t>(k)], 2);
+      if (d < bd) {
+        bd = d;
+        best = static_cast<gid_t>(n);
+      }
+    }
+    probe_node.push_back(best);
+  }
+
+  out << "Stentor: " << (cfg.problem.title.empty() ? cfg.deck_path : cfg.problem.title) << "\n"
+      << "  deck     " << cfg.deck_path << "\n"
+      << "  mesh     " << mesh.source << ": " << dim << "D, " << mesh.num_nodes() << " nodes, " << mesh.num_volume_cells()
+      << " cells (";
+  for (std::size_t b = 0; b < mesh.volumes.size(); ++b)
+    out << (b ? ", " : "") << mesh.volumes[b].name << ": " << mesh.volumes[b].num_cells() << " " << cell_name(mesh.volumes[b].type);
+  out << ")\n";
+  out << "  parallel " << nranks << " MPI rank(s), Kokkos " << la::ExecSpace::name() << " x " << la::ExecSpace().concurrency()
+      << " thread(s)\n";
+  if (opts.check_only) {
+    out << "deck and mesh are valid: " << cfg.bodies.size() << " bodies, " << cfg.materials.size() << " materials, " << cfg.loads.size()
+        << " boundary conditions\n";
+    return 0;
+  }
+
+  // ---- Parallel layout, assembly, solver.
+  std::unique_ptr<Distribution> dist;
+  std::unique_ptr<Assembler> assembler;
+  {
+    Timers::Scope s{timers, "setup"};
+    dist = std::make_unique<Distribution>(mesh, comm);
+    assembler = std::make_unique<Assembler>(mesh, *dist, cfg, loads, block_mat);
+  }
+  LinearSolver linear(cfg.linear, comm);
+  out << "  dofs     " << dist->owned_map()->getGlobalNumElements() << "\n"
+      << "  solver   " << linear.description() << "\n";
+
+  // ---- Output: staged in <dir>.partial, moved into place only when the run succeeds.
+  const std::string out_dir = opts.output_dir.empty() ? cfg.output.directory : opts.output_dir;
+  std::unique_ptr<OutputDir> staging;
+  std::unique_ptr<XdmfWriter> xdmf;
+  std::unique_ptr<CsvWriter> history;
+  std::vector<std::string> columns = {"step", "time", "dt", "newton_iterations", "linear_iterations", "cutbacks", "strain_energy"};
+  for (const auto& d : assembler->dirichlet_sets())
+    for (int k = 0; k < dim; ++k) columns.push_back("reaction_" + d.name + "_" + kAxes[k]);
+  for (const auto& p : cfg.output.probes)
+    for (int k = 0; k < dim; ++k) columns.push_back("u_" + p.name + "_" + kAxes[k]);
+  int io_error = 0;
+  std::string io_message;
+  if (rank == 0) {
+    try {
+      staging = std::make_unique<OutputDir>(out_dir);
+      if (cfg.output.fields) xdmf = std::make_unique<XdmfWriter>(staging->path(), cfg.output.basename, mesh);
+      history = std::make_unique<CsvWriter>(staging->path() + "/" + cfg.output.basename + "_history.csv", columns);
+    } catch (const std::exception& e) {
+      io_error = 1;
+      io_message = e.what();
+    }
+  }
+  Teuchos::broadcast(*comm, 0, &io_error);
+  if (io_error) {
+    if (rank == 0) throw InputError("cannot create output in '" + out_dir + "': " + io_message);
+    throw InputError("cannot create output");
+  }
+
+  // Gather map: every used dof on rank 0, for output in mesh node order.
+  std::vector<la::GO> all_dofs;
+  if (rank == 0) {
+    std::vector<char> used(mesh.num_nodes(), 0);
+    for (const auto& b : mesh.volumes)
+      for (gid_t n : b.conn) used[static_cast<std::size_t>(n)] = 1;
+    for (std::size_t n = 0; n < mesh.num_nodes(); ++n)
+      if (used[n])
+        for (int k = 0; k < dim; ++k) all_dofs.push_back(static_cast<la::GO>(n) * dim + k);
+  }
+  auto gather_map = Teuchos::rcp(new la::Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                             Teuchos::ArrayView<const la::GO>(all_dofs), 0, comm));
+  la::Import gather(dist->owned_map(), gather_map);
+  la::Vector u_all(gather_map);
+
+  la::Vector u(dist->owned_map()), u_prev(dist->owned_map());
+  StaticSystem system(*assembler, timers);
+  system.end_time = cfg.stepping.end_time;
+
+  auto write_fields = [&](double t) {
+    Timers::Scope s{timers, "output"};
+    u_all.doImport(u, gather, Tpetra::INSERT);
+    Assembler::CellFields cf = assembler->cell_fields(u);
+    const int nloc = static_cast<int>(cf.cell_ids.size());
+    std::vector<int> counts(static_cast<std::size_t>(nranks)), displs(static_cast<std::size_t>(nranks));
+    MPI_Gather(&nloc, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+    int total = 0;
+    for (int r = 0; r < nranks; ++r) {
+      displs[static_cast<std::size_t>(r)] = total;
+      total += counts[static_cast<std::size_t>(r)];
+    }
+    std::vector<long long> ids(static_cast<std::size_t>(total));
+    std::vector<double> packed_loc, packed(static_cast<std::size_t>(total) * 8);
+    for (int c = 0; c < nloc; ++c) {
+      for (int k = 0; k < 6; ++k) packed_loc.push_back(cf.stress[static_cast<std::size_t>(6 * c + k)]);
+      packed_loc.push_back(cf.von_mises[static_cast<std::size_t>(c)]);
+      packed_loc.push_back(cf.J[static_cast<std::size_t>(c)]);
+    }
+    std::vector<long long> ids_loc(cf.cell_ids.begin(), cf.cell_ids.end());
+    MPI_Gatherv(ids_loc.data(), nloc, MPI_LONG_LONG, ids.data(), counts.data(), displs.data(), MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+    std::vector<int> counts8(counts), displs8(displs);
+    for (auto& c : counts8) c *= 8;
+    for (auto& d : displs8) d *= 8;
+    MPI_Gatherv(packed_loc.data(), 8 * nloc, MPI_DOUBLE, packed.data(), counts8.data(), displs8.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    if (rank != 0 || !xdmf) return;
+    const std::size_t nc = mesh.num_volume_cells();
+    std::vector<double> disp(3 * mesh.num_nodes(), 0.0), stress(6 * nc), vm(nc), J(nc), owner(nc);
+    auto uh = u_all.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (std::size_t i = 0; i < all_dofs.size(); ++i)
+      disp[3 * static_cast<std::size_t>(all_dofs[i] / dim) + static_cast<std::size_t>(all_dofs[i] % dim)] = uh(i, 0);
+    for (int r = 0; r < nranks; ++r)
+      for (int c = 0; c < counts[static_cast<std::size_t>(r)]; ++c) {
+        const std::size_t i = static_cast<std::size_t>(displs[static_cast<std::size_t>(r)] + c);
+        const auto id = static_cast<std::size_t>(ids[i]);
+        for (int k = 0; k < 6; ++k) stress[6 * id + k] = packed[8 * i + k];
+        vm[id] = packed[8 * i + 6];
+        J[id] = packed[8 * i + 7];
+        owner[id] = r;
+      }
+    xdmf->begin_step(t);
+    xdmf->node_field("displacement", 3, disp);
+    xdmf->cell_field("cauchy_stress", 6, stress);
+    xdmf->cell_field("von_mises", 1, vm);
+    xdmf->cell_field("J", 1, J);
+    xdmf->cell_field("mpi_rank", 1, owner);
+    xdmf->end_step();
+  };
+
+  auto probe_values = [&]() {
+    std::vector<double> loc(probe_node.size() * 3, 0.0), glob(loc.size(), 0.0);
+    auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (std::size_t p = 0; p < probe_node.size(); ++p)
+      if (dist->owns_node(probe_node[p]))
+        for (int k = 0; k < dim; ++k) loc[3 * p + k] = uh(dist->local_node(probe_node[p]) * dim + k, 0);
+    if (!loc.empty()) Teuchos::reduceAll(*comm, Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), glob.data());
+    return glob;
+  };
+
+  // ---- Load stepping with cut-back: a failed Newton solve halves the step and retries
+  // from the last converged state; after a success the step grows back (x2) towards
+  // the deck's step size.
+  const double T = cfg.stepping.end_time;
+  const double dt0 = T / cfg.stepping.num_steps;
+  double t = 0.0, dt = dt0;
+  int step = 0, consecutive_cuts = 0, total_cuts = 0, total_newton = 0, total_linear = 0;
+  bool failed = false;
+  std::string failure;
+  if (cfg.output.fields) write_fields(0.0);
+  std::ostream* newton_log = (opts.verbose && rank == 0) ? &std::cout : nullptr;
+  while (t < T * (1.0 - 1e-12)) {
+    dt = std::min(dt, T - t);
+    const double t_new = t + dt;
+    u_prev.update(1.0, u, 0.0);
+    assembler->apply_dirichlet(u, t_new, T);
+    system.t = t_new;
+    NewtonResult nr;
+    {
+      Timers::Scope s{timers, "newton"};
+      nr = newton_solve(system, u, linear, cfg.newton, newton_log);
+    }
+    total_newton += nr.iterations;
+    total_linear += nr.linear_iterations;
+    if (!nr.converged) {
+      u.update(1.0, u_prev, 0.0);
+      if (consecutive_cuts >= cfg.stepping.max_cutbacks) {
+        std::ostringstream os;
+        os << "Newton failed at t = " << t_new << " (" << nr.failure << ") after " << consecutive_cuts
+           << " step halvings (dt = " << dt << "); see Stepping->max cutbacks, Newton->max iterations";
+        failure = os.str();
+        failed = true;
+        break;
+      }
+      ++consecutive_cuts;
+      ++total_cuts;
+      out << "  step " << step + 1 << " t=" << fmt(t_new, 3) << ": " << nr.failure << "; cutting dt to " << fmt(dt / 2, 3) << "\n";
+      dt *= 0.5;
+      continue;
+    }
+    t = t_new;
+    ++step;
+    const auto& reac = assembler->reactions();
+    out << "  step " << std::setw(4) << step << "  t " << fmt(t, 4) << "  dt " << fmt(dt, 2) << "  newton " << std::setw(2)
+        << nr.iterations << "  linear " << std::setw(4) << nr.linear_iterations << "  |r| " << fmt(nr.residual, 2) << "  W "
+        << fmt(system.last.energy, 6) << "\n";
+    if (rank == 0) {
+      std::vector<double> row = {double(step), t, dt, double(nr.iterations), double(nr.linear_iterations), double(total_cuts),
+                                 system.last.energy};
+      for (const auto& rf : reac)
+        for (int k = 0; k < dim; ++k) row.push_back(rf[static_cast<std::size_t>(k)]);
+      const auto pv = probe_values();
+      for (std::size_t p = 0; p < probe_node.size(); ++p)
+        for (int k = 0; k < dim; ++k) row.push_back(pv[3 * p + k]);
+      Timers::Scope s{timers, "output"};
+      history->row(row);
+    } else {
+      probe_values();
+    }
+    const bool last = t >= T * (1.0 - 1e-12);
+    if (cfg.output.fields && (step % cfg.output.every == 0 || last)) write_fields(t);
+    if (consecutive_cuts > 0) dt = std::min(dt0, 2.0 * dt);
+    consecutive_cuts = 0;
+  }
+
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  out << (failed ? "FAILED: " + failure + "\n" : "") << "Summary: " << step << " steps, " << total_cuts << " cut-backs, " << total_newton
+      << " Newton iterations, " << total_linear << " linear iterations, " << std::fixed << std::setprecision(2) << wall << " s\n";
+  for (const auto& n : timers.names()) out << "  " << std::left << std::setw(10) << n << std::right << std::setw(10) << timers.get(n) << " s\n";
+  out << std::defaultfloat;
+  if (rank == 0) {
+    history.reset();
+    xdmf.reset();
+    if (!failed) {
+      const std::string csv = staging->path() + "/" + cfg.output.basename + "_history.csv";
+      std::vector<std::string> rcols;
+      for (const auto& d : assembler->dirichlet_sets())
+        for (int k = 0; k < dim; ++k) rcols.push_back("reaction_" + d.name + "_" + kAxes[k]);
+      if (!rcols.empty())
+        plot_csv_png(csv, staging->path() + "/" + cfg.output.basename + "_reactions.png", "time", rcols, "Reaction forces", "force");
+      plot_csv_png(csv, staging->path() + "/" + cfg.output.basename + "_energy.png", "time", {"strain_energy"}, "Stored energy",
+                   "energy");
+      staging->commit();
+      out << "Results in " << std::filesystem::absolute(out_dir).string() << "/ (" << cfg.output.basename << ".xdmf for ParaView, "
+          << cfg.output.basename << "_history.csv)\n";
+    } else {
+      out << "Partial results kept in " << staging->path() << "; earlier results in " << out_dir << " were not touched\n";
+    }
+  }
+  return failed ? 3 : 0;
+}
+
+}  // namespace stentor

@@ -1,0 +1,36 @@
+// The linear solve inside each Newton iteration: Belos GMRES preconditioned by Ifpack2
+// additive Schwarz (ILU subdomain solves) by default, or a direct solve (Amesos2 KLU2).
+// The matrix graph never changes, so symbolic work (Schwarz overlap, ILU pattern, KLU
+// symbolic factorization) is done once; numeric work once per Newton iteration.
+#pragma once
+#include <memory>
+#include <string>
+
+#include "deck/Config.hpp"
+#include "parallel/LinearAlgebra.hpp"
+
+namespace stentor {
+
+class LinearSolver {
+ public:
+  LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la::Comm>& comm);
+  ~LinearSolver();
+
+  // New matrix values (same graph as the previous call, if any).
+  void setup(const la::RCP<la::CrsMatrix>& A);
+
+  struct Result {
+    bool converged = false;
+    int iterations = 0;
+    double residual = 0.0;  // achieved relative residual (0 for direct)
+  };
+  Result solve(const la::Vector& b, la::Vector& x);
+
+  std::string description() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace stentor

@@ -1,0 +1,93 @@
+#include "solver/Newton.hpp"
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace stentor {
+
+NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, const NewtonConfig& cfg, std::ostream* log) {
+  NewtonResult res;
+  la::Vector r(u.getMap()), du(u.getMap()), u_trial(u.getMap()), r_trial(u.getMap());
+  if (!sys.evaluate(u, r, true)) {
+    res.failure = "inverted elements at the start of the step";
+    return res;
+  }
+  double rn = r.norm2();
+  res.residual0 = rn;
+  res.residual = rn;
+  const double target = std::max(cfg.residual_tolerance * rn, cfg.absolute_tolerance);
+  if (rn <= target) {
+    res.converged = true;
+    return res;
+  }
+  for (int it = 1; it <= cfg.max_iterations; ++it) {
+    lin.setup(sys.matrix());
+    r.scale(-1.0);
+    const LinearSolver::Result lr = lin.solve(r, du);
+    r.scale(-1.0);
+    res.linear_iterations += lr.iterations;
+    if (!std::isfinite(du.norm2())) {
+      res.failure = "linear solve produced a non-finite increment";
+      return res;
+    }
+    // Backtracking: halve the step until the residual decreases (Armijo, c = 1e-4).
+    double alpha = 1.0, rn_trial = 0.0;
+    bool accepted = false, admissible_seen = false;
+    const int max_halvings = cfg.line_search ? cfg.line_search_max : 0;
+    for (int ls = 0; ls <= max_halvings; ++ls) {
+      u_trial.update(1.0, u, alpha, du, 0.0);
+      if (sys.evaluate(u_trial, r_trial, true)) {
+        admissible_seen = true;
+        rn_trial = r_trial.norm2();
+        if (std::isfinite(rn_trial) && (!cfg.line_search || rn_trial <= (1.0 - 1e-4 * alpha) * rn)) {
+          accepted = true;
+          break;
+        }
+      }
+      alpha *= 0.5;
+    }
+    if (!accepted) {
+      if (!admissible_seen) {
+        res.failure = "every line-search trial inverted elements";
+        return res;
+      }
+      // No decrease along du: take the full step anyway if it is admissible (the residual
+      // can rise before Newton's quadratic phase), else fail.
+      alpha = 1.0;
+      u_trial.update(1.0, u, alpha, du, 0.0);
+      if (!sys.evaluate(u_trial, r_trial, true) || !std::isfinite(rn_trial = r_trial.norm2())) {
+        res.failure = "line search found no admissible decrease";
+        return res;
+      }
+    }
+    u.update(1.0, u_trial, 0.0);
+    r.update(1.0, r_trial, 0.0);
+    const double step = alpha * du.norm2();
+    const double un = u.norm2();
+    rn = rn_trial;
+    res.iterations = it;
+    res.residual = rn;
+    if (log) {
+      std::ostringstream os;
+      os << "    newton " << std::setw(2) << it << "  |r| " << std::scientific << std::setprecision(3) << rn << "  |du| " << step
+         << "  alpha " << std::defaultfloat << alpha << "  linear " << lr.iterations << (lr.converged ? "" : " (not converged)") << "\n";
+      *log << os.str();
+    }
+    if (!std::isfinite(rn)) {
+      res.failure = "residual is not finite";
+      return res;
+    }
+    if (rn <= target || (step <= cfg.increment_tolerance * std::max(un, 1e-300) && rn <= std::sqrt(cfg.residual_tolerance) * res.residual0)) {
+      res.converged = true;
+      return res;
+    }
+  }
+  std::ostringstream os;
+  os << "no convergence in " << cfg.max_iterations << " iterations (|r| " << std::scientific << std::setprecision(3) << rn << ", target "
+     << target << ")";
+  res.failure = os.str();
+  return res;
+}
+
+}  // namespace stentor

@@ -1,0 +1,39 @@
+// Newton's method with backtracking line search, for any residual the caller defines.
+//
+// Convergence (all norms global 2-norms over owned dofs):
+//   ||r|| <= max(rtol * ||r_0||, atol)                          (residual test), or
+//   ||du|| <= inc_tol * ||u||  and  ||r|| <= sqrt(rtol) * ||r_0||  (increment test, for
+//   steps whose residual is limited by round-off).
+// A trial state the residual cannot be evaluated at (an inverted element) counts as a
+// failed line-search trial; if even the smallest step is inadmissible, or the iteration
+// limit is reached, the solve fails and the caller cuts the time/load step.
+#pragma once
+#include <ostream>
+#include <string>
+
+#include "deck/Config.hpp"
+#include "parallel/LinearAlgebra.hpp"
+#include "solver/LinearSolver.hpp"
+
+namespace stentor {
+
+class NewtonSystem {
+ public:
+  virtual ~NewtonSystem() = default;
+  // r(u) (and the tangent, available through matrix(), when `tangent`). Returns false when
+  // u is inadmissible (e.g. det F <= 0 somewhere); r is then undefined.
+  virtual bool evaluate(const la::Vector& u, la::Vector& r, bool tangent) = 0;
+  virtual la::RCP<la::CrsMatrix> matrix() = 0;
+};
+
+struct NewtonResult {
+  bool converged = false;
+  int iterations = 0;
+  int linear_iterations = 0;
+  double residual = 0.0, residual0 = 0.0;
+  std::string failure;  // why it failed, for the log
+};
+
+NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, const NewtonConfig& cfg, std::ostream* log);
+
+}  // namespace stentor

@@ -1,0 +1,560 @@
+// Input deck reader: parsing, defaults, every kind of validation error, ramps, and
+// the agreement of docs/deck.md with the schema.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "deck/Config.hpp"
+#include "deck/Schema.hpp"
+
+namespace fs = std::filesystem;
+using namespace stentor;
+
+namespace {
+
+// A complete deck using (almost) every feature.
+const char* kFullDeck = R"XML(<?xml version="1.0"?>
+<!-- full test deck -->
+<ParameterList name="stentor">
+  <ParameterList name="Problem">
+    <Parameter name="title" type="string" value="ring test"/>
+  </ParameterList>
+  <ParameterList name="Mesh">
+    <Parameter name="file" type="string" value="mesh/ring.msh"/>
+    <Parameter name="dimension" type="int" value="2"/>
+  </ParameterList>
+  <ParameterList name="Materials">
+    <ParameterList name="steel">
+      <Parameter name="model" type="string" value="ciarlet-geymonat"/>
+      <Parameter name="C1" type="double" value="200e6"/>
+      <Parameter name="C2" type="int" value="2000000"/>
+      <Parameter name="D" type="double" value="140e6"/>
+      <Parameter name="density" type="double" value="7800"/>
+    </ParameterList>
+    <ParameterList name="artery">
+      <Parameter name="C1" type="double" value="0.5e6"/>
+      <Parameter name="D" type="double" value="0.35e6"/>
+      <Parameter name="viscosity" type="double" value="10"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Bodies">
+    <ParameterList name="stent">
+      <Parameter name="material" type="string" value="steel"/>
+      <Parameter name="physical group" type="string" value="stent_surface"/>
+    </ParameterList>
+    <ParameterList name="vessel">
+      <Parameter name="material" type="string" value="artery"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Boundary Conditions">
+    <ParameterList name="clamp">
+      <Parameter name="type" type="string" value="Dirichlet"/>
+      <Parameter name="boundary" type="string" value="base"/>
+      <Parameter name="components" type="string" value="all"/>
+    </ParameterList>
+    <ParameterList name="pull">
+      <Parameter name="type" type="string" value="dirichlet"/>
+      <Parameter name="boundary" type="string" value="top"/>
+      <Parameter name="components" type="string" value="y, x"/>
+      <Parameter name="values" type="Array(double)" value="{0.1, -0.2}"/>
+      <Parameter name="ramp" type="string" value="table"/>
+      <Parameter name="ramp times" type="Array(double)" value="{0, 0.5, 1}"/>
+      <Parameter name="ramp factors" type="Array(double)" value="{0, 1, 0.5}"/>
+    </ParameterList>
+    <ParameterList name="push">
+      <Parameter name="type" type="string" value="traction"/>
+      <Parameter name="boundary" type="string" value="right"/>
+      <Parameter name="traction" type="Array(double)" value="{1e3, 0}"/>
+      <Parameter name="ramp" type="string" value="Constant"/>
+    </ParameterList>
+    <ParameterList name="blow">
+      <Parameter name="type" type="string" value="Pressure"/>
+      <Parameter name="boundary" type="string" value="inner"/>
+      <Parameter name="pressure" type="double" value="1.5e4"/>
+    </ParameterList>
+    <ParameterList name="gravity">
+      <Parameter name="type" type="string" value="Body Force"/>
+      <Parameter name="body" type="string" value="stent"/>
+      <Parameter name="force" type="Array(double)" value="{0, -9.81e3}"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Stepping">
+    <Parameter name="end time" type="double" value="2"/>
+    <Parameter name="steps" type="int" value="10"/>
+  </ParameterList>
+  <ParameterList name="Newton">
+    <Parameter name="max iterations" type="int" value="30"/>
+    <Parameter name="line search" type="bool" value="false"/>
+  </ParameterList>
+  <ParameterList name="Linear Solver">
+    <Parameter name="preconditioner" type="string" value="None"/>
+    <Parameter name="subdomain solver" type="string" value="riluk"/>
+    <Parameter name="tolerance" type="double" value="1e-8"/>
+    <ParameterList name="Belos">
+      <Parameter name="Num Blocks" type="int" value="50"/>
+      <Parameter name="Any Belos Option" type="string" value="kept as is"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Output">
+    <Parameter name="directory" type="string" value="out"/>
+    <Parameter name="every" type="int" value="2"/>
+    <ParameterList name="Probes">
+      <ParameterList name="tip">
+        <Parameter name="point" type="Array(double)" value="{1, 2}"/>
+      </ParameterList>
+    </ParameterList>
+  </ParameterList>
+</ParameterList>
+)XML";
+
+// The smallest valid deck.
+const char* kMinimalDeck = R"XML(<ParameterList name="anything">
+  <ParameterList name="Mesh">
+    <Parameter name="file" type="string" value="mesh/ring.msh"/>
+  </ParameterList>
+  <ParameterList name="Materials">
+    <ParameterList name="steel">
+      <Parameter name="C1" type="double" value="1"/>
+      <Parameter name="D" type="double" value="2"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Bodies">
+    <ParameterList name="stent">
+      <Parameter name="material" type="string" value="steel"/>
+    </ParameterList>
+  </ParameterList>
+</ParameterList>
+)XML";
+
+class Deck : public ::testing::Test {
+ protected:
+  fs::path dir;
+  void SetUp() override {
+    static int counter = 0;
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir = fs::temp_directory_path() /
+          ("stentor_test_deck_" + std::to_string(::getpid()) + "_" + std::to_string(counter++) + "_" + info->name());
+    fs::create_directories(dir / "mesh");
+    std::ofstream(dir / "mesh" / "ring.msh") << "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  std::string write(const std::string& xml, const std::string& name = "deck.xml") {
+    const auto p = dir / name;
+    std::ofstream(p) << xml;
+    return p.string();
+  }
+  // Reads `xml` expecting an InputError that starts with the deck file name and
+  // contains every needle.
+  std::string expect_error(const std::string& xml, const std::vector<std::string>& needles) {
+    const std::string path = write(xml);
+    try {
+      read_deck(path);
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << "message does not start with the deck file: " << msg;
+      for (const auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << "missing '" << n << "' in: " << msg;
+      return msg;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "expected InputError, got another exception: " << e.what();
+      return "";
+    }
+    ADD_FAILURE() << "expected InputError containing '" << needles.front() << "', but the deck was accepted";
+    return "";
+  }
+};
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto pos = s.find(from);
+  if (pos == std::string::npos) throw std::logic_error("test bug: '" + from + "' not in deck");
+  return s.replace(pos, from.size(), to);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------
+// Valid decks.
+
+TEST_F(Deck, FullDeckParses) {
+  const std::string path = write(kFullDeck);
+  const Config c = read_deck(path);
+  EXPECT_EQ(c.deck_path, fs::path(path).lexically_normal().string());
+  EXPECT_EQ(c.problem.title, "ring test");
+  EXPECT_EQ(c.problem.analysis, "static");
+  EXPECT_EQ(c.mesh.file, (dir / "mesh" / "ring.msh").lexically_normal().string());
+  EXPECT_EQ(c.mesh.dimension, 2);
+  EXPECT_EQ(c.mesh.order, 1);
+
+  ASSERT_EQ(c.materials.size(), 2u);
+  EXPECT_EQ(c.materials[0].name, "steel");
+  EXPECT_EQ(c.materials[0].model, "Ciarlet-Geymonat");
+  EXPECT_DOUBLE_EQ(c.materials[0].C1, 200e6);
+  EXPECT_DOUBLE_EQ(c.materials[0].C2, 2e6);  // an int is fine for a double
+  EXPECT_DOUBLE_EQ(c.materials[0].D, 140e6);
+  EXPECT_DOUBLE_EQ(c.materials[0].density, 7800);
+  EXPECT_DOUBLE_EQ(c.materials[0].viscosity, 0);
+  EXPECT_EQ(c.materials[1].name, "artery");
+  EXPECT_DOUBLE_EQ(c.materials[1].C2, 0);
+  EXPECT_DOUBLE_EQ(c.materials[1].viscosity, 10);
+  EXPECT_EQ(&c.material("artery"), &c.materials[1]);
+  EXPECT_THROW(c.material("bone"), InputError);
+
+  ASSERT_EQ(c.bodies.size(), 2u);
+  EXPECT_EQ(c.bodies[0].name, "stent");
+  EXPECT_EQ(c.bodies[0].group, "stent_surface");
+  EXPECT_EQ(c.bodies[0].material, "steel");
+  EXPECT_EQ(c.bodies[1].group, "vessel");  // default: the sublist name
+
+  ASSERT_EQ(c.loads.size(), 5u);
+  const auto& clamp = c.loads[0];
+  EXPECT_EQ(clamp.name, "clamp");
+  EXPECT_EQ(clamp.type, LoadConfig::Type::Dirichlet);
+  EXPECT_EQ(clamp.group, "base");
+  EXPECT_TRUE(clamp.all_components);
+  EXPECT_TRUE(clamp.components[0] && clamp.components[1] && !clamp.components[2]);  // 2D: no z
+  EXPECT_EQ(clamp.vector, (std::array<double, 3>{0, 0, 0}));
+  EXPECT_EQ(clamp.ramp.kind, Ramp::Kind::Linear);
+  const auto& pull = c.loads[1];
+  EXPECT_EQ(pull.type, LoadConfig::Type::Dirichlet);
+  EXPECT_FALSE(pull.all_components);
+  EXPECT_TRUE(pull.components[0] && pull.components[1] && !pull.components[2]);
+  EXPECT_DOUBLE_EQ(pull.vector[1], 0.1);  // "y, x" with {0.1, -0.2}
+  EXPECT_DOUBLE_EQ(pull.vector[0], -0.2);
+  EXPECT_EQ(pull.ramp.kind, Ramp::Kind::Table);
+  EXPECT_EQ(pull.ramp.times, (std::vector<double>{0, 0.5, 1}));
+  EXPECT_EQ(pull.ramp.factors, (std::vector<double>{0, 1, 0.5}));
+  EXPECT_EQ(c.loads[2].type, LoadConfig::Type::Traction);
+  EXPECT_EQ(c.loads[2].group, "right");
+  EXPECT_DOUBLE_EQ(c.loads[2].vector[0], 1e3);
+  EXPECT_EQ(c.loads[2].ramp.kind, Ramp::Kind::Constant);
+  EXPECT_EQ(c.loads[3].type, LoadConfig::Type::Pressure);
+  EXPECT_DOUBLE_EQ(c.loads[3].value, 1.5e4);
+  EXPECT_EQ(c.loads[4].type, LoadConfig::Type::BodyForce);
+  EXPECT_EQ(c.loads[4].group, "stent_surface");  // the body's physical group
+  EXPECT_DOUBLE_EQ(c.loads[4].vector[1], -9.81e3);
+
+  EXPECT_DOUBLE_EQ(c.stepping.end_time, 2);
+  EXPECT_EQ(c.stepping.num_steps, 10);
+  EXPECT_EQ(c.stepping.max_cutbacks, 6);
+  EXPECT_EQ(c.newton.max_iterations, 30);
+  EXPECT_FALSE(c.newton.line_search);
+  EXPECT_DOUBLE_EQ(c.newton.residual_tolerance, 1e-10);
+  EXPECT_EQ(c.linear.method, "gmres");
+  EXPECT_EQ(c.linear.preconditioner, "none");
+  EXPECT_EQ(c.linear.subdomain_solver, "RILUK");
+  EXPECT_DOUBLE_EQ(c.linear.tolerance, 1e-8);
+  EXPECT_NE(c.linear.belos_xml.find("Num Blocks"), std::string::npos);
+  EXPECT_NE(c.linear.belos_xml.find("kept as is"), std::string::npos);
+  EXPECT_TRUE(c.linear.ifpack2_xml.empty());
+  EXPECT_EQ(c.output.directory, "out");
+  EXPECT_EQ(c.output.basename, "stentor");
+  EXPECT_EQ(c.output.every, 2);
+  ASSERT_EQ(c.output.probes.size(), 1u);
+  EXPECT_EQ(c.output.probes[0].name, "tip");
+  EXPECT_EQ(c.output.probes[0].point, (std::array<double, 3>{1, 2, 0}));
+}
+
+TEST_F(Deck, MinimalDeckGetsTheStructDefaults) {
+  const Config c = read_deck(write(kMinimalDeck));
+  const Config d;
+  EXPECT_EQ(c.problem.title, d.problem.title);
+  EXPECT_EQ(c.problem.analysis, d.problem.analysis);
+  EXPECT_EQ(c.mesh.size, d.mesh.size);
+  EXPECT_EQ(c.mesh.order, d.mesh.order);
+  EXPECT_EQ(c.mesh.recombine, d.mesh.recombine);
+  EXPECT_EQ(c.mesh.dimension, d.mesh.dimension);
+  EXPECT_EQ(c.materials.at(0).model, MaterialConfig{}.model);
+  EXPECT_EQ(c.materials.at(0).C2, 0.0);
+  EXPECT_TRUE(c.loads.empty());
+  EXPECT_EQ(c.stepping.end_time, d.stepping.end_time);
+  EXPECT_EQ(c.stepping.num_steps, d.stepping.num_steps);
+  EXPECT_EQ(c.stepping.max_cutbacks, d.stepping.max_cutbacks);
+  EXPECT_EQ(c.newton.max_iterations, d.newton.max_iterations);
+  EXPECT_EQ(c.newton.residual_tolerance, d.newton.residual_tolerance);
+  EXPECT_EQ(c.newton.absolute_tolerance, d.newton.absolute_tolerance);
+  EXPECT_EQ(c.newton.increment_tolerance, d.newton.increment_tolerance);
+  EXPECT_EQ(c.newton.line_search, d.newton.line_search);
+  EXPECT_EQ(c.newton.line_search_max, d.newton.line_search_max);
+  EXPECT_EQ(c.linear.method, d.linear.method);
+  EXPECT_EQ(c.linear.preconditioner, d.linear.preconditioner);
+  EXPECT_EQ(c.linear.tolerance, d.linear.tolerance);
+  EXPECT_EQ(c.linear.max_iterations, d.linear.max_iterations);
+  EXPECT_EQ(c.linear.restart, d.linear.restart);
+  EXPECT_EQ(c.linear.overlap, d.linear.overlap);
+  EXPECT_EQ(c.linear.subdomain_solver, d.linear.subdomain_solver);
+  EXPECT_EQ(c.linear.fill_level, d.linear.fill_level);
+  EXPECT_EQ(c.output.directory, d.output.directory);
+  EXPECT_EQ(c.output.basename, d.output.basename);
+  EXPECT_EQ(c.output.every, d.output.every);
+  EXPECT_EQ(c.output.fields, d.output.fields);
+}
+
+TEST_F(Deck, DirichletAllWithoutDimensionKeepsZ) {
+  const std::string xml = replace(kMinimalDeck, "</ParameterList>\n</ParameterList>", R"(</ParameterList>
+  <ParameterList name="Boundary Conditions">
+    <ParameterList name="fix">
+      <Parameter name="type" type="string" value="DIRICHLET"/>
+      <Parameter name="boundary" type="string" value="base"/>
+    </ParameterList>
+  </ParameterList>
+</ParameterList>)");
+  const Config c = read_deck(write(xml));
+  ASSERT_EQ(c.loads.size(), 1u);
+  EXPECT_TRUE(c.loads[0].all_components);  // default "all"
+  EXPECT_TRUE(c.loads[0].components[0] && c.loads[0].components[1] && c.loads[0].components[2]);
+}
+
+// ---------------------------------------------------------------------------
+// Errors.
+
+TEST_F(Deck, MissingDeckFile) {
+  const std::string path = (dir / "nope.xml").string();
+  try {
+    read_deck(path);
+    ADD_FAILURE() << "accepted a missing deck";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind(path + ": ", 0), 0u) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no such file"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(Deck, MalformedXml) {
+  const std::string msg = expect_error(replace(kMinimalDeck, "value=\"1\"/>", "value=\"1\""),
+                                       {"malformed XML at line 8"});
+  EXPECT_EQ(msg.find("Throw number"), std::string::npos) << msg;
+  expect_error(replace(kMinimalDeck, "</ParameterList>\n</ParameterList>", "</ParameterList>\n</ParameterLst>"),
+               {"malformed XML at line", "ParameterLst"});
+  expect_error("", {"malformed XML"});
+  expect_error("<Stentor name=\"x\"/>", {"root element", "<Stentor>"});
+  expect_error(replace(kMinimalDeck, "<Parameter name=\"C1\"", "<Param name=\"C1\""),
+               {"unexpected element <Param> in 'Materials->steel'"});
+}
+
+TEST_F(Deck, UnknownParameterSuggestsNearest) {
+  const std::string msg = expect_error(replace(kMinimalDeck, "name=\"C1\"", "name=\"C11\""),
+                                       {"unknown parameter 'Materials->steel->C11'; did you mean 'C1'?"});
+  expect_error(replace(kMinimalDeck, "name=\"file\" type=\"string\" value=\"mesh/ring.msh\"/>",
+                       "name=\"file\" type=\"string\" value=\"mesh/ring.msh\"/>\n"
+                       "<Parameter name=\"Dimension\" type=\"int\" value=\"2\"/>"),
+               {"unknown parameter 'Mesh->Dimension'; did you mean 'dimension'?"});
+  // No close name: the valid ones are listed.
+  expect_error(replace(kMinimalDeck, "name=\"C1\"", "name=\"stiffness\""),
+               {"unknown parameter 'Materials->steel->stiffness'", "valid parameters of 'Materials->steel': model, C1"});
+}
+
+TEST_F(Deck, UnknownSublist) {
+  expect_error(replace(kMinimalDeck, "<ParameterList name=\"Bodies\">",
+                       "<ParameterList name=\"Steping\"/>\n<ParameterList name=\"Bodies\">"),
+               {"unknown sublist 'Steping'; did you mean 'Stepping'?"});
+  expect_error(replace(kMinimalDeck, "<ParameterList name=\"Bodies\">",
+                       "<ParameterList name=\"Contact\"/>\n<ParameterList name=\"Bodies\">"),
+               {"unknown sublist 'Contact'", "valid sublists of the root list: Problem, Mesh"});
+  expect_error(replace(kMinimalDeck, "<Parameter name=\"C1\" type=\"double\" value=\"1\"/>",
+                       "<ParameterList name=\"C1\"/>"),
+               {"'Materials->steel->C1' must be a parameter (double), not a sublist"});
+  expect_error(replace(kMinimalDeck, "<ParameterList name=\"steel\">",
+                       "<Parameter name=\"C1\" type=\"double\" value=\"1\"/>\n<ParameterList name=\"steel\">"),
+               {"'Materials->C1' is a parameter", "one per material"});
+}
+
+TEST_F(Deck, WrongType) {
+  expect_error(replace(kMinimalDeck, "name=\"C1\" type=\"double\" value=\"1\"", "name=\"C1\" type=\"string\" value=\"abc\""),
+               {"wrong type for 'Materials->steel->C1': expected double, got string 'abc'"});
+  // Teuchos would silently read "abc" as 0 for a double.
+  expect_error(replace(kMinimalDeck, "name=\"C1\" type=\"double\" value=\"1\"", "name=\"C1\" type=\"double\" value=\"abc\""),
+               {"'Materials->steel->C1'", "needs a number", "'abc'"});
+  expect_error(replace(kMinimalDeck, "<ParameterList name=\"Bodies\">",
+                       "<ParameterList name=\"Stepping\"><Parameter name=\"steps\" type=\"double\" value=\"2.5\"/>"
+                       "</ParameterList>\n<ParameterList name=\"Bodies\">"),
+               {"wrong type for 'Stepping->steps': expected int, got double 2.5"});
+  expect_error(replace(kMinimalDeck, "<ParameterList name=\"Bodies\">",
+                       "<ParameterList name=\"Stepping\"><Parameter name=\"steps\" type=\"int\" value=\"2.5\"/>"
+                       "</ParameterList>\n<ParameterList name=\"Bodies\">"),
+               {"'Stepping->steps'", "needs an integer", "'2.5'"});
+  expect_error(replace(kMinimalDeck, "name=\"C1\" type=\"double\"", "name=\"C1\" type=\"doubel\""),
+               {"'Materials->steel->C1' has unknown type 'doubel'", "did you mean 'double'?"});
+  expect_error(replace(kMinimalDeck, "name=\"C1\" type=\"double\" value=\"1\"",
+                       "name=\"C1\" type=\"Array(double)\" value=\"{1, 2}\""),
+               {"wrong type for 'Materials->steel->C1': expected double, got Array(double) {1, 2}"});
+}
+
+TEST_F(Deck, DuplicateName) {
+  expect_error(replace(kMinimalDeck, "<Parameter name=\"D\" type=\"double\" value=\"2\"/>",
+                       "<Parameter name=\"D\" type=\"double\" value=\"2\"/><Parameter name=\"D\" type=\"double\" value=\"3\"/>"),
+               {"'Materials->steel->D' is given twice"});
+}
+
+TEST_F(Deck, MaterialRanges) {
+  expect_error(replace(kMinimalDeck, "name=\"C1\" type=\"double\" value=\"1\"", "name=\"C1\" type=\"double\" value=\"0\""),
+               {"'Materials->steel->C1' must be > 0, got 0"});
+  expect_error(replace(kMinimalDeck, "name=\"C1\" type=\"double\" value=\"1\"", "name=\"C1\" type=\"double\" value=\"-3\""),
+               {"'Materials->steel->C1' must be > 0, got -3"});
+  expect_error(replace(kMinimalDeck, "name=\"D\" type=\"double\" value=\"2\"", "name=\"D\" type=\"double\" value=\"-1\""),
+               {"'Materials->steel->D' must be > 0, got -1"});
+  expect_error(replace(kMinimalDeck, "<Parameter name=\"D\"",
+                       "<Parameter name=\"C2\" type=\"double\" value=\"-0.5\"/><Parameter name=\"D\""),
+               {"'Materials->steel->C2' must be >= 0, got -0.5"});
+  expect_error(replace(kMinimalDeck, "<Parameter name=\"D\"",
+                       "<Parameter name=\"density\" type=\"double\" value=\"-1\"/><Parameter name=\"D\""),
+               {"'Materials->steel->density' must be >= 0, got -1"});
+  expect_error(replace(kMinimalDeck, "<Parameter name=\"D\"",
+                       "<Parameter name=\"model\" type=\"string\" value=\"neo-hooke\"/><Parameter name=\"D\""),
+               {"'Materials->steel->model' must be one of Ciarlet-Geymonat; got 'neo-hooke'"});
+}
+
+TEST_F(Deck, OtherRangesAndChoices) {
+  const std::string newton = "<ParameterList name=\"Bodies\">";
+  expect_error(replace(kMinimalDeck, newton,
+                       "<ParameterList name=\"Stepping\"><Parameter name=\"end time\" type=\"double\" value=\"0\"/>"
+                       "</ParameterList>\n" + newton),
+               {"'Stepping->end time' must be > 0, got 0"});
+  expect_error(replace(kMinimalDeck, newton,
+                       "<ParameterList name=\"Linear Solver\"><Parameter name=\"method\" type=\"string\" value=\"gmrs\"/>"
+                       "</ParameterList>\n" + newton),
+               {"'Linear Solver->method' must be one of gmres, direct; got 'gmrs'; did you mean 'gmres'?"});
+  expect_error(replace(kMinimalDeck, newton,
+                       "<ParameterList name=\"Linear Solver\"><Parameter name=\"Belos\" type=\"int\" value=\"1\"/>"
+                       "</ParameterList>\n" + newton),
+               {"'Linear Solver->Belos' must be a sublist"});
+  expect_error(replace(kMinimalDeck, "<Parameter name=\"file\"",
+                       "<Parameter name=\"order\" type=\"int\" value=\"3\"/><Parameter name=\"file\""),
+               {"'Mesh->order' must be one of 1, 2; got 3"});
+}
+
+TEST_F(Deck, MissingMeshFile) {
+  expect_error(replace(kMinimalDeck, "mesh/ring.msh", "mesh/tube.msh"),
+               {"'Mesh->file'", (dir / "mesh" / "tube.msh").string(), "does not exist"});
+  expect_error(replace(kMinimalDeck, "mesh/ring.msh", "mesh/ring.stl"), {"'Mesh->file' must be a gmsh .msh or .geo file"});
+}
+
+TEST_F(Deck, UndefinedMaterial) {
+  expect_error(replace(kFullDeck, "value=\"artery\"/>\n    </ParameterList>\n  </ParameterList>\n  <ParameterList name=\"Boundary",
+                       "value=\"arterie\"/>\n    </ParameterList>\n  </ParameterList>\n  <ParameterList name=\"Boundary"),
+               {"'Bodies->vessel->material' names undefined material 'arterie'", "defined materials: steel, artery",
+                "did you mean 'artery'?"});
+}
+
+TEST_F(Deck, BadComponents) {
+  expect_error(replace(kFullDeck, "value=\"y, x\"", "value=\"x w\""),
+               {"'Boundary Conditions->pull->components' must list components x, y, z", "'x w'"});
+  expect_error(replace(kFullDeck, "value=\"y, x\"", "value=\"x, x\""),
+               {"'Boundary Conditions->pull->components' lists 'x' twice"});
+  expect_error(replace(kFullDeck, "value=\"y, x\"", "value=\"x z\""),
+               {"'Boundary Conditions->pull->components': 'z' is not a component of a 2D problem"});
+  expect_error(replace(kFullDeck, "value=\"{0.1, -0.2}\"", "value=\"{0.1}\""),
+               {"'Boundary Conditions->pull->values' must have one value per listed component (2"});
+}
+
+TEST_F(Deck, TableRamp) {
+  expect_error(replace(kFullDeck, "value=\"{0, 1, 0.5}\"", "value=\"{0, 1}\""),
+               {"'Boundary Conditions->pull->ramp factors' must have as many values as 'ramp times' (3), got 2"});
+  expect_error(replace(kFullDeck, "value=\"{0, 0.5, 1}\"", "value=\"{0, 0.5, 0.5}\""),
+               {"'Boundary Conditions->pull->ramp times' must be strictly increasing", "0.5 then 0.5"});
+  expect_error(replace(kFullDeck, "value=\"{0, 0.5, 1}\"", "value=\"{0}\""),
+               {"'Boundary Conditions->pull->ramp times' must have at least 2 values, got 1"});
+  expect_error(replace(kFullDeck, "<Parameter name=\"ramp times\" type=\"Array(double)\" value=\"{0, 0.5, 1}\"/>", ""),
+               {"missing required parameter 'Boundary Conditions->pull->ramp times'"});
+  expect_error(replace(kFullDeck, "value=\"table\"", "value=\"linear\""),
+               {"'Boundary Conditions->pull->ramp times' is only used with \"ramp\" = table"});
+}
+
+TEST_F(Deck, LoadTypes) {
+  expect_error(replace(kFullDeck, "value=\"traction\"", "value=\"tracton\""),
+               {"'Boundary Conditions->push->type' must be one of Dirichlet, traction, pressure, body force",
+                "did you mean 'traction'?"});
+  expect_error(replace(kFullDeck, "<Parameter name=\"pressure\" type=\"double\"", "<Parameter name=\"traction\" type=\"double\""),
+               {"unknown parameter 'Boundary Conditions->blow->traction' for a load of type 'pressure'"});
+  expect_error(replace(kFullDeck, "value=\"{1e3, 0}\"", "value=\"{1e3, 0, 0}\""),
+               {"'Boundary Conditions->push->traction' must have 2 values ('Mesh->dimension' = 2), got 3"});
+  expect_error(replace(kFullDeck, "<Parameter name=\"body\" type=\"string\" value=\"stent\"/>",
+                       "<Parameter name=\"body\" type=\"string\" value=\"stnt\"/>"),
+               {"'Boundary Conditions->gravity->body' names undefined body 'stnt'", "did you mean 'stent'?"});
+}
+
+TEST_F(Deck, MissingRequired) {
+  expect_error(replace(kMinimalDeck, "<Parameter name=\"C1\" type=\"double\" value=\"1\"/>", ""),
+               {"missing required parameter 'Materials->steel->C1' (double, > 0)"});
+  expect_error(replace(kMinimalDeck, "<Parameter name=\"file\" type=\"string\" value=\"mesh/ring.msh\"/>", ""),
+               {"missing required parameter 'Mesh->file'"});
+  expect_error(replace(kMinimalDeck, "<Parameter name=\"material\" type=\"string\" value=\"steel\"/>", ""),
+               {"missing required parameter 'Bodies->stent->material'"});
+  expect_error(replace(kFullDeck, "<Parameter name=\"boundary\" type=\"string\" value=\"inner\"/>", ""),
+               {"missing required parameter 'Boundary Conditions->blow->boundary'"});
+  expect_error(replace(kFullDeck, "<Parameter name=\"type\" type=\"string\" value=\"Pressure\"/>", ""),
+               {"missing required parameter 'Boundary Conditions->blow->type'"});
+  std::string no_mesh = kMinimalDeck;
+  no_mesh = replace(no_mesh, "<ParameterList name=\"Mesh\">\n    <Parameter name=\"file\" type=\"string\" value=\"mesh/ring.msh\"/>\n  </ParameterList>", "");
+  expect_error(no_mesh, {"missing required sublist 'Mesh'"});
+  expect_error(replace(kMinimalDeck, "<ParameterList name=\"stent\">\n      <Parameter name=\"material\" type=\"string\" value=\"steel\"/>\n    </ParameterList>", ""),
+               {"'Bodies' defines no body"});
+}
+
+// ---------------------------------------------------------------------------
+// Ramps.
+
+TEST(Ramp, LinearAndConstant) {
+  Ramp r;
+  EXPECT_DOUBLE_EQ(r(0.0, 2.0), 0.0);
+  EXPECT_DOUBLE_EQ(r(0.5, 2.0), 0.25);
+  EXPECT_DOUBLE_EQ(r(2.0, 2.0), 1.0);
+  r.kind = Ramp::Kind::Constant;
+  EXPECT_DOUBLE_EQ(r(0.0, 2.0), 1.0);
+  EXPECT_DOUBLE_EQ(r(1.3, 2.0), 1.0);
+}
+
+TEST(Ramp, TableInterpolatesAndClamps) {
+  Ramp r;
+  r.kind = Ramp::Kind::Table;
+  r.times = {0.5, 1.0, 2.0};
+  r.factors = {1.0, 3.0, -1.0};
+  EXPECT_DOUBLE_EQ(r(0.0, 10.0), 1.0);    // before the first time
+  EXPECT_DOUBLE_EQ(r(0.5, 10.0), 1.0);
+  EXPECT_DOUBLE_EQ(r(0.75, 10.0), 2.0);
+  EXPECT_DOUBLE_EQ(r(1.0, 10.0), 3.0);
+  EXPECT_DOUBLE_EQ(r(1.5, 10.0), 1.0);
+  EXPECT_DOUBLE_EQ(r(2.0, 10.0), -1.0);
+  EXPECT_DOUBLE_EQ(r(5.0, 10.0), -1.0);   // after the last time
+}
+
+// ---------------------------------------------------------------------------
+// Schema and docs.
+
+TEST(Schema, NearestName) {
+  EXPECT_EQ(nearest_name("C11", {"model", "C1", "C2", "D"}), "C1");
+  EXPECT_EQ(nearest_name("STEPPING", {"Stepping", "Newton"}), "Stepping");
+  EXPECT_EQ(nearest_name("tolerance", {"relative residual tolerance", "max iterations"}), "relative residual tolerance");
+  EXPECT_EQ(nearest_name("qwertyuiop", {"C1", "D"}), "");
+  EXPECT_EQ(edit_distance_ci("kitten", "SITTING"), 3);
+}
+
+TEST(Schema, EveryDefaultSatisfiesItsOwnRange) {
+  for (const auto& l : deck_schema())
+    for (const auto& p : l.params) {
+      if (p.required) continue;
+      if (p.type == ParamType::Int || p.type == ParamType::Double)
+        EXPECT_TRUE(p.in_range(p.num)) << l.title << "->" << p.name;
+      EXPECT_FALSE(p.doc.empty()) << l.title << "->" << p.name;
+    }
+}
+
+TEST(Schema, DocsContainTheGeneratedTables) {
+  const std::string md = deck_schema_markdown();
+  std::ifstream f(std::string(STENTOR_SOURCE_DIR) + "/docs/deck.md");
+  EXPECT_TRUE(f) << "docs/deck.md not found";
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const bool found = f && ss.str().find(md) != std::string::npos;
+  if (!found) {
+    const std::string out = std::string(STENTOR_BINARY_DIR) + "/deck_schema.md";
+    std::ofstream(out) << md;
+    ADD_FAILURE() << "docs/deck.md does not contain the current schema tables; paste " << out
+                  << " into docs/deck.md (replacing the BEGIN/END block)";
+  }
+}
