@@ -66,16 +66,17 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
   dirichlet_owned_nodes_.resize(loads.dirichlet.size());
   for (std::size_t s = 0; s < loads.dirichlet.size(); ++s) {
     const DirichletSet& d = loads.dirichlet[s];
-    for (gid_t g : d.nodes) {
+    for (GId g : d.nodes) {
       const la::LO l = dist.local_node(g);
       if (l < 0) continue;
       if (l < dist.num_owned_nodes()) dirichlet_owned_nodes_[s].push_back(l);
+      const std::array<double, 3> value = d.field ? d.field(&mesh.x[3 * static_cast<std::size_t>(g)]) : d.values;
       for (int c = 0; c < dim_; ++c) {
         if (!d.components[static_cast<std::size_t>(c)]) continue;
         fh(static_cast<std::size_t>(l) * dim_ + c) = 1;
         if (l < dist.num_owned_nodes()) {  // later sets override earlier ones on shared nodes
           owned_set[static_cast<std::size_t>(l) * dim_ + c] = static_cast<int>(s);
-          owned_val[static_cast<std::size_t>(l) * dim_ + c] = d.values[static_cast<std::size_t>(c)];
+          owned_val[static_cast<std::size_t>(l) * dim_ + c] = value[static_cast<std::size_t>(c)];
         }
       }
     }
@@ -128,7 +129,7 @@ void Assembler::build_graph() {
 }
 
 void Assembler::setup_loads(const Mesh& mesh) {
-  std::unordered_set<gid_t> local_cells;
+  std::unordered_set<GId> local_cells;
   for (const auto& b : dist_.blocks()) local_cells.insert(b.cell_ids.begin(), b.cell_ids.end());
   const auto Xh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dist_.coords());
 
@@ -191,8 +192,15 @@ void Assembler::setup_loads(const Mesh& mesh) {
         for (int g = 0; g < q.n; ++g) {
           shape_functions(lb.type, q.xi[g], N, dN);
           const double detJ = reference_gradients(dim_, nn, X, dN, dNdX);
+          std::array<double, 3> force = bf.force;
+          if (bf.field) {
+            double xq[3] = {0, 0, 0};
+            for (int a = 0; a < nn; ++a)
+              for (int d = 0; d < 3; ++d) xq[d] += N[a] * X[a][d];
+            force = bf.field(xq);
+          }
           for (int a = 0; a < nn; ++a)
-            for (int d = 0; d < dim_; ++d) f(conn(c, a) * dim_ + d, 0) += q.w[g] * detJ * N[a] * bf.force[static_cast<std::size_t>(d)];
+            for (int d = 0; d < dim_; ++d) f(conn(c, a) * dim_ + d, 0) += q.w[g] * detJ * N[a] * force[static_cast<std::size_t>(d)];
         }
       }
     }
@@ -314,8 +322,8 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, double t, double end_t
                         // d(t1 x t2)_i/du_bk = dN_b,xi (e_k x t2)_i + dN_b,eta (t1 x e_k)_i
                         double ek_x_t2 = 0.0, t1_x_ek = 0.0;
                         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-                        if (k == i1) { ek_x_t2 = -t2[i2]; t1_x_ek = t1[i2]; }
-                        if (k == i2) { ek_x_t2 = t2[i1]; t1_x_ek = -t1[i1]; }
+                        if (k == i1) { ek_x_t2 = t2[i2]; t1_x_ek = -t1[i2]; }
+                        if (k == i2) { ek_x_t2 = -t2[i1]; t1_x_ek = t1[i1]; }
                         ke[a * 3 + i][b * 3 + k] += w * N[a] * (dN[b][0] * ek_x_t2 + dN[b][1] * t1_x_ek);
                       }
                   }

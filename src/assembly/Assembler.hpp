@@ -45,7 +45,7 @@ class Assembler {
   // Per local cell: Cauchy stress (xx, yy, zz, xy, yz, xz) averaged over Gauss points,
   // von Mises of that average, mean J. Order: Distribution::blocks() order.
   struct CellFields {
-    std::vector<gid_t> cell_ids;
+    std::vector<GId> cell_ids;
     std::vector<double> stress, von_mises, J;
   };
   CellFields cell_fields(const la::Vector& u);

@@ -98,12 +98,14 @@ Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
         DirichletSet d;
         d.name = lc.name;
         d.group = lc.group;
-        std::set<gid_t> nodes;
+        std::set<GId> nodes;
         for (const CellBlock* b : boundary_blocks_named(mesh, lc.group, where + "->boundary")) nodes.insert(b->conn.begin(), b->conn.end());
         d.nodes.assign(nodes.begin(), nodes.end());
         d.components = lc.components;
         d.values = lc.vector;
+        d.field = lc.field;
         d.ramp = lc.ramp;
+        if (mesh.dim == 2 && lc.all_components) d.components[2] = false;
         if (mesh.dim == 2 && d.components[2])
           throw InputError(where + "->components: 'z' is not a component of a 2D (plane strain) problem");
         loads.dirichlet.push_back(std::move(d));
@@ -128,13 +130,13 @@ Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
           fl.ramp = lc.ramp;
           const int nv = (mesh.dim == 2) ? 2 : (b->type == CellType::Quad4 || b->type == CellType::Quad8 ? 4 : 3);
           for (std::size_t f = 0; f < b->num_cells(); ++f) {
-            const gid_t* fn = &b->conn[f * b->nodes_per_cell];
+            const GId* fn = &b->conn[f * b->nodes_per_cell];
             // A volume cell containing all vertex nodes of the facet.
             int cb = -1;
             std::size_t cc = 0;
             for (const auto& [bi, c] : node_cells[static_cast<std::size_t>(fn[0])]) {
               const auto& vb = mesh.volumes[static_cast<std::size_t>(bi)];
-              const gid_t* cn = &vb.conn[c * vb.nodes_per_cell];
+              const GId* cn = &vb.conn[c * vb.nodes_per_cell];
               bool all = true;
               for (int v = 1; v < nv && all; ++v) all = std::find(cn, cn + vb.nodes_per_cell, fn[v]) != cn + vb.nodes_per_cell;
               if (all) {
@@ -167,7 +169,9 @@ Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
         BodyForce bf;
         bf.name = lc.name;
         bf.force = lc.vector;
+        bf.field = lc.field;
         bf.ramp = lc.ramp;
+        // The deck resolved "body" (a body name or its physical group) to the group.
         for (std::size_t b = 0; b < mesh.volumes.size(); ++b)
           if (lc.group.empty() || mesh.volumes[b].name == lc.group) bf.volume_blocks.push_back(static_cast<int>(b));
         if (bf.volume_blocks.empty())

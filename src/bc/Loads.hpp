@@ -12,9 +12,10 @@ namespace stentor {
 
 struct DirichletSet {
   std::string name, group;
-  std::vector<gid_t> nodes;            // sorted, unique
+  std::vector<GId> nodes;            // sorted, unique
   std::array<bool, 3> components{};
   std::array<double, 3> values{};      // full value, multiplied by ramp(t)
+  std::function<std::array<double, 3>(const double*)> field;  // if set: value at X instead of `values`
   Ramp ramp;
 };
 
@@ -24,9 +25,9 @@ struct FacetLoad {
   std::string name, group;
   CellType facet_type = CellType::Invalid;
   int nodes_per_facet = 0;
-  std::vector<gid_t> conn;             // facet nodes, gmsh order
+  std::vector<GId> conn;             // facet nodes, gmsh order
   std::vector<double> orientation;     // +1 if the reference normal (see fem/Geometry.hpp) points out of the body, else -1
-  std::vector<gid_t> adjacent_cell;    // global id of the volume cell the facet bounds (decides which rank integrates it)
+  std::vector<GId> adjacent_cell;    // global id of the volume cell the facet bounds (decides which rank integrates it)
   std::array<double, 3> traction{};    // Traction: force per reference area
   double pressure = 0.0;               // Pressure: acts along -n (current configuration)
   Ramp ramp;
@@ -37,6 +38,7 @@ struct BodyForce {
   std::string name;
   std::vector<int> volume_blocks;      // indices into Mesh::volumes
   std::array<double, 3> force{};       // per unit reference volume
+  std::function<std::array<double, 3>(const double*)> field;  // if set: force density at X instead of `force`
   Ramp ramp;
 };
 

@@ -8,7 +8,6 @@
 #include <Teuchos_XMLObject.hpp>
 #include <Teuchos_XMLParameterListCoreHelpers.hpp>
 #include <Teuchos_XMLParameterListReader.hpp>
-#include <Teuchos_XMLParameterListHelpers.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -251,6 +250,7 @@ std::string clean_teuchos_message(const std::string& what) {
 
 std::string rewrap_xml_error(const std::string& what) {
   std::string msg = clean_teuchos_message(what);
+  if (msg.find("empty XML") != std::string::npos) return "malformed XML: the file is empty (no root element)";
   const std::string marker = "XML parse error at line ";
   const auto pos = msg.find(marker);
   if (pos != std::string::npos) {
@@ -473,7 +473,9 @@ void DeckReader::require(const ParameterList& pl, const std::string& path,
         std::string what = param_type_name(p.type);
         const std::string allowed = p.allowed_text();
         if (allowed != "any") what += ", " + allowed;
-        fail("missing required parameter " + quoted(child_path(path, p.name)) + " (" + what + "): " + p.doc);
+        std::string msg = "missing required parameter " + quoted(child_path(path, p.name)) + " (" + what + "): " + p.doc;
+        msg.erase(std::remove(msg.begin(), msg.end(), '`'), msg.end());
+        fail(msg);
       }
     for (const auto& l : s->required_sublists)
       if (!pl.isSublist(l)) fail("missing required sublist " + quoted(child_path(path, l)));

@@ -3,6 +3,7 @@
 // docs/deck.md documents every field (names in quotes are the XML parameter names).
 #pragma once
 #include <array>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -60,6 +61,10 @@ struct LoadConfig {
   std::array<double, 3> vector{};      // Dirichlet "values" / Traction "traction" / BodyForce "force": per component
   double value = 0.0;                  // Pressure "pressure" [Pa]: acts against the current outward normal (follower)
   Ramp ramp;                           // "ramp" (+ "ramp times", "ramp factors" for "table")
+  // Programmatic only (tests, API users; no deck syntax): when set, replaces `vector` by a
+  // function of the reference position X (3 coordinates): the prescribed displacement for
+  // Dirichlet, the force density for a body force. Still multiplied by the ramp.
+  std::function<std::array<double, 3>(const double* X)> field;
 };
 
 struct SteppingConfig {

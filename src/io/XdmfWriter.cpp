@@ -345,7 +345,7 @@ XdmfWriter::XdmfWriter(const std::string& dir, const std::string& basename, cons
     b.ncells = cb.num_cells();
     b.offset = m.num_cells;
     m.num_cells += b.ncells;
-    for (gid_t n : cb.conn)
+    for (GId n : cb.conn)
       if (n < 0 || static_cast<std::size_t>(n) >= m.num_nodes)
         m.fail("volume block '" + cb.name + "': node " + std::to_string(n) + " out of range");
     b.grid_name = cb.name.empty() ? "block_" + std::to_string(i) : cb.name;

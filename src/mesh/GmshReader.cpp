@@ -25,6 +25,10 @@ class GmshSession {
     // can leave the parser broken for every later file of the process. Errors are
     // read back from the logger instead.
     gmsh::option::setNumber("General.AbortOnError", 0);
+    // ONELAB parameters (a .geo's DefineNumber[..., Name "Parameters/h"]) outlive
+    // gmsh::finalize(): without this, a second .geo read by the same process would
+    // take the first file's `h` and may mesh at a wildly wrong size.
+    gmsh::onelab::clear();
     gmsh::logger::start();
   }
   ~GmshSession() {
@@ -271,7 +275,7 @@ Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
   std::unordered_map<std::size_t, std::size_t> pos_of_tag;  // gmsh tag -> index in all_tags
   pos_of_tag.reserve(all_tags.size());
   for (std::size_t i = 0; i < all_tags.size(); ++i) pos_of_tag.emplace(all_tags[i], i);
-  std::unordered_map<std::size_t, gid_t> compact;
+  std::unordered_map<std::size_t, GId> compact;
   compact.reserve(used.size());
 
   Mesh m;
@@ -284,7 +288,7 @@ Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
       throw InputError(file + ": element refers to node " + std::to_string(used[i]) +
                        ", which the mesh does not define");
     for (int c = 0; c < 3; ++c) m.x[3 * i + c] = all_xyz[3 * it->second + c];
-    compact.emplace(used[i], static_cast<gid_t>(i));
+    compact.emplace(used[i], static_cast<GId>(i));
   }
 
   if (dim == 2) {
@@ -308,7 +312,7 @@ Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
   }
 
   auto make_blocks = [&](std::vector<RawBlock>& raw, std::vector<CellBlock>& out) {
-    gid_t next_id = 0;
+    GId next_id = 0;
     for (auto& rb : raw) {
       CellBlock b;
       b.name = rb.name;

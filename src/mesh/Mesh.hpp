@@ -10,7 +10,7 @@
 
 namespace stentor {
 
-using gid_t = long long;  // Tpetra's default global ordinal
+using GId = long long;  // Tpetra's default global ordinal
 
 // A set of cells of one type that belong to one gmsh physical group.
 struct CellBlock {
@@ -18,8 +18,8 @@ struct CellBlock {
   int physical_tag = -1;   // gmsh physical tag
   CellType type = CellType::Invalid;
   int nodes_per_cell = 0;
-  std::vector<gid_t> conn;  // nodes_per_cell entries per cell, gmsh node order
-  std::vector<gid_t> cell_id;  // global cell id (unique over all volume blocks), one per cell
+  std::vector<GId> conn;  // nodes_per_cell entries per cell, gmsh node order
+  std::vector<GId> cell_id;  // global cell id (unique over all volume blocks), one per cell
   std::size_t num_cells() const { return nodes_per_cell ? conn.size() / nodes_per_cell : 0; }
 };
 

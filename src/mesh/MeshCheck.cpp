@@ -20,7 +20,7 @@ bool cell_inverted(const Mesh& m, const CellBlock& b, std::size_t c) {
   double dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   for (int a = 0; a < nn; ++a) {
-    const gid_t n = b.conn[c * nn + a];
+    const GId n = b.conn[c * nn + a];
     for (int d = 0; d < 3; ++d) {
       X[a][d] = m.x[3 * n + d];
       lo[d] = std::min(lo[d], X[a][d]);
@@ -52,7 +52,7 @@ bool cell_inverted(const Mesh& m, const CellBlock& b, std::size_t c) {
 
 struct GroupReport {
   std::size_t bad = 0, total = 0;
-  gid_t first_cell = -1;
+  GId first_cell = -1;
   double at[3] = {0, 0, 0};
 };
 
@@ -76,7 +76,7 @@ void check_mesh(const Mesh& m) {
       ++r.total;
       if (!cell_inverted(m, b, c)) continue;
       if (r.bad++ == 0) {
-        r.first_cell = c < b.cell_id.size() ? b.cell_id[c] : static_cast<gid_t>(c);
+        r.first_cell = c < b.cell_id.size() ? b.cell_id[c] : static_cast<GId>(c);
         for (int a = 0; a < nn; ++a)
           for (int d = 0; d < 3; ++d) r.at[d] += m.x[3 * b.conn[c * nn + a] + d] / nn;
       }
@@ -104,11 +104,11 @@ void check_mesh(const Mesh& m) {
   // Every boundary node must belong to a body cell (otherwise its dofs are free-floating).
   std::vector<char> in_body(m.num_nodes(), 0);
   for (const auto& b : m.volumes)
-    for (gid_t n : b.conn) in_body[n] = 1;
+    for (GId n : b.conn) in_body[n] = 1;
   for (const auto& b : m.boundaries) {
     std::size_t orphans = 0;
-    gid_t example = -1;
-    for (gid_t n : b.conn)
+    GId example = -1;
+    for (GId n : b.conn)
       if (!in_body[n]) {
         if (orphans++ == 0) example = n;
       }

@@ -80,8 +80,8 @@ std::vector<CellBlock> read_blocks(Reader& r) {
     b.physical_tag = r.pod<int>();
     b.type = static_cast<CellType>(r.pod<int>());
     b.nodes_per_cell = r.pod<int>();
-    b.conn = r.vec<gid_t>();
-    b.cell_id = r.vec<gid_t>();
+    b.conn = r.vec<GId>();
+    b.cell_id = r.vec<GId>();
   }
   return blocks;
 }
@@ -176,7 +176,7 @@ std::vector<int> partition_cells(const Mesh& m, int nparts) {
   std::vector<std::pair<const CellBlock*, std::size_t>> cell(nc, {nullptr, 0});
   for (const auto& b : m.volumes)
     for (std::size_t c = 0; c < b.num_cells(); ++c) {
-      const gid_t id = b.cell_id[c];
+      const GId id = b.cell_id[c];
       if (id < 0 || static_cast<std::size_t>(id) >= nc || cell[id].first)
         throw std::runtime_error("partition_cells: volume cell ids are not 0..N-1");
       cell[id] = {&b, c};

@@ -30,8 +30,8 @@ std::vector<const CellBlock*> blocks_named(const std::vector<CellBlock>& blocks,
   throw InputError(msg);
 }
 
-std::vector<gid_t> nodes_of(const std::vector<const CellBlock*>& blocks) {
-  std::vector<gid_t> n;
+std::vector<GId> nodes_of(const std::vector<const CellBlock*>& blocks) {
+  std::vector<GId> n;
   for (const auto* b : blocks) n.insert(n.end(), b->conn.begin(), b->conn.end());
   std::sort(n.begin(), n.end());
   n.erase(std::unique(n.begin(), n.end()), n.end());
@@ -57,10 +57,10 @@ std::vector<const CellBlock*> boundary_blocks(const Mesh& m, const std::string& 
   return b;
 }
 
-std::vector<gid_t> boundary_nodes(const Mesh& m, const std::string& group) {
+std::vector<GId> boundary_nodes(const Mesh& m, const std::string& group) {
   return nodes_of(boundary_blocks(m, group));
 }
 
-std::vector<gid_t> volume_nodes(const Mesh& m, const std::string& group) { return nodes_of(volume_blocks(m, group)); }
+std::vector<GId> volume_nodes(const Mesh& m, const std::string& group) { return nodes_of(volume_blocks(m, group)); }
 
 }  // namespace stentor

@@ -18,9 +18,9 @@ std::vector<const CellBlock*> boundary_blocks(const Mesh& m, const std::string& 
 
 // Sorted, unique node ids of all cells of the named boundary group (facets,
 // edges or points); throws InputError if the group is missing.
-std::vector<gid_t> boundary_nodes(const Mesh& m, const std::string& group);
+std::vector<GId> boundary_nodes(const Mesh& m, const std::string& group);
 
 // Sorted, unique node ids of all cells of the named volume group; throws if missing.
-std::vector<gid_t> volume_nodes(const Mesh& m, const std::string& group);
+std::vector<GId> volume_nodes(const Mesh& m, const std::string& group);
 
 }  // namespace stentor

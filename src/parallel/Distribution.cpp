@@ -27,13 +27,13 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
       }
     }
 
-  std::vector<gid_t> owned, ghost;
+  std::vector<GId> owned, ghost;
   for (std::size_t g = 0; g < nn; ++g) {
     if (!used[g]) continue;
     if (owner[g] == rank_)
-      owned.push_back(static_cast<gid_t>(g));
+      owned.push_back(static_cast<GId>(g));
     else if (touched[g])
-      ghost.push_back(static_cast<gid_t>(g));
+      ghost.push_back(static_cast<GId>(g));
   }
   num_owned_ = static_cast<la::LO>(owned.size());
   local_nodes_ = owned;
@@ -42,10 +42,10 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
   for (std::size_t l = 0; l < local_nodes_.size(); ++l) node_g2l_[static_cast<std::size_t>(local_nodes_[l])] = static_cast<la::LO>(l);
 
   // DOF maps.
-  auto dof_gids = [this](const std::vector<gid_t>& nodes) {
+  auto dof_gids = [this](const std::vector<GId>& nodes) {
     std::vector<la::GO> g;
     g.reserve(nodes.size() * dim_);
-    for (gid_t n : nodes)
+    for (GId n : nodes)
       for (int c = 0; c < dim_; ++c) g.push_back(static_cast<la::GO>(n * dim_ + c));
     return g;
   };
@@ -71,7 +71,7 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
     for (std::size_t c = 0; c < b.num_cells(); ++c)
       if (cell_part[static_cast<std::size_t>(b.cell_id[c])] == rank_) {
         lb.cell_ids.push_back(b.cell_id[c]);
-        lb.cell_index.push_back(static_cast<gid_t>(c));
+        lb.cell_index.push_back(static_cast<GId>(c));
       }
     lb.conn = Kokkos::View<int**, Kokkos::LayoutRight, la::ExecSpace>("conn", lb.cell_ids.size(), b.nodes_per_cell);
     auto h = Kokkos::create_mirror_view(lb.conn);

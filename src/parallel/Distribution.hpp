@@ -18,8 +18,8 @@ struct LocalBlock {
   CellType type = CellType::Invalid;
   int nodes_per_cell = 0;
   Kokkos::View<int**, Kokkos::LayoutRight, la::ExecSpace> conn;  // local cell -> overlap local node
-  std::vector<gid_t> cell_ids;        // global cell id of each local cell
-  std::vector<gid_t> cell_index;      // index of each local cell within its mesh block
+  std::vector<GId> cell_ids;        // global cell id of each local cell
+  std::vector<GId> cell_index;      // index of each local cell within its mesh block
 };
 
 class Distribution {
@@ -32,12 +32,12 @@ class Distribution {
   la::LO num_owned_nodes() const { return num_owned_; }
   la::LO num_local_nodes() const { return static_cast<la::LO>(local_nodes_.size()); }
   // Overlap-local index of a global node, or -1 when this rank does not touch it.
-  la::LO local_node(gid_t g) const { return node_g2l_[static_cast<std::size_t>(g)]; }
-  bool owns_node(gid_t g) const {
+  la::LO local_node(GId g) const { return node_g2l_[static_cast<std::size_t>(g)]; }
+  bool owns_node(GId g) const {
     const la::LO l = local_node(g);
     return l >= 0 && l < num_owned_;
   }
-  gid_t global_node(la::LO l) const { return local_nodes_[static_cast<std::size_t>(l)]; }
+  GId global_node(la::LO l) const { return local_nodes_[static_cast<std::size_t>(l)]; }
   const std::vector<LocalBlock>& blocks() const { return blocks_; }
   std::size_t num_local_cells() const;
 
@@ -51,7 +51,7 @@ class Distribution {
  private:
   int dim_ = 0, rank_ = 0, nranks_ = 1;
   la::LO num_owned_ = 0;
-  std::vector<gid_t> local_nodes_;
+  std::vector<GId> local_nodes_;
   std::vector<la::LO> node_g2l_;
   std::vector<LocalBlock> blocks_;
   la::RCP<const la::Comm> comm_;

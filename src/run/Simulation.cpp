@@ -78,7 +78,7 @@ std::string fmt(double v, int prec = 4) {
 
 }  // namespace
 
-int run_simulation(const Config& cfg, const RunOptions& opts) {
+int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result) {
   auto comm = Tpetra::getDefaultComm();
   const int rank = comm->getRank();
   const int nranks = comm->getSize();
@@ -96,16 +96,16 @@ int run_simulation(const Config& cfg, const RunOptions& opts) {
   const std::vector<int> block_mat = block_materials(cfg, mesh);
   const Loads loads = resolve_loads(cfg, mesh);
   const int dim = mesh.dim;
-  std::vector<gid_t> probe_node;
+  std::vector<GId> probe_node;
   for (const auto& p : cfg.output.probes) {
-    gid_t best = 0;
+    GId best = 0;
     double bd = 1e300;
     for (std::size_t n = 0; n < mesh.num_nodes(); ++n) {
       double d = 0.0;
       for (int k = 0; k < 3; ++k) d += std::pow(mesh.x[3 * n + k] - p.point[static_cast<std::size_t>(k)], 2);
       if (d < bd) {
         bd = d;
-        best = static_cast<gid_t>(n);
+        best = static_cast<GId>(n);
       }
     }
     probe_node.push_back(best);
@@ -171,7 +171,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts) {
   if (rank == 0) {
     std::vector<char> used(mesh.num_nodes(), 0);
     for (const auto& b : mesh.volumes)
-      for (gid_t n : b.conn) used[static_cast<std::size_t>(n)] = 1;
+      for (GId n : b.conn) used[static_cast<std::size_t>(n)] = 1;
     for (std::size_t n = 0; n < mesh.num_nodes(); ++n)
       if (used[n])
         for (int k = 0; k < dim; ++k) all_dofs.push_back(static_cast<la::GO>(n) * dim + k);
@@ -309,6 +309,24 @@ int run_simulation(const Config& cfg, const RunOptions& opts) {
     consecutive_cuts = 0;
   }
 
+  if (result) {
+    result->displacement.assign(3 * mesh.num_nodes(), 0.0);
+    u_all.doImport(u, gather, Tpetra::INSERT);
+    if (rank == 0) {
+      auto uh = u_all.getLocalViewHost(Tpetra::Access::ReadOnly);
+      for (std::size_t i = 0; i < all_dofs.size(); ++i)
+        result->displacement[3 * static_cast<std::size_t>(all_dofs[i] / dim) + static_cast<std::size_t>(all_dofs[i] % dim)] = uh(i, 0);
+    }
+    Teuchos::broadcast(*comm, 0, static_cast<int>(result->displacement.size()), result->displacement.data());
+    result->reactions = assembler->reactions();
+    result->energy = system.last.energy;
+    result->steps = step;
+    result->cutbacks = total_cuts;
+    result->newton_iterations = total_newton;
+    result->linear_iterations = total_linear;
+    result->converged = !failed;
+    result->mesh = mesh;
+  }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   out << (failed ? "FAILED: " + failure + "\n" : "") << "Summary: " << step << " steps, " << total_cuts << " cut-backs, " << total_newton
       << " Newton iterations, " << total_linear << " linear iterations, " << std::fixed << std::setprecision(2) << wall << " s\n";

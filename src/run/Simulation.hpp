@@ -4,7 +4,11 @@
 #pragma once
 #include <string>
 
+#include <array>
+#include <vector>
+
 #include "deck/Config.hpp"
+#include "mesh/Mesh.hpp"
 
 namespace stentor {
 
@@ -14,8 +18,18 @@ struct RunOptions {
   bool check_only = false;  // validate deck + mesh + groups, then stop
 };
 
+// What a run leaves in memory, for tests and programs that embed Stentor.
+struct RunResult {
+  Mesh mesh;                          // as read (replicated)
+  std::vector<double> displacement;   // final state, 3 per mesh node (z = 0 in 2D), on every rank
+  std::vector<std::array<double, 3>> reactions;  // final, per Dirichlet set (deck order)
+  double energy = 0.0;                // final stored energy
+  int steps = 0, cutbacks = 0, newton_iterations = 0, linear_iterations = 0;
+  bool converged = false;
+};
+
 // Exit status: 0 success, 2 bad input (InputError thrown), 3 the solve failed
 // (results written so far stay in <output>.partial).
-int run_simulation(const Config& cfg, const RunOptions& opts);
+int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result = nullptr);
 
 }  // namespace stentor

@@ -4,6 +4,7 @@
 #include <BelosPseudoBlockGmresSolMgr.hpp>
 #include <BelosTpetraAdapter.hpp>
 #include <Ifpack2_Factory.hpp>
+#include <sstream>
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #ifdef STENTOR_HAVE_AMESOS2
 #include <Amesos2.hpp>
@@ -114,7 +115,9 @@ LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x) {
 std::string LinearSolver::description() const {
   const auto& c = impl_->cfg;
   if (c.method == "direct") return "direct (Amesos2 KLU2)";
-  std::string s = "Belos GMRES(" + std::to_string(c.restart) + "), tol " + std::to_string(c.tolerance);
+  std::ostringstream tol;
+  tol << c.tolerance;
+  std::string s = "Belos GMRES(" + std::to_string(c.restart) + "), tol " + tol.str();
   if (c.preconditioner == "schwarz")
     s += ", Ifpack2 Schwarz overlap " + std::to_string(c.overlap) + " / " + c.subdomain_solver +
          (c.subdomain_solver == "RILUK" ? "(" + std::to_string(c.fill_level) + ")" : "");

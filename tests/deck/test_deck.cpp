@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -159,6 +162,7 @@ class Deck : public ::testing::Test {
       read_deck(path);
     } catch (const InputError& e) {
       const std::string msg = e.what();
+      if (std::getenv("STENTOR_DECK_SHOW_ERRORS")) std::cout << "  " << msg << "\n";  // to review the wording
       EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << "message does not start with the deck file: " << msg;
       for (const auto& n : needles) EXPECT_NE(msg.find(n), std::string::npos) << "missing '" << n << "' in: " << msg;
       return msg;
@@ -309,6 +313,39 @@ TEST_F(Deck, DirichletAllWithoutDimensionKeepsZ) {
   ASSERT_EQ(c.loads.size(), 1u);
   EXPECT_TRUE(c.loads[0].all_components);  // default "all"
   EXPECT_TRUE(c.loads[0].components[0] && c.loads[0].components[1] && c.loads[0].components[2]);
+}
+
+TEST_F(Deck, DocExampleParses) {
+  std::ifstream f(std::string(STENTOR_SOURCE_DIR) + "/docs/deck.md");
+  ASSERT_TRUE(f) << "docs/deck.md not found";
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string md = ss.str();
+  const auto b = md.find("```xml\n");
+  ASSERT_NE(b, std::string::npos);
+  const auto e = md.find("```", b + 7);
+  ASSERT_NE(e, std::string::npos);
+  std::ofstream(dir / "block2d.geo") << "// placeholder\n";
+  const Config c = read_deck(write(md.substr(b + 7, e - b - 7)));
+  EXPECT_EQ(c.loads.size(), 4u);
+  EXPECT_EQ(c.mesh.order, 2);
+  EXPECT_EQ(c.output.probes.size(), 1u);
+}
+
+TEST(ShippedDecks, AllInputDecksValidate) {
+  const fs::path inputs = fs::path(STENTOR_SOURCE_DIR) / "inputs";
+  if (!fs::is_directory(inputs)) GTEST_SKIP() << "no inputs/ folder";
+  int n = 0;
+  for (const auto& e : fs::recursive_directory_iterator(inputs)) {
+    if (e.path().extension() != ".xml") continue;
+    ++n;
+    try {
+      read_deck(e.path().string());
+    } catch (const std::exception& ex) {
+      ADD_FAILURE() << ex.what();
+    }
+  }
+  std::cout << "  validated " << n << " deck(s) in inputs/\n";
 }
 
 // ---------------------------------------------------------------------------
@@ -538,8 +575,13 @@ TEST(Schema, EveryDefaultSatisfiesItsOwnRange) {
   for (const auto& l : deck_schema())
     for (const auto& p : l.params) {
       if (p.required) continue;
-      if (p.type == ParamType::Int || p.type == ParamType::Double)
+      if (p.type == ParamType::Int || p.type == ParamType::Double) {
         EXPECT_TRUE(p.in_range(p.num)) << l.title << "->" << p.name;
+      }
+      if (!p.choices.empty()) {
+        const std::string d = p.type == ParamType::Int ? std::to_string(static_cast<int>(p.num)) : p.str;
+        EXPECT_NE(std::find(p.choices.begin(), p.choices.end(), d), p.choices.end()) << l.title << "->" << p.name;
+      }
       EXPECT_FALSE(p.doc.empty()) << l.title << "->" << p.name;
     }
 }

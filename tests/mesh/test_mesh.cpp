@@ -104,7 +104,7 @@ double enclosed_area(const Mesh& m, const std::string& group) {
         double N[kMaxCellNodes], dN[kMaxCellNodes][3], x = 0, dy = 0;
         shape_functions(b->type, xi[q], N, dN);
         for (int a = 0; a < nn; ++a) {
-          const stentor::gid_t n = b->conn[c * nn + a];
+          const stentor::GId n = b->conn[c * nn + a];
           x += N[a] * m.x[3 * n];
           dy += dN[a][0] * m.x[3 * n + 1];
         }
@@ -127,14 +127,14 @@ void expect_consistent(const Mesh& m) {
   const std::size_t nn = m.num_nodes();
   ASSERT_GT(nn, 0u);
   std::vector<char> used(nn, 0);
-  stentor::gid_t next = 0;
+  stentor::GId next = 0;
   for (const auto& b : m.volumes) {
     EXPECT_EQ(b.nodes_per_cell, cell_num_nodes(b.type));
     EXPECT_EQ(cell_dim(b.type), m.dim);
     EXPECT_EQ(b.conn.size() % b.nodes_per_cell, 0u);
     ASSERT_EQ(b.cell_id.size(), b.num_cells());
-    for (stentor::gid_t id : b.cell_id) EXPECT_EQ(id, next++);
-    for (stentor::gid_t n : b.conn) {
+    for (stentor::GId id : b.cell_id) EXPECT_EQ(id, next++);
+    for (stentor::GId n : b.conn) {
       ASSERT_GE(n, 0);
       ASSERT_LT(static_cast<std::size_t>(n), nn);
       used[n] = 1;
@@ -144,7 +144,7 @@ void expect_consistent(const Mesh& m) {
   for (const auto& b : m.boundaries) {
     EXPECT_LT(cell_dim(b.type), m.dim);
     EXPECT_EQ(b.nodes_per_cell, cell_num_nodes(b.type));
-    for (stentor::gid_t n : b.conn) {
+    for (stentor::GId n : b.conn) {
       ASSERT_LT(static_cast<std::size_t>(n), nn);
       used[n] = 1;
     }
@@ -312,21 +312,21 @@ TEST(GmshReader, BoundaryGroupsLieWhereTheySay) {
     ASSERT_FALSE(nodes.empty()) << f.name;
     EXPECT_TRUE(std::is_sorted(nodes.begin(), nodes.end()));
     EXPECT_EQ(std::adjacent_find(nodes.begin(), nodes.end()), nodes.end());
-    for (stentor::gid_t n : nodes) EXPECT_NEAR(m.x[3 * n + f.axis], f.value, 1e-12) << f.name;
+    for (stentor::GId n : nodes) EXPECT_NEAR(m.x[3 * n + f.axis], f.value, 1e-12) << f.name;
     for (const auto* b : boundary_blocks(m, f.name)) EXPECT_EQ(b->type, CellType::Tri6);
   }
   const Mesh c = read_mesh(config(input("cylinder.geo"), 0.2, 2));
-  for (stentor::gid_t n : boundary_nodes(c, "inner"))
+  for (stentor::GId n : boundary_nodes(c, "inner"))
     EXPECT_NEAR(std::hypot(c.x[3 * n], c.x[3 * n + 1]), 1.0, 1e-9);
-  for (stentor::gid_t n : boundary_nodes(c, "outer"))
+  for (stentor::GId n : boundary_nodes(c, "outer"))
     EXPECT_NEAR(std::hypot(c.x[3 * n], c.x[3 * n + 1]), 2.0, 1e-9);
-  for (stentor::gid_t n : boundary_nodes(c, "xsym")) EXPECT_NEAR(c.x[3 * n + 1], 0.0, 1e-12);
-  for (stentor::gid_t n : boundary_nodes(c, "ysym")) EXPECT_NEAR(c.x[3 * n], 0.0, 1e-12);
+  for (stentor::GId n : boundary_nodes(c, "xsym")) EXPECT_NEAR(c.x[3 * n + 1], 0.0, 1e-12);
+  for (stentor::GId n : boundary_nodes(c, "ysym")) EXPECT_NEAR(c.x[3 * n], 0.0, 1e-12);
   const Mesh k = read_mesh(config(input("cook.geo"), 4.0));
-  for (stentor::gid_t n : boundary_nodes(k, "clamped")) EXPECT_NEAR(k.x[3 * n], 0.0, 1e-12);
-  for (stentor::gid_t n : boundary_nodes(k, "tip")) EXPECT_NEAR(k.x[3 * n], 48.0, 1e-12);
+  for (stentor::GId n : boundary_nodes(k, "clamped")) EXPECT_NEAR(k.x[3 * n], 0.0, 1e-12);
+  for (stentor::GId n : boundary_nodes(k, "tip")) EXPECT_NEAR(k.x[3 * n], 48.0, 1e-12);
   const Mesh r = read_mesh(config(input("artery_ring.geo"), 2e-4));
-  for (stentor::gid_t n : boundary_nodes(r, "lumen")) EXPECT_NEAR(std::hypot(r.x[3 * n], r.x[3 * n + 1]), 1.5e-3, 1e-12);
+  for (stentor::GId n : boundary_nodes(r, "lumen")) EXPECT_NEAR(std::hypot(r.x[3 * n], r.x[3 * n + 1]), 1.5e-3, 1e-12);
   EXPECT_EQ(volume_nodes(r, "artery").size(), r.num_nodes());
 }
 

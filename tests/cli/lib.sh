@@ -1,0 +1,38 @@
+# Helpers shared by the tests/cli scripts (sourced; bash, coreutils, awk only).
+
+fail() {
+  echo "FAIL: $*" >&2
+  exit 1
+}
+
+# snapshot DIR: one line per entry under DIR (the folder itself included): path, type,
+# size, mtime and, for files, a checksum. Two equal snapshots: nothing was created,
+# removed or modified.
+snapshot() {
+  (cd "$1" && find . -printf '%p %y %s %T@\n' | LC_ALL=C sort && find . -type f -print0 | LC_ALL=C sort -z | xargs -0 -r md5sum)
+}
+
+# make_results DIR: a results folder from an earlier run (a marker and a fake CSV).
+make_results() {
+  rm -rf "$1" "$1.partial" "$1.old"
+  mkdir -p "$1"
+  echo "earlier results: must survive" > "$1/MARKER"
+  printf 'step,time\n1,1\n' > "$1/old_history.csv"
+  touch -d '2020-01-01 00:00:00' "$1/MARKER" "$1/old_history.csv" "$1"
+}
+
+# check_results_untouched DIR SNAPSHOT_FILE
+check_results_untouched() {
+  [ -f "$1/MARKER" ] || fail "the marker file in $1 is gone"
+  snapshot "$1" | diff "$2" - >&2 || fail "the existing output folder $1 was modified"
+  [ -e "$1.old" ] && fail "$1.old was left behind"
+  return 0
+}
+
+# The MPI launcher: Open MPI refuses root without these and more ranks than cores
+# without --oversubscribe.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+export OMPI_MCA_rmaps_base_oversubscribe=1
+mpi_flags() {
+  if "$1" --version 2>&1 | grep -q "Open MPI\|OpenRTE"; then echo "--oversubscribe"; fi
+}

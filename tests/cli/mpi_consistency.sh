@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# The same deck on several MPI rank counts gives the same history: every column of
+# <basename>_history.csv except the iteration counts agrees with the first run to a
+# relative difference below TOL. Reactions are scaled by the largest reaction,
+# probe displacements by the largest probe displacement, the energy by its largest
+# value (so components that are zero up to round-off do not count as relative noise).
+# usage: mpi_consistency.sh STENTOR MPIEXEC NPFLAG WORKDIR DECK BASENAME TOL NP...
+set -u
+. "$(dirname "$0")/lib.sh"
+stentor=$1 mpiexec=$2 npflag=$3 work=$4 deck=$5 base=$6 tol=$7
+shift 7
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || fail "cannot make $work"
+flags=$(mpi_flags "$mpiexec")
+ref=""
+status=0
+for np in "$@"; do
+  echo "=== $np rank(s)"
+  # shellcheck disable=SC2086
+  "$mpiexec" $npflag "$np" $flags "$stentor" --output "out$np" "$deck" > "log$np.txt" 2>&1
+  rc=$?
+  grep -E "parallel|dofs|solver|Summary" "log$np.txt"
+  [ "$rc" -eq 0 ] || { cat "log$np.txt"; fail "$np ranks: exit status $rc"; }
+  csv="out$np/${base}_history.csv"
+  [ -s "$csv" ] || fail "$csv missing"
+  if [ -z "$ref" ]; then
+    ref=$csv
+    continue
+  fi
+  awk -F, -v tol="$tol" -v np="$np" '
+    function abs(x) { return x < 0 ? -x : x }
+    function group(name) {
+      if (name ~ /^reaction_/) return "reaction"
+      if (name ~ /^u_/) return "probe"
+      if (name == "strain_energy") return "energy"
+      if (name == "newton_iterations" || name == "linear_iterations") return ""
+      return "exact"
+    }
+    FNR == 1 { if (NR == 1) { nc = NF; for (i = 1; i <= NF; ++i) h[i] = $i }
+               else if ($0 != hdr) { print "header differs"; bad = 1 }
+               hdr = $0; next }
+    NR == FNR { nr = FNR; for (i = 1; i <= NF; ++i) { a[FNR, i] = $i; g = group(h[i]);
+                if (g != "" && abs($i) > scale[g]) scale[g] = abs($i) } next }
+    { nb = FNR; if (NF != nc) { print "row " FNR ": " NF " columns, expected " nc; bad = 1; next }
+      for (i = 1; i <= NF; ++i) b[FNR, i] = $i }
+    END {
+      if (nb != nr) { print "rows: " nb ", expected " nr; exit 1 }
+      worst = 0
+      for (r = 2; r <= nr; ++r) for (i = 1; i <= nc; ++i) {
+        g = group(h[i]); if (g == "") continue
+        d = abs(a[r, i] - b[r, i])
+        if (g == "exact") { if (d > 1e-12 * abs(a[r, i])) { print "row " r " " h[i] ": " a[r, i] " vs " b[r, i]; bad = 1 } continue }
+        rel = scale[g] > 0 ? d / scale[g] : d
+        if (rel > worst) { worst = rel; where = h[i] " (row " r ")" }
+        if (rel > maxg[g]) maxg[g] = rel
+      }
+      printf "%d ranks vs reference: max relative difference %.3e at %s", np, worst, where
+      for (g in maxg) printf "; %s %.3e", g, maxg[g]
+      printf "\n"
+      if (worst > tol) { print "exceeds " tol; bad = 1 }
+      exit bad
+    }' "$ref" "$csv" || status=1
+  # Newton iteration counts should match too; report, do not fail (a residual right
+  # at the tolerance may take one more iteration on another partition).
+  cut -d, -f4 "$ref" | cmp -s - <(cut -d, -f4 "$csv") || echo "note: Newton iteration counts differ between 1st run and $np ranks"
+done
+[ "$status" -eq 0 ] || fail "histories differ"
+echo "PASS"

@@ -1,0 +1,161 @@
+// Thick-walled cylinder under internal follower pressure, plane strain (docs/verification.md,
+// "Statics (mesh)"), on the deck inputs/cylinder.xml (quarter annulus ri = 1, ro = 2,
+// symmetry on the axes).
+//  1. Small-strain limit (p/mu ~ 1e-5): Lame, u_r(r) = A r + B/r,
+//       A = p ri^2 / (2 (lambda+mu) (ro^2 - ri^2)),  B = p ri^2 ro^2 / (2 mu (ro^2 - ri^2)).
+//  2. Finite strain, D -> infinity: Ciarlet-Geymonat tends to the incompressible
+//     Mooney-Rivlin solid W = C1 (I1-3) + C2 (I2-3); in plane strain its cylinder has the
+//     closed form (deformed inner radius a, c = a^2 - ri^2, b^2 = ro^2 + c, mu = 2(C1+C2))
+//       p = mu/2 [ ln(a^2 ro^2 / (ri^2 b^2)) + c (1/a^2 - 1/b^2) ].
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "run/Simulation.hpp"
+
+using namespace stentor;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "lame";
+
+Config cylinder_deck(int order, double size) {
+  Config cfg = read_deck(std::string(STENTOR_SOURCE_DIR) + "/inputs/cylinder.xml");
+  cfg.mesh.order = order;
+  cfg.mesh.size = size;
+  cfg.output.fields = false;
+  return cfg;
+}
+
+RunResult run(const Config& cfg, const std::string& tag) {
+  RunOptions opts;
+  opts.output_dir = (kDir / tag).string();
+  RunResult res;
+  EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
+  EXPECT_TRUE(res.converged) << tag;
+  return res;
+}
+
+double pressure_of(const Config& cfg) {
+  for (const auto& l : cfg.loads)
+    if (l.type == LoadConfig::Type::Pressure) return l.value;
+  ADD_FAILURE() << "no pressure load in the deck";
+  return 0.0;
+}
+
+// Radial and tangential displacement of the nodes on the arc of radius r0.
+struct ArcDisp {
+  std::vector<double> ur, ut;
+};
+ArcDisp on_arc(const RunResult& res, double r0) {
+  ArcDisp a;
+  for (std::size_t n = 0; n < res.mesh.num_nodes(); ++n) {
+    const double x = res.mesh.x[3 * n], y = res.mesh.x[3 * n + 1], r = std::hypot(x, y);
+    if (std::abs(r - r0) > 1e-8 * r0) continue;
+    const double ux = res.displacement[3 * n], uy = res.displacement[3 * n + 1];
+    a.ur.push_back((ux * x + uy * y) / r);
+    a.ut.push_back((-ux * y + uy * x) / r);
+  }
+  return a;
+}
+
+struct LameError {
+  double inner = 0, outer = 0, tangential = 0;  // max relative errors (scale: exact u_r(ri))
+  double ur_in = 0, ur_out = 0;                 // means over the arc nodes
+};
+
+LameError lame_error(int order, double size) {
+  const Config cfg = cylinder_deck(order, size);
+  const double p = pressure_of(cfg);
+  const double mu = 2 * (cfg.materials[0].C1 + cfg.materials[0].C2), lam = 4 * (cfg.materials[0].C2 + cfg.materials[0].D);
+  const double ri = 1, ro = 2;
+  const double A = p * ri * ri / (2 * (lam + mu) * (ro * ro - ri * ri)), B = p * ri * ri * ro * ro / (2 * mu * (ro * ro - ri * ri));
+  auto ur_exact = [&](double r) { return A * r + B / r; };
+  const RunResult res = run(cfg, "lame_p" + std::to_string(order) + "_" + std::to_string(size));
+  LameError e;
+  const double scale = ur_exact(ri);
+  for (double r0 : {ri, ro}) {
+    const ArcDisp a = on_arc(res, r0);
+    EXPECT_GT(a.ur.size(), 4u);
+    double emax = 0, mean = 0;
+    for (std::size_t i = 0; i < a.ur.size(); ++i) {
+      emax = std::max(emax, std::abs(a.ur[i] - ur_exact(r0)) / scale);
+      e.tangential = std::max(e.tangential, std::abs(a.ut[i]) / scale);
+      mean += a.ur[i] / a.ur.size();
+    }
+    (r0 == ri ? e.inner : e.outer) = emax;
+    (r0 == ri ? e.ur_in : e.ur_out) = mean;
+  }
+  std::printf("[lame] P%d size %.3f: u_r(1) exact %.6e mean %.6e, u_r(2) exact %.6e mean %.6e; max rel. error inner %.2e outer %.2e, "
+              "max |u_theta| %.2e\n",
+              order, size, ur_exact(ri), e.ur_in, ur_exact(ro), e.ur_out, e.inner, e.outer, e.tangential);
+  return e;
+}
+
+// Incompressible Mooney-Rivlin cylinder, plane strain: internal pressure for inner radius a.
+double incompressible_pressure(double a, double mu, double ri, double ro) {
+  const double c = a * a - ri * ri, b2 = ro * ro + c;
+  return 0.5 * mu * (std::log(a * a * ro * ro / (ri * ri * b2)) + c * (1 / (a * a) - 1 / b2));
+}
+
+// Inverse by bisection (p increases with a).
+double incompressible_inner_radius(double p, double mu, double ri, double ro) {
+  double lo = ri, hi = 10 * ri;
+  for (int i = 0; i < 200; ++i) {
+    const double m = 0.5 * (lo + hi);
+    (incompressible_pressure(m, mu, ri, ro) < p ? lo : hi) = m;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
+TEST(Lame, SmallStrainClosedForm) {
+  const LameError p1c = lame_error(1, 0.1), p1f = lame_error(1, 0.05);
+  const LameError p2c = lame_error(2, 0.2), p2f = lame_error(2, 0.1);
+  // P1: a few % at h = 0.1, better at 0.05; P2: < 1% already at h = 0.2.
+  EXPECT_LT(std::max(p1c.inner, p1c.outer), 0.03);
+  EXPECT_LT(std::max(p1f.inner, p1f.outer), 0.01);
+  EXPECT_LT(std::max(p2c.inner, p2c.outer), 0.01);
+  EXPECT_LT(std::max(p2f.inner, p2f.outer), 0.002);
+  // The error decreases under refinement (h halved: P1 by ~4, P2 by ~8 at the nodes).
+  EXPECT_LT(std::max(p1f.inner, p1f.outer), 0.5 * std::max(p1c.inner, p1c.outer));
+  EXPECT_LT(std::max(p2f.inner, p2f.outer), 0.5 * std::max(p2c.inner, p2c.outer));
+  EXPECT_LT(p2f.tangential, 0.01);
+}
+
+// Ciarlet-Geymonat with D -> infinity approaches the incompressible Mooney-Rivlin cylinder,
+// here at a finite inner-radius stretch a/ri ~ 1.2. P2 (displacement-only elements lock
+// mildly as lambda/mu grows, so the largest D is kept at lambda/mu ~ 100).
+TEST(Lame, FiniteStrainIncompressibleLimit) {
+  const double C1 = 1.0, C2 = 0.25, mu = 2 * (C1 + C2), ri = 1, ro = 2;
+  const double p = incompressible_pressure(1.2, mu, ri, ro);
+  const double a_inc = incompressible_inner_radius(p, mu, ri, ro);
+  ASSERT_NEAR(a_inc, 1.2, 1e-12);
+  std::vector<double> err;
+  for (double D : {2.5, 25.0, 250.0}) {
+    Config cfg = cylinder_deck(2, 0.1);
+    cfg.materials[0].C1 = C1, cfg.materials[0].C2 = C2, cfg.materials[0].D = D;
+    for (auto& l : cfg.loads)
+      if (l.type == LoadConfig::Type::Pressure) l.value = p;
+    cfg.stepping.num_steps = 5;
+    const RunResult res = run(cfg, "mooney_D" + std::to_string(D));
+    const ArcDisp in = on_arc(res, ri), out = on_arc(res, ro);
+    double ur_in = 0, ur_out = 0;
+    for (double v : in.ur) ur_in += v / in.ur.size();
+    for (double v : out.ur) ur_out += v / out.ur.size();
+    const double b_inc = std::sqrt(ro * ro + a_inc * a_inc - ri * ri);
+    const double e = std::abs(ur_in - (a_inc - ri)) / (a_inc - ri);
+    std::printf("[lame] incompressible limit: lambda/mu %.0f  u_r(1) %.5f (closed form %.5f, rel. error %.2e)  u_r(2) %.5f (%.5f)\n",
+                4 * (C2 + D) / mu, ur_in, a_inc - ri, e, ur_out, b_inc - ro);
+    err.push_back(e);
+  }
+  EXPECT_LT(err[1], err[0]);
+  EXPECT_LT(err[2], err[1]);
+  EXPECT_LT(err[2], 0.02);
+}
