@@ -48,11 +48,19 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
   for (std::size_t b = 0; b < mesh.volumes.size(); ++b) {
     const MaterialConfig& m = cfg.materials[static_cast<std::size_t>(block_material[b])];
     block_mat_.push_back(CiarletGeymonat{m.C1, m.C2, m.D});
+    block_density_.push_back(m.density);
+    // Viscosity acts only in dynamics (it needs a time step); statics pays nothing for it.
+    block_eta_.push_back(cfg.problem.dynamic() ? m.viscosity : 0.0);
     quad_degree_.push_back(default_quadrature_degree(mesh.volumes[b].type));
   }
   exporter_ = Teuchos::rcp(new la::Export(dist.overlap_map(), dist.owned_map()));
   u_overlap_ = Teuchos::rcp(new la::Vector(dist.overlap_map()));
+  u0_overlap_ = Teuchos::rcp(new la::Vector(dist.overlap_map()));
   r_overlap_ = Teuchos::rcp(new la::Vector(dist.overlap_map()));
+  rext_overlap_ = Teuchos::rcp(new la::Vector(dist.overlap_map()));
+  r_static_ = Teuchos::rcp(new la::Vector(dist.owned_map()));
+  f_ext_ = Teuchos::rcp(new la::Vector(dist.owned_map()));
+  work_ = Teuchos::rcp(new la::Vector(dist.owned_map()));
   failures_ = Kokkos::View<int*, la::ExecSpace>("failures", 2);
   build_graph();
 
@@ -88,6 +96,8 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
       owned_dirichlet_value_.push_back(owned_val[i]);
       owned_dirichlet_set_.push_back(owned_set[i]);
     }
+  owned_dirichlet_flag_.assign(owned_set.size(), 0);
+  for (la::LO i : owned_dirichlet_dofs_) owned_dirichlet_flag_[static_cast<std::size_t>(i)] = 1;
   reactions_.assign(loads.dirichlet.size(), {0.0, 0.0, 0.0});
   setup_loads(mesh);
 }
@@ -217,9 +227,61 @@ void Assembler::apply_dirichlet(la::Vector& u, double t, double end_time) const 
   }
 }
 
-Assembler::Stats Assembler::assemble(const la::Vector& u, double t, double end_time, la::Vector& r, bool with_tangent) {
+double Assembler::support_work(const la::Vector& du) const {
+  auto dh = du.getLocalViewHost(Tpetra::Access::ReadOnly);
+  double loc = 0.0, glob = 0.0;
+  for (std::size_t k = 0; k < dirichlet_r_.size(); ++k) loc -= dirichlet_r_[k] * dh(owned_dirichlet_dofs_[k], 0);
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &loc, &glob);
+  return glob;
+}
+
+bool Assembler::is_dirichlet(la::LO owned_dof) const { return owned_dirichlet_flag_[static_cast<std::size_t>(owned_dof)] != 0; }
+
+const la::RCP<la::CrsMatrix>& Assembler::mass() {
+  if (!M_.is_null()) return M_;
+  // Consistent mass, assembled once (overlap -> owned, like the tangent). All rows are
+  // kept: inertia of constrained nodes enters their reactions.
+  auto M_overlap = Teuchos::rcp(new la::CrsMatrix(K_overlap_->getCrsGraph()));
+  M_overlap->fillComplete(dist_.owned_map(), dist_.owned_map());
+  auto Ml = M_overlap->getLocalMatrixDevice();
+  Kokkos::deep_copy(Ml.values, 0.0);
+  const int dim = dim_;
+  auto X = dist_.coords();
+  for (const auto& lb : dist_.blocks()) {
+    const std::size_t nc = lb.cell_ids.size();
+    const double rho = block_density_[static_cast<std::size_t>(lb.volume_block)];
+    if (nc == 0 || rho == 0.0) continue;
+    const QuadRule q = make_rule(lb.type, quad_degree_[static_cast<std::size_t>(lb.volume_block)]);
+    const CellType type = lb.type;
+    const int nn = lb.nodes_per_cell;
+    auto conn = lb.conn;
+    Kokkos::parallel_for(
+        "stentor::mass", Kokkos::RangePolicy<la::ExecSpace>(0, nc), KOKKOS_LAMBDA(const int c) {
+          double Xe[kMaxCellNodes][3], me[kMaxCellDofs][kMaxCellDofs];
+          int dofs[kMaxCellDofs];
+          for (int a = 0; a < nn; ++a) {
+            const int l = conn(c, a);
+            for (int d = 0; d < 3; ++d) Xe[a][d] = X(l, d);
+            for (int d = 0; d < dim; ++d) dofs[a * dim + d] = l * dim + d;
+          }
+          mass_element(dim, type, nn, Xe, rho, q, me);
+          for (int i = 0; i < nn * dim; ++i) Ml.sumIntoValues(dofs[i], dofs, nn * dim, me[i], false, true);
+        });
+  }
+  M_ = Teuchos::rcp(new la::CrsMatrix(K_->getCrsGraph()));
+  M_->resumeFill();
+  M_->setAllToScalar(0.0);
+  M_->doExport(*M_overlap, *exporter_, Tpetra::ADD);
+  M_->fillComplete(dist_.owned_map(), dist_.owned_map());
+  return M_;
+}
+
+Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, la::Vector& r, bool with_tangent) {
   u_overlap_->doImport(u, *dist_.importer(), Tpetra::INSERT);
+  const bool has_old = in.u_old != nullptr;
+  if (has_old) u0_overlap_->doImport(*in.u_old, *dist_.importer(), Tpetra::INSERT);
   r_overlap_->putScalar(0.0);
+  rext_overlap_->putScalar(0.0);
   Kokkos::deep_copy(failures_, 0);
   const int dim = dim_;
   auto flags = dirichlet_flag_;
@@ -230,49 +292,65 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, double t, double end_t
     Kl = K_overlap_->getLocalMatrixDevice();
     Kokkos::deep_copy(Kl.values, 0.0);
   }
-  double energy = 0.0;
+  double energy = 0.0, dissipation = 0.0;
   {
     auto uv = u_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
+    auto u0v = u0_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
     auto rv = r_overlap_->getLocalViewDevice(Tpetra::Access::ReadWrite);
+    auto rxv = rext_overlap_->getLocalViewDevice(Tpetra::Access::ReadWrite);
     for (const auto& lb : dist_.blocks()) {
       const std::size_t nc = lb.cell_ids.size();
       if (nc == 0) continue;
       const CiarletGeymonat mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
       const QuadRule q = make_rule(lb.type, quad_degree_[static_cast<std::size_t>(lb.volume_block)]);
+      ElementTime et;
+      et.eval = in.eval;
+      et.dt = in.dt;
+      et.eta = block_eta_[static_cast<std::size_t>(lb.volume_block)];
+      et.has_old = has_old && (in.eval != StressEval::EndPoint || et.eta > 0.0);
       const CellType type = lb.type;
       const int nn = lb.nodes_per_cell;
       auto conn = lb.conn;
       double e_block = 0.0;
+      Kokkos::View<double*, la::ExecSpace> dsum("dissipation", 1);
       auto body = [=](const int c, double& e, auto tangent_tag) {
         constexpr bool T = decltype(tangent_tag)::value;
-        double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], re[kMaxCellDofs];
+        double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], U0e[kMaxCellNodes][3], re[kMaxCellDofs];
         double ke[T ? kMaxCellDofs : 1][kMaxCellDofs];
         int dofs[kMaxCellDofs];
         gather_cell(c, nn, dim, conn, X, uv, Xe, Ue, dofs);
-        double ec = 0.0;
-        const int status = hyperelastic_element<T>(dim, type, nn, Xe, Ue, mat, q, re, ke, ec);
+        if (et.has_old)
+          for (int a = 0; a < nn; ++a)
+            for (int d = 0; d < 3; ++d) U0e[a][d] = d < dim ? u0v(dofs[a * dim] + d, 0) : 0.0;
+        double ec = 0.0, dc = 0.0;
+        const int status = solid_element<T>(dim, type, nn, Xe, Ue, U0e, mat, et, q, re, ke, ec, dc);
         if (status != kElementOk) {
           Kokkos::atomic_increment(&fails(status == kElementInverted ? 0 : 1));
           return;
         }
         e += ec;
+        if (dc != 0.0) Kokkos::atomic_add(&dsum(0), dc);
         scatter<T>(nn * dim, dofs, re, ke, rv, Kl, flags);
       };
       if (with_tangent)
         Kokkos::parallel_reduce(
-            "stentor::hyperelastic_residual_tangent", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
+            "stentor::solid_residual_tangent", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
             KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::true_type{}); }, e_block);
       else
         Kokkos::parallel_reduce(
-            "stentor::hyperelastic_residual", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
+            "stentor::solid_residual", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
             KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::false_type{}); }, e_block);
+      auto dh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dsum);
       energy += e_block;
+      dissipation += dh(0);
     }
 
-    // Follower pressure p on the current surface: r_a += p N_a n da, n da = orientation *
-    // (x_,xi_y, -x_,xi_x) dxi in 2D, (x_,xi x x_,eta) dxi deta in 3D; tangent from d(n da)/du.
+    // Follower pressure p on the current surface (configuration u_n + theta (u - u_n)):
+    // r_a += p N_a n da, n da = orientation * (x_,xi_y, -x_,xi_x) dxi in 2D,
+    // (x_,xi x x_,eta) dxi deta in 3D; tangent from d(n da)/du, times theta.
+    const double theta = has_old ? in.pressure_theta : 1.0;
     for (const auto& pl : pressures_) {
-      const double p = pl.pressure * pl.ramp(t, end_time);
+      const double p = pl.pressure * pl.ramp(in.load_time, in.end_time);
       const std::size_t nf = pl.conn.extent(0);
       if (nf == 0 || p == 0.0) continue;
       const QuadRule q = make_rule(pl.type, 2 * cell_order(pl.type) + 1);
@@ -287,6 +365,9 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, double t, double end_t
             double N[kMaxCellNodes], dN[kMaxCellNodes][3];
             int dofs[kMaxCellDofs];
             gather_cell(f, nn, dim, conn, X, uv, Xe, Ue, dofs);
+            if (theta != 1.0)
+              for (int a = 0; a < nn; ++a)
+                for (int d = 0; d < dim; ++d) Ue[a][d] = theta * Ue[a][d] + (1.0 - theta) * u0v(dofs[a * dim] + d, 0);
             const int nd = nn * dim;
             for (int i = 0; i < nd; ++i) {
               re[i] = 0.0;
@@ -302,14 +383,15 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, double t, double end_t
                   t2[d] += dN[a][1] * (Xe[a][d] + Ue[a][d]);
                 }
               const double w = q.w[g] * ps;
+              const double wt = w * theta;
               if (dim == 2) {
                 const double n[2] = {t1[1], -t1[0]};
                 for (int a = 0; a < nn; ++a) {
                   re[a * 2 + 0] += w * N[a] * n[0];
                   re[a * 2 + 1] += w * N[a] * n[1];
                   for (int b = 0; b < nn; ++b) {
-                    ke[a * 2 + 0][b * 2 + 1] += w * N[a] * dN[b][0];
-                    ke[a * 2 + 1][b * 2 + 0] -= w * N[a] * dN[b][0];
+                    ke[a * 2 + 0][b * 2 + 1] += wt * N[a] * dN[b][0];
+                    ke[a * 2 + 1][b * 2 + 0] -= wt * N[a] * dN[b][0];
                   }
                 }
               } else {
@@ -324,20 +406,21 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, double t, double end_t
                         const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
                         if (k == i1) { ek_x_t2 = t2[i2]; t1_x_ek = -t1[i2]; }
                         if (k == i2) { ek_x_t2 = -t2[i1]; t1_x_ek = t1[i1]; }
-                        ke[a * 3 + i][b * 3 + k] += w * N[a] * (dN[b][0] * ek_x_t2 + dN[b][1] * t1_x_ek);
+                        ke[a * 3 + i][b * 3 + k] += wt * N[a] * (dN[b][0] * ek_x_t2 + dN[b][1] * t1_x_ek);
                       }
                   }
               }
             }
             if (T)
-              scatter<true>(nd, dofs, re, ke, rv, Kl, flags);
+              scatter<true>(nd, dofs, re, ke, rxv, Kl, flags);
             else
-              scatter<false>(nd, dofs, re, ke, rv, Kl, flags);
+              scatter<false>(nd, dofs, re, ke, rxv, Kl, flags);
           });
     }
   }
-  // Dead loads: r -= ramp(t) f.
-  for (const auto& dl : dead_) r_overlap_->update(-dl.ramp(t, end_time), *dl.f, 1.0);
+  // Dead loads: -f_ext contribution = -ramp(t) f.
+  for (const auto& dl : dead_) rext_overlap_->update(-dl.ramp(in.load_time, in.end_time), *dl.f, 1.0);
+  r_overlap_->update(1.0, *rext_overlap_, 1.0);
 
   auto fh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), failures_);
   long local_fail[2] = {fh(0), fh(1)}, global_fail[2] = {0, 0};
@@ -345,12 +428,25 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, double t, double end_t
   if (global_fail[1] > 0)
     throw std::runtime_error(std::to_string(global_fail[1]) + " cells have a non-positive reference Jacobian (mesh check missed them)");
   Stats st;
-  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &energy, &st.energy);
+  double loc2[2] = {energy, dissipation}, glob2[2] = {0, 0};
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 2, loc2, glob2);
+  st.energy = glob2[0];
+  st.dissipation = glob2[1];
   st.inverted = global_fail[0];
   if (st.inverted > 0) return st;
 
-  r.putScalar(0.0);
-  r.doExport(*r_overlap_, *exporter_, Tpetra::ADD);
+  r_static_->putScalar(0.0);
+  r_static_->doExport(*r_overlap_, *exporter_, Tpetra::ADD);
+  f_ext_->putScalar(0.0);
+  f_ext_->doExport(*rext_overlap_, *exporter_, Tpetra::ADD);
+  f_ext_->scale(-1.0);
+  r.update(in.scale, *r_static_, 0.0);
+  if (in.mass_coeff != 0.0) {
+    // Inertia c M (u - u_tilde).
+    work_->update(1.0, u, -1.0, *in.u_tilde, 0.0);
+    mass()->apply(*work_, r, Teuchos::NO_TRANS, in.mass_coeff, 1.0);
+  }
+  if (in.extra) r.update(1.0, *in.extra, 1.0);
   {
     // Reactions, then zero the constrained rows.
     auto rh = r.getLocalViewHost(Tpetra::Access::ReadWrite);
@@ -360,7 +456,11 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, double t, double end_t
         for (int d = 0; d < dim_; ++d) loc[3 * s + d] += rh(l * dim_ + d, 0);
     if (!loc.empty()) Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), glob.data());
     for (std::size_t s = 0; s < reactions_.size(); ++s) reactions_[s] = {glob[3 * s], glob[3 * s + 1], glob[3 * s + 2]};
-    for (la::LO i : owned_dirichlet_dofs_) rh(i, 0) = 0.0;
+    dirichlet_r_.resize(owned_dirichlet_dofs_.size());
+    for (std::size_t k = 0; k < owned_dirichlet_dofs_.size(); ++k) {
+      dirichlet_r_[k] = rh(owned_dirichlet_dofs_[k], 0);
+      rh(owned_dirichlet_dofs_[k], 0) = 0.0;
+    }
   }
   if (with_tangent) {
     // Identity on owned constrained rows (owned dofs are a prefix of the overlap dofs).
@@ -378,6 +478,21 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, double t, double end_t
     K_->resumeFill();
     K_->setAllToScalar(0.0);
     K_->doExport(*K_overlap_, *exporter_, Tpetra::ADD);
+    if (in.scale != 1.0 || in.mass_coeff != 0.0) {
+      // K = s K + c M on unconstrained rows (K and M share one graph, so their local
+      // value arrays line up entry by entry).
+      auto Kv = K_->getLocalMatrixDevice();
+      const double s = in.scale, c = in.mass_coeff;
+      DeviceMatrix Mv;
+      if (c != 0.0) Mv = mass()->getLocalMatrixDevice();
+      auto oflag = flags;  // owned dofs are the first rows of the overlap flags
+      Kokkos::parallel_for(
+          "stentor::tangent_plus_mass", Kokkos::RangePolicy<la::ExecSpace>(0, Kv.numRows()), KOKKOS_LAMBDA(const int row) {
+            if (oflag(row)) return;
+            for (auto j = Kv.graph.row_map(row); j < Kv.graph.row_map(row + 1); ++j)
+              Kv.values(j) = s * Kv.values(j) + (c != 0.0 ? c * Mv.values(j) : 0.0);
+          });
+    }
     K_->fillComplete(dist_.owned_map(), dist_.owned_map());
   }
   return st;

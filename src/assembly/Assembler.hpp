@@ -14,6 +14,7 @@
 
 #include "bc/Loads.hpp"
 #include "deck/Config.hpp"
+#include "assembly/HyperelasticElement.hpp"
 #include "material/CiarletGeymonat.hpp"
 #include "parallel/Distribution.hpp"
 
@@ -25,13 +26,48 @@ class Assembler {
             const std::vector<int>& block_material);
 
   struct Stats {
-    double energy = 0.0;     // stored elastic energy (global)
-    long inverted = 0;       // cells with det F <= 0 at a Gauss point (global)
+    double energy = 0.0;       // stored elastic energy int W(C_{n+1}) (global)
+    double dissipation = 0.0;  // viscous energy dissipated over the step (global; 0 without viscosity)
+    long inverted = 0;         // cells with det F <= 0 at a Gauss point (global)
   };
 
-  // r = f_int(u) - f_ext(u, t) on owned rows (Dirichlet rows zeroed); K = dr/du if with_tangent.
-  // `t` and `end_time` evaluate the load ramps.
-  Stats assemble(const la::Vector& u, double t, double end_time, la::Vector& r, bool with_tangent);
+  // What a time step adds to the static residual. The defaults give statics:
+  //   r = s * (f_int(u) - f_ext(t)) + c M (u - u_tilde) + extra,   K = dr/du.
+  struct StepInput {
+    double load_time = 0.0, end_time = 1.0;  // ramps are evaluated at load_time
+    StressEval eval = StressEval::EndPoint;
+    const la::Vector* u_old = nullptr;       // u_n: Midpoint/Gonzalez stress, viscosity, midpoint pressure
+    double dt = 0.0;
+    double pressure_theta = 1.0;             // follower pressure on the configuration u_n + theta (u - u_n)
+    double scale = 1.0;                      // s (HHT: 1 + alpha)
+    double mass_coeff = 0.0;                 // c
+    const la::Vector* u_tilde = nullptr;
+    const la::Vector* extra = nullptr;       // owned, all rows
+  };
+
+  // Residual on owned rows (Dirichlet rows zeroed after reactions are read) and, if
+  // with_tangent, the tangent in matrix().
+  Stats assemble(const la::Vector& u, const StepInput& in, la::Vector& r, bool with_tangent);
+  // Statics shorthand.
+  Stats assemble(const la::Vector& u, double t, double end_time, la::Vector& r, bool with_tangent) {
+    StepInput in;
+    in.load_time = t;
+    in.end_time = end_time;
+    return assemble(u, in, r, with_tangent);
+  }
+
+  // After assemble(): f_int - f_ext of the last call (unscaled, no inertia, all owned rows)
+  // and f_ext alone (owned, all rows).
+  const la::Vector& static_residual() const { return *r_static_; }
+  const la::Vector& external_force() const { return *f_ext_; }
+  // Consistent mass matrix (owned rows, Dirichlet rows included); built on first use.
+  const la::RCP<la::CrsMatrix>& mass();
+  // Power of the supports: -sum over owned constrained dofs of r_i du_i (global), with r the
+  // full residual (inertia included) of the last assemble(): the work the Dirichlet
+  // reactions did on the body over a step whose increment is du.
+  double support_work(const la::Vector& du) const;
+  // Dirichlet flag of each owned dof.
+  bool is_dirichlet(la::LO owned_dof) const;
 
   const la::RCP<la::CrsMatrix>& matrix() const { return K_; }
 
@@ -58,11 +94,16 @@ class Assembler {
   const Loads& loads_;
   int dim_;
   std::vector<CiarletGeymonat> block_mat_;  // per mesh volume block
+  std::vector<double> block_density_, block_eta_;
   std::vector<int> quad_degree_;            // per mesh volume block
 
   la::RCP<const la::Export> exporter_;       // overlap -> owned
   la::RCP<la::CrsMatrix> K_overlap_, K_;
-  la::RCP<la::Vector> u_overlap_, r_overlap_, f_dead_;  // f_dead_: unit-ramp dead loads per load (see loads below)
+  la::RCP<la::Vector> u_overlap_, u0_overlap_, r_overlap_, rext_overlap_;
+  la::RCP<la::Vector> r_static_, f_ext_, work_;  // owned
+  la::RCP<la::CrsMatrix> M_;
+  std::vector<char> owned_dirichlet_flag_;
+  std::vector<double> dirichlet_r_;  // full residual at owned constrained dofs, last assemble()
   Kokkos::View<int*, la::ExecSpace> dirichlet_flag_;   // per overlap dof
   Kokkos::View<int*, la::ExecSpace> failures_;
   std::vector<la::LO> owned_dirichlet_dofs_;

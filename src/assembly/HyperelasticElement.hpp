@@ -10,6 +10,7 @@
 #include "fem/Quadrature.hpp"
 #include "fem/Shape.hpp"
 #include "material/CiarletGeymonat.hpp"
+#include "material/DiscreteGradient.hpp"
 #include "material/Kinematics.hpp"
 #include "stentor/tensor.hpp"
 
@@ -39,10 +40,28 @@ KOKKOS_INLINE_FUNCTION Mat3 deformation_gradient(int dim, int nn, const double (
   return F;
 }
 
+// How the element's stress depends on the step's end states (u_n, u_{n+1}).
+enum class StressEval : int {
+  EndPoint = 0,  // P(F_{n+1}): statics, Newmark, HHT
+  Midpoint = 1,  // P(F_{n+1/2}), F_{n+1/2} = (F_n + F_{n+1})/2: the plain midpoint rule
+  Gonzalez = 2   // F_{n+1/2} Sigma_algo(C_n, C_{n+1}): Gonzalez's energy-consistent discrete gradient
+};
+
+struct ElementTime {
+  StressEval eval = StressEval::EndPoint;
+  bool has_old = false;  // U0 (u_n) is given: needed by Midpoint/Gonzalez and by viscosity
+  double dt = 0.0;
+  double eta = 0.0;      // Curnier viscosity; 0 skips all viscous work
+};
+
+// Element internal force (and its derivative with respect to u_{n+1}):
+//   r_(a,i) = sum_q P_iJ dN_a/dX_J w detJ,  K = dr/du_{n+1} = sum_q dN_a/dX_J A_iJkL dN_b/dX_L w detJ.
+// `energy` = int W(C_{n+1}); `dissipation` = int S^v : (C_{n+1} - C_n)/2 = int eta |dC|^2/dt.
 template <bool WithTangent>
-KOKKOS_INLINE_FUNCTION int hyperelastic_element(int dim, CellType type, int nn, const double (*X)[3], const double (*U)[3],
-                                                const CiarletGeymonat& mat, const QuadRule& q, double* re,
-                                                double (*ke)[kMaxCellDofs], double& energy) {
+KOKKOS_INLINE_FUNCTION int solid_element(int dim, CellType type, int nn, const double (*X)[3], const double (*U)[3],
+                                         const double (*U0)[3], const CiarletGeymonat& mat, const ElementTime& et,
+                                         const QuadRule& q, double* re, double (*ke)[kMaxCellDofs], double& energy,
+                                         double& dissipation) {
   const int nd = nn * dim;
   for (int i = 0; i < nd; ++i) {
     re[i] = 0.0;
@@ -50,23 +69,96 @@ KOKKOS_INLINE_FUNCTION int hyperelastic_element(int dim, CellType type, int nn, 
       for (int j = 0; j < nd; ++j) ke[i][j] = 0.0;
   }
   energy = 0.0;
+  dissipation = 0.0;
   double N[kMaxCellNodes], dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
   for (int g = 0; g < q.n; ++g) {
     shape_functions(type, q.xi[g], N, dN);
     const double detJ = reference_gradients(dim, nn, X, dN, dNdX);
     if (!(detJ > 0.0)) return kElementDegenerate;
     const double wq = q.w[g] * detJ;
-    const Mat3 F = deformation_gradient(dim, nn, U, dNdX);
-    if (!(det(F) > 0.0)) return kElementInverted;
-    const Mat3 C = tmul(F, F);
-    Mat3 S;
-    Ten4 CC;
-    if (WithTangent)
-      mat.stress_and_tangent(C, S, CC);
-    else
-      S = mat.stress(C);
-    energy += wq * mat.energy(C);
-    const Mat3 P = matmul(F, S);
+    const Mat3 F1 = deformation_gradient(dim, nn, U, dNdX);
+    if (!(det(F1) > 0.0)) return kElementInverted;
+    const Mat3 C1 = tmul(F1, F1);
+    energy += wq * mat.energy(C1);
+    Mat3 P, Fv = F1, C0 = C1;
+    Ten4 A;
+    if (et.has_old) {
+      const Mat3 F0 = deformation_gradient(dim, nn, U0, dNdX);
+      C0 = tmul(F0, F0);
+      if (et.eval != StressEval::EndPoint) Fv = 0.5 * (F0 + F1);
+    }
+    if (et.eval == StressEval::EndPoint || et.eval == StressEval::Midpoint) {
+      // Stress of the evaluation configuration Fv (F_{n+1} or F_{n+1/2}).
+      if (!(det(Fv) > 0.0)) return kElementInverted;
+      const Mat3 Cv = tmul(Fv, Fv);
+      Mat3 S;
+      Ten4 CC;
+      if (WithTangent)
+        mat.stress_and_tangent(Cv, S, CC);
+      else
+        S = mat.stress(Cv);
+      P = matmul(Fv, S);
+      if (WithTangent) {
+        spatial_tangent_dPdF(Fv, S, CC, A);
+        if (et.eval == StressEval::Midpoint)  // dF_{n+1/2}/dF_{n+1} = 1/2
+          for (int i = 0; i < 3; ++i)
+            for (int J = 0; J < 3; ++J)
+              for (int k = 0; k < 3; ++k)
+                for (int L = 0; L < 3; ++L) A(i, J, k, L) *= 0.5;
+      }
+    } else {
+      // Gonzalez: P = F_{n+1/2} Sigma, Sigma = Sigma_algo(C_n, C_{n+1}), D = dSigma/dC_{n+1}.
+      //   A_iJkL = 1/2 delta_ik Sigma_LJ + 2 sum_{I,N} Fm_iI D_IJLN F1_kN.
+      Mat3 Sig;
+      Ten4 D;
+      if (WithTangent)
+        gonzalez_stress_and_tangent(mat, C0, C1, Sig, D);
+      else
+        Sig = gonzalez_stress(mat, C0, C1);
+      P = matmul(Fv, Sig);
+      if (WithTangent) {
+        for (int I = 0; I < 3; ++I)
+          for (int J = 0; J < 3; ++J)
+            for (int L = 0; L < 3; ++L)
+              for (int k = 0; k < 3; ++k) {
+                double t = 0.0;
+                for (int Nn = 0; Nn < 3; ++Nn) t += D(I, J, L, Nn) * F1(k, Nn);
+                A(I, J, L, k) = t;  // temporarily T[I][J][L][k]
+              }
+        Ten4 T = A;
+        for (int i = 0; i < 3; ++i)
+          for (int J = 0; J < 3; ++J)
+            for (int k = 0; k < 3; ++k)
+              for (int L = 0; L < 3; ++L) {
+                double v = 2.0 * (Fv(i, 0) * T(0, J, L, k) + Fv(i, 1) * T(1, J, L, k) + Fv(i, 2) * T(2, J, L, k));
+                if (i == k) v += 0.5 * Sig(L, J);
+                A(i, J, k, L) = v;
+              }
+      }
+    }
+    if (et.eta > 0.0) {
+      // Curnier viscosity at the evaluation configuration: P^v = Fv S^v, S^v = 2 eta (C1 - C0)/dt.
+      const Mat3 Sv = curnier_viscous_stress(et.eta, C0, C1, et.dt);
+      dissipation += wq * curnier_dissipation(et.eta, C0, C1, et.dt);
+      P = P + matmul(Fv, Sv);
+      if (WithTangent) {
+        // dP^v_iJ/dF1_kL = c delta_ik Sv_LJ + (2 eta/dt) (Fv_iL F1_kJ + (Fv F1^T)_ik delta_JL), c = dFv/dF1.
+        const double c = (et.eval == StressEval::EndPoint) ? 1.0 : 0.5;
+        const double e2 = 2.0 * et.eta / et.dt;
+        Mat3 FvF1t;
+        for (int i = 0; i < 3; ++i)
+          for (int k = 0; k < 3; ++k) FvF1t(i, k) = Fv(i, 0) * F1(k, 0) + Fv(i, 1) * F1(k, 1) + Fv(i, 2) * F1(k, 2);
+        for (int i = 0; i < 3; ++i)
+          for (int J = 0; J < 3; ++J)
+            for (int k = 0; k < 3; ++k)
+              for (int L = 0; L < 3; ++L) {
+                double v = e2 * Fv(i, L) * F1(k, J);
+                if (J == L) v += e2 * FvF1t(i, k);
+                if (i == k) v += c * Sv(L, J);
+                A(i, J, k, L) += v;
+              }
+      }
+    }
     for (int a = 0; a < nn; ++a)
       for (int i = 0; i < dim; ++i) {
         double s = 0.0;
@@ -74,8 +166,6 @@ KOKKOS_INLINE_FUNCTION int hyperelastic_element(int dim, CellType type, int nn, 
         re[a * dim + i] += wq * s;
       }
     if (WithTangent) {
-      Ten4 A;
-      spatial_tangent_dPdF(F, S, CC, A);
       // G[a][i][k][L] = dN_a/dX_J A_iJkL, then K += G dN_b/dX_L.
       for (int a = 0; a < nn; ++a) {
         double G[3][3][3];
@@ -97,6 +187,22 @@ KOKKOS_INLINE_FUNCTION int hyperelastic_element(int dim, CellType type, int nn, 
     }
   }
   return kElementOk;
+}
+
+// Consistent mass of one cell: M_(a,i),(b,k) = delta_ik int rho N_a N_b dV.
+KOKKOS_INLINE_FUNCTION void mass_element(int dim, CellType type, int nn, const double (*X)[3], double rho, const QuadRule& q,
+                                         double (*ke)[kMaxCellDofs]) {
+  const int nd = nn * dim;
+  for (int i = 0; i < nd; ++i)
+    for (int j = 0; j < nd; ++j) ke[i][j] = 0.0;
+  double N[kMaxCellNodes], dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
+  for (int g = 0; g < q.n; ++g) {
+    shape_functions(type, q.xi[g], N, dN);
+    const double w = rho * q.w[g] * reference_gradients(dim, nn, X, dN, dNdX);
+    for (int a = 0; a < nn; ++a)
+      for (int b = 0; b < nn; ++b)
+        for (int i = 0; i < dim; ++i) ke[a * dim + i][b * dim + i] += w * N[a] * N[b];
+  }
 }
 
 }  // namespace stentor

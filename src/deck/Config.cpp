@@ -184,6 +184,8 @@ class DeckReader {
   void read_bodies(const ParameterList& pl);
   void read_loads(const ParameterList& pl);
   void read_stepping(const ParameterList& pl);
+  void read_initial(const ParameterList& pl);
+  void read_time(const ParameterList& pl);
   void read_newton(const ParameterList& pl);
   void read_linear(const ParameterList& pl);
   void read_output(const ParameterList& pl);
@@ -758,6 +760,43 @@ void DeckReader::read_loads(const ParameterList& pl) {
   }
 }
 
+void DeckReader::read_initial(const ParameterList& pl) {
+  const ListSpec& ls = deck_list_spec("Initial Conditions");
+  check_list(pl, "Initial Conditions", {&ls});
+  auto& ic = cfg_.initial;
+  const int dim = cfg_.mesh.dimension;
+  if (pl.isParameter("velocity")) {
+    const auto v = get_array(pl, ls, "velocity");
+    check_dim_length(v, "Initial Conditions->velocity");
+    for (std::size_t c = 0; c < v.size(); ++c) ic.velocity[c] = v[c];
+  }
+  if (pl.isParameter("angular velocity")) {
+    const auto w = get_array(pl, ls, "angular velocity");
+    if (w.size() == 1) {
+      if (dim == 3) fail("'Initial Conditions->angular velocity' must have 3 values in 3D, got 1");
+      ic.angular_velocity[2] = w[0];
+    } else if (w.size() == 3) {
+      if (dim == 2) fail("'Initial Conditions->angular velocity' must have 1 value (about z) in 2D, got 3");
+      for (std::size_t c = 0; c < 3; ++c) ic.angular_velocity[c] = w[c];
+    } else {
+      fail("'Initial Conditions->angular velocity' must have 1 value (2D, about z) or 3 values (3D), got " +
+           std::to_string(w.size()));
+    }
+  }
+  if (pl.isParameter("center")) {
+    const auto c = get_array(pl, ls, "center");
+    check_dim_length(c, "Initial Conditions->center");
+    for (std::size_t k = 0; k < c.size(); ++k) ic.center[k] = c[k];
+  }
+}
+
+void DeckReader::read_time(const ParameterList& pl) {
+  const ListSpec& ls = deck_list_spec("Time Integration");
+  check_list(pl, "Time Integration", {&ls});
+  cfg_.time.scheme = get_string(pl, ls, "scheme");
+  cfg_.time.hht_alpha = get_double(pl, ls, "hht alpha");
+}
+
 void DeckReader::read_stepping(const ParameterList& pl) {
   const ListSpec& ls = deck_list_spec("Stepping");
   check_list(pl, "Stepping", {&ls});
@@ -880,7 +919,19 @@ Config DeckReader::read() {
   read_materials(root.sublist("Materials"));
   read_bodies(root.sublist("Bodies"));
   if (root.isSublist("Boundary Conditions")) read_loads(root.sublist("Boundary Conditions"));
+  if (root.isSublist("Initial Conditions")) read_initial(root.sublist("Initial Conditions"));
+  if (root.isSublist("Time Integration")) read_time(root.sublist("Time Integration"));
   if (root.isSublist("Stepping")) read_stepping(root.sublist("Stepping"));
+  if (cfg_.problem.dynamic()) {
+    for (const auto& m : cfg_.materials)
+      if (!(m.density > 0.0))
+        fail("'Materials->" + m.name + "->density' must be > 0 in a dynamic analysis ('Problem->analysis' = dynamic)");
+  } else {
+    if (root.isSublist("Initial Conditions"))
+      fail("'Initial Conditions' needs 'Problem->analysis' = dynamic (a static analysis has no velocity)");
+    if (root.isSublist("Time Integration"))
+      fail("'Time Integration' needs 'Problem->analysis' = dynamic");
+  }
   if (root.isSublist("Newton")) read_newton(root.sublist("Newton"));
   if (root.isSublist("Linear Solver")) read_linear(root.sublist("Linear Solver"));
   if (root.isSublist("Output")) read_output(root.sublist("Output"));

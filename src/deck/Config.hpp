@@ -26,7 +26,8 @@ struct Ramp {
 
 struct ProblemConfig {
   std::string title;                 // "Problem"->"title"
-  std::string analysis = "static";   // "Problem"->"analysis": "static" (dynamic comes with the time schemes)
+  std::string analysis = "static";   // "Problem"->"analysis": "static" | "dynamic"
+  bool dynamic() const { return analysis == "dynamic"; }
 };
 
 struct MeshConfig {
@@ -65,6 +66,17 @@ struct LoadConfig {
   // function of the reference position X (3 coordinates): the prescribed displacement for
   // Dirichlet, the force density for a body force. Still multiplied by the ramp.
   std::function<std::array<double, 3>(const double* X)> field;
+};
+
+struct InitialConditionsConfig {
+  std::array<double, 3> velocity{};          // "Initial Conditions"->"velocity"
+  std::array<double, 3> angular_velocity{};  // "angular velocity" (2D: z component only)
+  std::array<double, 3> center{};            // "center"
+};
+
+struct TimeIntegrationConfig {
+  std::string scheme = "gonzalez";  // "Time Integration"->"scheme": gonzalez | midpoint | newmark | hht
+  double hht_alpha = -0.1;          // "hht alpha" in [-1/3, 0]
 };
 
 struct SteppingConfig {
@@ -116,6 +128,8 @@ struct Config {
   std::vector<MaterialConfig> materials;
   std::vector<BodyConfig> bodies;
   std::vector<LoadConfig> loads;
+  InitialConditionsConfig initial;
+  TimeIntegrationConfig time;
   SteppingConfig stepping;
   NewtonConfig newton;
   LinearSolverConfig linear;

@@ -80,15 +80,18 @@ std::vector<ListSpec> build_schema() {
     auto root = list("", "(root)",
                      "The root `<ParameterList>` (any name) holds only sublists; `Mesh`, `Materials` "
                      "and `Bodies` are required.");
-    root.sublists = {"Problem", "Mesh", "Materials", "Bodies", "Boundary Conditions",
-                     "Stepping", "Newton", "Linear Solver", "Output"};
+    root.sublists = {"Problem", "Mesh", "Materials", "Bodies", "Boundary Conditions", "Initial Conditions",
+                     "Time Integration", "Stepping", "Newton", "Linear Solver", "Output"};
     root.required_sublists = {"Mesh", "Materials", "Bodies"};
     s.push_back(root);
   }
 
   s.push_back(list("Problem", "Problem", "What is solved.",
                    {str("title", "", "Free text, echoed in the log and the output files."),
-                    str("analysis", "static", "Kind of analysis.").one_of({"static"})}));
+                    str("analysis", "static",
+                        "`static`: equilibrium at each load step; `dynamic`: momentum balance with inertia "
+                        "(see `Time Integration`).")
+                        .one_of({"static", "dynamic"})}));
 
   s.push_back(list(
       "Mesh", "Mesh", "The gmsh mesh; physical groups name the bodies and the boundaries.",
@@ -169,6 +172,27 @@ std::vector<ListSpec> build_schema() {
                    "Force per unit reference volume.",
                    {str("body", "", "A body: its `Bodies` sublist name or its physical group.").dflt_doc("all bodies"),
                     arr("force", "Force density [N/m^3], one value per dimension.").req().len(2, 3)}));
+
+  s.push_back(list(
+      "Initial Conditions", "Initial Conditions",
+      "Initial velocity of every body (dynamic analysis): v0 = velocity + angular velocity x (X - center). "
+      "The initial displacement is zero.",
+      {arr("velocity", "Uniform initial velocity [m/s], one value per dimension.").len(2, 3).dflt_doc("zeros"),
+       arr("angular velocity",
+           "Rigid rotation rate [rad/s]: 1 value (about z) in 2D, 3 values in 3D.")
+           .len(1, 3)
+           .dflt_doc("zeros"),
+       arr("center", "Centre of the rigid rotation [m].").len(2, 3).dflt_doc("origin")}));
+
+  s.push_back(list(
+      "Time Integration", "Time Integration",
+      "Time scheme of a dynamic analysis. The midpoint family (gonzalez, midpoint) updates "
+      "v_{n+1} = 2 (u_{n+1} - u_n) / dt - v_n; `gonzalez` evaluates the elastic stress with "
+      "Gonzalez's discrete gradient so the discrete energy balance holds exactly; `midpoint` "
+      "evaluates it at F_{n+1/2} (not energy-consistent); `newmark` is average acceleration; "
+      "`hht` is Hilber-Hughes-Taylor with numerical dissipation set by `hht alpha`.",
+      {str("scheme", "gonzalez", "Time integration scheme.").one_of({"gonzalez", "midpoint", "newmark", "hht"}),
+       dbl("hht alpha", -0.1, "HHT parameter alpha (0: Newmark average acceleration).").ge(-1.0 / 3.0).le(0.0)}));
 
   s.push_back(list("Stepping", "Stepping", "Load/time stepping.",
                    {dbl("end time", 1.0, "Final time [s].").gt(0.0),

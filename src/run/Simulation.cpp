@@ -21,6 +21,7 @@
 #include "parallel/Distribution.hpp"
 #include "solver/LinearSolver.hpp"
 #include "solver/Newton.hpp"
+#include "run/TimeIntegrator.hpp"
 
 namespace stentor {
 namespace {
@@ -49,15 +50,15 @@ class Timers {
   std::vector<std::string> order_;
 };
 
-// The static equilibrium residual at load time t, for Newton.
-class StaticSystem : public NewtonSystem {
+// The residual of one step (static equilibrium, or a time scheme's), for Newton.
+class StepSystem : public NewtonSystem {
  public:
-  StaticSystem(Assembler& a, Timers& timers) : a_(a), timers_(timers) {}
-  double t = 0.0, end_time = 1.0;
+  StepSystem(Assembler& a, Timers& timers) : a_(a), timers_(timers) {}
+  Assembler::StepInput input;
   Assembler::Stats last;
   bool evaluate(const la::Vector& u, la::Vector& r, bool tangent) override {
     Timers::Scope s{timers_, "assembly"};
-    last = a_.assemble(u, t, end_time, r, tangent);
+    last = a_.assemble(u, input, r, tangent);
     return last.inverted == 0;
   }
   la::RCP<la::CrsMatrix> matrix() override { return a_.matrix(); }
@@ -67,7 +68,6 @@ class StaticSystem : public NewtonSystem {
   Timers& timers_;
 };
 
-// Linear solver wrapper that times setup and solve separately.
 const char* kAxes[3] = {"x", "y", "z"};
 
 std::string fmt(double v, int prec = 4) {
@@ -135,14 +135,27 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     assembler = std::make_unique<Assembler>(mesh, *dist, cfg, loads, block_mat);
   }
   LinearSolver linear(cfg.linear, comm);
+  {
+    std::vector<double> xyz(3 * static_cast<std::size_t>(dist->num_owned_nodes()));
+    for (la::LO n = 0; n < dist->num_owned_nodes(); ++n)
+      for (int k = 0; k < 3; ++k) xyz[3 * static_cast<std::size_t>(n) + k] = mesh.x[3 * static_cast<std::size_t>(dist->global_node(n)) + k];
+    linear.set_node_coordinates(dim, xyz);
+  }
+  const bool dynamic = cfg.problem.dynamic();
+  std::unique_ptr<TimeIntegrator> integrator;
+  if (dynamic) integrator = std::make_unique<TimeIntegrator>(cfg, *assembler, *dist, mesh);
   out << "  dofs     " << dist->owned_map()->getGlobalNumElements() << "\n"
+      << "  analysis " << (dynamic ? "dynamic: " + integrator->description() : std::string("static (load stepping)")) << "\n"
       << "  solver   " << linear.description() << "\n";
 
   // ---- Output: staged in <dir>.partial, moved into place only when the run succeeds.
   const std::string out_dir = opts.output_dir.empty() ? cfg.output.directory : opts.output_dir;
   std::unique_ptr<OutputDir> staging;
   std::unique_ptr<XdmfWriter> xdmf;
-  std::unique_ptr<CsvWriter> history;
+  std::unique_ptr<CsvWriter> history, energy_csv;
+  const std::vector<std::string> energy_columns = {"step", "time", "kinetic", "strain", "total", "external_work", "support_work",
+                                                   "dissipation", "balance_residual", "momentum_x", "momentum_y", "momentum_z",
+                                                   "angular_momentum_x", "angular_momentum_y", "angular_momentum_z"};
   std::vector<std::string> columns = {"step", "time", "dt", "newton_iterations", "linear_iterations", "cutbacks", "strain_energy"};
   for (const auto& d : assembler->dirichlet_sets())
     for (int k = 0; k < dim; ++k) columns.push_back("reaction_" + d.name + "_" + kAxes[k]);
@@ -155,6 +168,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
       staging = std::make_unique<OutputDir>(out_dir);
       if (cfg.output.fields) xdmf = std::make_unique<XdmfWriter>(staging->path(), cfg.output.basename, mesh);
       history = std::make_unique<CsvWriter>(staging->path() + "/" + cfg.output.basename + "_history.csv", columns);
+      if (dynamic) energy_csv = std::make_unique<CsvWriter>(staging->path() + "/" + cfg.output.basename + "_energy.csv", energy_columns);
     } catch (const std::exception& e) {
       io_error = 1;
       io_message = e.what();
@@ -182,8 +196,17 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   la::Vector u_all(gather_map);
 
   la::Vector u(dist->owned_map()), u_prev(dist->owned_map());
-  StaticSystem system(*assembler, timers);
-  system.end_time = cfg.stepping.end_time;
+  StepSystem system(*assembler, timers);
+  system.input.end_time = cfg.stepping.end_time;
+  // Cumulative energy terms (dynamics), written per step to <basename>_energy.csv.
+  double cum_ext = 0.0, cum_sup = 0.0, cum_diss = 0.0, max_balance = 0.0;
+  auto energy_row = [&](int step_no, double time, const EnergyAudit& au) {
+    if (rank != 0 || !energy_csv) return;
+    energy_csv->row({double(step_no), time, au.kinetic, au.strain, au.kinetic + au.strain, cum_ext, cum_sup, cum_diss, au.balance,
+                     au.momentum[0], au.momentum[1], au.momentum[2], au.angular_momentum[0], au.angular_momentum[1],
+                     au.angular_momentum[2]});
+  };
+  if (dynamic) energy_row(0, 0.0, integrator->initialize(u, cfg.stepping.end_time));
 
   auto write_fields = [&](double t) {
     Timers::Scope s{timers, "output"};
@@ -260,7 +283,13 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     const double t_new = t + dt;
     u_prev.update(1.0, u, 0.0);
     assembler->apply_dirichlet(u, t_new, T);
-    system.t = t_new;
+    if (dynamic) {
+      system.input = integrator->step_input(t, dt, T, u_prev);
+    } else {
+      system.input = Assembler::StepInput{};
+      system.input.load_time = t_new;
+      system.input.end_time = T;
+    }
     NewtonResult nr;
     {
       Timers::Scope s{timers, "newton"};
@@ -289,7 +318,17 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     const auto& reac = assembler->reactions();
     out << "  step " << std::setw(4) << step << "  t " << fmt(t, 4) << "  dt " << fmt(dt, 2) << "  newton " << std::setw(2)
         << nr.iterations << "  linear " << std::setw(4) << nr.linear_iterations << "  |r| " << fmt(nr.residual, 2) << "  W "
-        << fmt(system.last.energy, 6) << "\n";
+        << fmt(system.last.energy, 6);
+    if (dynamic) {
+      const EnergyAudit au = integrator->accept(u_prev, u, dt, system.last);
+      cum_ext += au.external_work;
+      cum_sup += au.support_work;
+      cum_diss += au.dissipation;
+      max_balance = std::max(max_balance, std::abs(au.balance));
+      out << "  K " << fmt(au.kinetic, 6) << "  E " << fmt(au.kinetic + au.strain, 9) << "  balance " << fmt(au.balance, 2);
+      energy_row(step, t, au);
+    }
+    out << "\n";
     if (rank == 0) {
       std::vector<double> row = {double(step), t, dt, double(nr.iterations), double(nr.linear_iterations), double(total_cuts),
                                  system.last.energy};
@@ -328,12 +367,14 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     result->mesh = mesh;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  if (dynamic) out << "Energy balance: max |E_{n+1} - E_n - (W_ext + W_sup - D)| per step = " << fmt(max_balance, 3) << "\n";
   out << (failed ? "FAILED: " + failure + "\n" : "") << "Summary: " << step << " steps, " << total_cuts << " cut-backs, " << total_newton
       << " Newton iterations, " << total_linear << " linear iterations, " << std::fixed << std::setprecision(2) << wall << " s\n";
   for (const auto& n : timers.names()) out << "  " << std::left << std::setw(10) << n << std::right << std::setw(10) << timers.get(n) << " s\n";
   out << std::defaultfloat;
   if (rank == 0) {
     history.reset();
+    energy_csv.reset();
     xdmf.reset();
     if (!failed) {
       const std::string csv = staging->path() + "/" + cfg.output.basename + "_history.csv";
@@ -342,8 +383,17 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
         for (int k = 0; k < dim; ++k) rcols.push_back("reaction_" + d.name + "_" + kAxes[k]);
       if (!rcols.empty())
         plot_csv_png(csv, staging->path() + "/" + cfg.output.basename + "_reactions.png", "time", rcols, "Reaction forces", "force");
-      plot_csv_png(csv, staging->path() + "/" + cfg.output.basename + "_energy.png", "time", {"strain_energy"}, "Stored energy",
-                   "energy");
+      if (dynamic) {
+        const std::string ecsv = staging->path() + "/" + cfg.output.basename + "_energy.csv";
+        energy_csv.reset();
+        plot_csv_png(ecsv, staging->path() + "/" + cfg.output.basename + "_energy.png", "time",
+                     {"kinetic", "strain", "total", "dissipation", "external_work"}, "Energy (" + cfg.time.scheme + ")", "energy");
+        plot_csv_png(ecsv, staging->path() + "/" + cfg.output.basename + "_balance.png", "time", {"balance_residual"},
+                     "Energy balance residual per step", "E_{n+1} - E_n - (W_ext - D)");
+      } else {
+        plot_csv_png(csv, staging->path() + "/" + cfg.output.basename + "_energy.png", "time", {"strain_energy"}, "Stored energy",
+                     "energy");
+      }
       staging->commit();
       out << "Results in " << std::filesystem::absolute(out_dir).string() << "/ (" << cfg.output.basename << ".xdmf for ParaView, "
           << cfg.output.basename << "_history.csv)\n";

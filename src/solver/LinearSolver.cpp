@@ -5,6 +5,8 @@
 #include <BelosTpetraAdapter.hpp>
 #include <Ifpack2_Factory.hpp>
 #include <sstream>
+
+#include "solver/MueLuPreconditioner.hpp"
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #ifdef STENTOR_HAVE_AMESOS2
 #include <Amesos2.hpp>
@@ -16,12 +18,15 @@ struct LinearSolver::Impl {
   LinearSolverConfig cfg;
   la::RCP<const la::Comm> comm;
   la::RCP<la::CrsMatrix> A;
-  la::RCP<Ifpack2::Preconditioner<la::SC, la::LO, la::GO, la::Node>> prec;
+  la::RCP<Ifpack2::Preconditioner<la::SC, la::LO, la::GO, la::Node>> prec;  // schwarz
+  la::RCP<la::Operator> mg;  // muelu (a MueLu::TpetraOperator)
   bool prec_initialized = false;
 #ifdef STENTOR_HAVE_AMESOS2
   la::RCP<Amesos2::Solver<la::CrsMatrix, la::MV>> direct;
 #endif
   Teuchos::RCP<Teuchos::ParameterList> belos_params;
+  int dim = 0;
+  std::vector<double> coords;  // owned nodes, 3 each (for multigrid null spaces)
 
   static Teuchos::RCP<Teuchos::ParameterList> parse(const std::string& xml) {
     if (xml.empty()) return Teuchos::rcp(new Teuchos::ParameterList());
@@ -48,6 +53,11 @@ LinearSolver::LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la
 
 LinearSolver::~LinearSolver() = default;
 
+void LinearSolver::set_node_coordinates(int dim, const std::vector<double>& owned_xyz) {
+  impl_->dim = dim;
+  impl_->coords = owned_xyz;
+}
+
 void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
   Impl& m = *impl_;
   const bool same = (m.A.get() == A.get());
@@ -64,6 +74,19 @@ void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
     return;
   }
   if (m.cfg.preconditioner == "none") return;
+  if (m.cfg.preconditioner == "muelu") {
+#ifdef STENTOR_HAVE_MUELU
+    // Built once per matrix; later Newton iterations recompute it for the new values
+    // through MueLu's reuse path (same graph), which skips parsing and setup of the factories.
+    if (!same || m.mg.is_null())
+      m.mg = make_muelu_preconditioner(A, m.dim, m.coords, m.cfg.muelu_xml);
+    else
+      recompute_muelu_preconditioner(A, m.mg);
+    return;
+#else
+    throw InputError("'Linear Solver->preconditioner' = muelu needs Trilinos with MueLu, which this build lacks; use schwarz");
+#endif
+  }
   if (!same || m.prec.is_null()) {
     Teuchos::ParameterList pl;
     std::string type;
@@ -76,7 +99,7 @@ void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
       if (m.cfg.subdomain_solver == "ILUT") inner.set("fact: ilut level-of-fill", static_cast<double>(std::max(1, m.cfg.fill_level)));
       if (m.cfg.subdomain_solver == "KLU2") inner.set("Amesos2 solver name", std::string("KLU2"));
     } else {
-      throw InputError("Linear Solver->preconditioner: '" + m.cfg.preconditioner + "' is not available in this build (expected 'schwarz' or 'none')");
+      throw InputError("Linear Solver->preconditioner: '" + m.cfg.preconditioner + "' is not available in this build (expected 'schwarz', 'muelu' or 'none')");
     }
     pl.setParameters(*Impl::parse(m.cfg.ifpack2_xml));
     m.prec = Ifpack2::Factory::create<la::RowMatrix>(type, A);
@@ -103,6 +126,7 @@ LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x) {
   auto problem = Teuchos::rcp(new Belos::LinearProblem<la::SC, la::MV, la::Operator>(
       m.A, Teuchos::rcpFromRef(static_cast<la::MV&>(x)), Teuchos::rcpFromRef(static_cast<const la::MV&>(b))));
   if (!m.prec.is_null()) problem->setRightPrec(m.prec);
+  if (!m.mg.is_null()) problem->setRightPrec(m.mg);
   problem->setProblem();
   Belos::PseudoBlockGmresSolMgr<la::SC, la::MV, la::Operator> solver(problem, m.belos_params);
   const Belos::ReturnType ret = solver.solve();
@@ -121,6 +145,8 @@ std::string LinearSolver::description() const {
   if (c.preconditioner == "schwarz")
     s += ", Ifpack2 Schwarz overlap " + std::to_string(c.overlap) + " / " + c.subdomain_solver +
          (c.subdomain_solver == "RILUK" ? "(" + std::to_string(c.fill_level) + ")" : "");
+  else if (c.preconditioner == "muelu")
+    s += ", MueLu smoothed-aggregation AMG (rigid-body modes)";
   else
     s += ", no preconditioner";
   return s;

@@ -5,6 +5,7 @@
 #pragma once
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "deck/Config.hpp"
 #include "parallel/LinearAlgebra.hpp"
@@ -15,6 +16,11 @@ class LinearSolver {
  public:
   LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la::Comm>& comm);
   ~LinearSolver();
+
+  // Reference coordinates of the owned nodes (3 per node, in the order of the owned
+  // dof map's nodes; dof = node*dim + c). Multigrid builds the rigid-body modes of
+  // elasticity from them; other preconditioners ignore them. Call before setup().
+  void set_node_coordinates(int dim, const std::vector<double>& owned_xyz);
 
   // New matrix values (same graph as the previous call, if any).
   void setup(const la::RCP<la::CrsMatrix>& A);

@@ -19,6 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "fem/Geometry.hpp"
+#include "fem/Quadrature.hpp"
+#include "fem/Shape.hpp"
 #include "run/Simulation.hpp"
 
 using namespace stentor;
@@ -88,7 +91,28 @@ struct PatchResult {
   bool converged = false;
   double rel_error = 1e300;             // max_n |u_h - H X| / max_n |H X|
   std::map<CellType, std::size_t> cells;  // volume cells by type
+  double size_ratio = 0;                  // largest / smallest cell measure (grading)
 };
+
+// Largest / smallest cell area (2D) or volume (3D).
+double cell_measure_ratio(const Mesh& mesh) {
+  double lo = 1e300, hi = 0;
+  double xi[kMaxQuadPoints][3], w[kMaxQuadPoints];
+  for (const auto& blk : mesh.volumes) {
+    const int nq = quadrature(blk.type, 2, xi, w), nn = blk.nodes_per_cell;
+    for (std::size_t c = 0; c < blk.num_cells(); ++c) {
+      double X[kMaxCellNodes][3], N[kMaxCellNodes], dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3], m = 0;
+      for (int a = 0; a < nn; ++a)
+        for (int d = 0; d < 3; ++d) X[a][d] = mesh.x[3 * static_cast<std::size_t>(blk.conn[c * nn + a]) + d];
+      for (int q = 0; q < nq; ++q) {
+        shape_functions(blk.type, xi[q], N, dN);
+        m += w[q] * reference_gradients(mesh.dim, nn, X, dN, dNdX);
+      }
+      lo = std::min(lo, m), hi = std::max(hi, m);
+    }
+  }
+  return hi / lo;
+}
 
 PatchResult run_patch(const std::string& geo, int dim, int order, bool recombine, const std::string& tag) {
   // A general (non-symmetric, volume-changing) H with entries 0.03-0.09: finite strain.
@@ -143,6 +167,7 @@ PatchResult run_patch(const std::string& geo, int dim, int order, bool recombine
   if (run_simulation(cfg, opts, &res) != 0) return pr;
   pr.converged = res.converged;
   for (const auto& blk : res.mesh.volumes) pr.cells[blk.type] += blk.num_cells();
+  pr.size_ratio = cell_measure_ratio(res.mesh);
   std::vector<char> used(res.mesh.num_nodes(), 0);
   for (const auto& blk : res.mesh.volumes)
     for (GId n : blk.conn) used[static_cast<std::size_t>(n)] = 1;
@@ -161,7 +186,8 @@ PatchResult run_patch(const std::string& geo, int dim, int order, bool recombine
   pr.rel_error = err / scale;
   std::printf("[patch] %-6s cells:", tag.c_str());
   for (const auto& [t, c] : pr.cells) std::printf(" %zu %s", c, cell_name(t));
-  std::printf("  newton %d  max nodal error / max |u| = %.3e\n", res.newton_iterations, pr.rel_error);
+  std::printf("  (largest/smallest cell %.0f)  newton %d  max nodal error / max |u| = %.3e\n", pr.size_ratio, res.newton_iterations,
+              pr.rel_error);
   return pr;
 }
 
@@ -169,6 +195,7 @@ void expect_patch(const std::string& geo, int dim, int order, bool recombine, Ce
   const PatchResult r = run_patch(geo, dim, order, recombine, tag);
   ASSERT_TRUE(r.converged) << tag;
   ASSERT_TRUE(r.cells.count(main_type) && r.cells.at(main_type) > 0) << tag << ": no " << cell_name(main_type) << " cells";
+  EXPECT_GT(r.size_ratio, 5.0) << tag << ": the mesh is not graded as intended";
   EXPECT_LT(r.rel_error, 1e-9) << tag;
 }
 

@@ -1,0 +1,173 @@
+#include "run/TimeIntegrator.hpp"
+
+#include <Teuchos_CommHelpers.hpp>
+
+#include <cmath>
+#include <sstream>
+
+namespace stentor {
+
+TimeIntegrator::TimeIntegrator(const Config& cfg, Assembler& assembler, const Distribution& dist, const Mesh& mesh)
+    : scheme_(cfg.time.scheme), cfg_(cfg), assembler_(assembler), dist_(dist), mesh_(mesh) {
+  if (scheme_ == "newmark") alpha_ = 0.0;
+  if (scheme_ == "hht") alpha_ = cfg.time.hht_alpha;
+  beta_ = 0.25 * (1.0 - alpha_) * (1.0 - alpha_);
+  gamma_ = 0.5 - alpha_;
+  const auto& map = dist.owned_map();
+  for (auto* v : {&v_, &a_, &u_tilde_, &extra_, &r_static_n_, &f_ext_n_, &du_, &Mv_}) *v = Teuchos::rcp(new la::Vector(map));
+}
+
+std::string TimeIntegrator::description() const {
+  std::ostringstream os;
+  if (scheme_ == "gonzalez") os << "Gonzalez energy-consistent midpoint (discrete gradient)";
+  if (scheme_ == "midpoint") os << "implicit midpoint rule";
+  if (scheme_ == "newmark") os << "Newmark average acceleration (beta 1/4, gamma 1/2)";
+  if (scheme_ == "hht") os << "HHT-alpha (alpha " << alpha_ << ", beta " << beta_ << ", gamma " << gamma_ << ")";
+  return os.str();
+}
+
+EnergyAudit TimeIntegrator::initialize(const la::Vector& u0, double end_time) {
+  const int dim = dist_.dim();
+  const auto& ic = cfg_.initial;
+  {
+    auto vh = v_->getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (la::LO n = 0; n < dist_.num_owned_nodes(); ++n) {
+      const double* X = &mesh_.x[3 * static_cast<std::size_t>(dist_.global_node(n))];
+      const double r[3] = {X[0] - ic.center[0], X[1] - ic.center[1], X[2] - ic.center[2]};
+      const auto& w = ic.angular_velocity;
+      const double v[3] = {ic.velocity[0] + w[1] * r[2] - w[2] * r[1], ic.velocity[1] + w[2] * r[0] - w[0] * r[2],
+                           ic.velocity[2] + w[0] * r[1] - w[1] * r[0]};
+      for (int c = 0; c < dim; ++c) {
+        const la::LO i = n * dim + c;
+        vh(i, 0) = assembler_.is_dirichlet(i) ? 0.0 : v[c];
+      }
+    }
+  }
+  a_->putScalar(0.0);
+  la::Vector r(dist_.owned_map());
+  assembler_.assemble(u0, 0.0, end_time, r, false);
+  r_static_n_->update(1.0, assembler_.static_residual(), 0.0);
+  f_ext_n_->update(1.0, assembler_.external_force(), 0.0);
+  if (!midpoint_family()) {
+    // M a_0 = f_ext(0) - f_int(u_0) on free dofs; a_0 = 0 on constrained ones.
+    la::Vector rhs(dist_.owned_map());
+    rhs.update(-1.0, assembler_.static_residual(), 0.0);
+    if (rhs.normInf() > 0.0) {
+      auto Mc = Teuchos::rcp(new la::CrsMatrix(*assembler_.mass(), Teuchos::Copy));
+      Mc->resumeFill();
+      auto rh = rhs.getLocalViewHost(Tpetra::Access::ReadWrite);
+      for (la::LO i = 0; i < static_cast<la::LO>(rhs.getLocalLength()); ++i) {
+        if (!assembler_.is_dirichlet(i)) continue;
+        rh(i, 0) = 0.0;
+        la::CrsMatrix::nonconst_local_inds_host_view_type cols("cols", Mc->getNumEntriesInLocalRow(i));
+        la::CrsMatrix::nonconst_values_host_view_type vals("vals", cols.extent(0));
+        size_t nnz = 0;
+        Mc->getLocalRowCopy(i, cols, vals, nnz);
+        const la::LO diag = Mc->getColMap()->getLocalElement(dist_.owned_map()->getGlobalElement(i));
+        for (size_t k = 0; k < nnz; ++k) vals(k) = (cols(k) == diag) ? 1.0 : 0.0;
+        Mc->replaceLocalValues(i, cols, vals);
+      }
+      Mc->fillComplete(dist_.owned_map(), dist_.owned_map());
+      LinearSolver lin(cfg_.linear, dist_.comm());
+      lin.setup(Mc);
+      lin.solve(rhs, *a_);
+    }
+  }
+  EnergyAudit au = audit(u0);
+  au.strain = 0.0;
+  {
+    la::Vector rr(dist_.owned_map());
+    au.strain = assembler_.assemble(u0, 0.0, end_time, rr, false).energy;
+  }
+  energy_n_ = au.kinetic + au.strain;
+  return au;
+}
+
+Assembler::StepInput TimeIntegrator::step_input(double t_n, double dt, double end_time, const la::Vector& u_n) {
+  Assembler::StepInput in;
+  in.end_time = end_time;
+  in.u_old = &u_n;
+  in.dt = dt;
+  dt_ = dt;
+  if (midpoint_family()) {
+    in.eval = (scheme_ == "gonzalez") ? StressEval::Gonzalez : StressEval::Midpoint;
+    in.load_time = t_n + 0.5 * dt;
+    in.pressure_theta = 0.5;
+    in.mass_coeff = 2.0 / (dt * dt);
+    u_tilde_->update(1.0, u_n, dt, *v_, 0.0);
+  } else {
+    in.eval = StressEval::EndPoint;
+    in.load_time = t_n + dt;
+    in.pressure_theta = 1.0;
+    in.scale = 1.0 + alpha_;
+    in.mass_coeff = 1.0 / (beta_ * dt * dt);
+    u_tilde_->update(1.0, u_n, dt, *v_, 0.0);
+    u_tilde_->update(dt * dt * (0.5 - beta_), *a_, 1.0);
+    if (alpha_ != 0.0) {
+      extra_->update(-alpha_, *r_static_n_, 0.0);
+      in.extra = extra_.get();
+    }
+  }
+  in.u_tilde = u_tilde_.get();
+  return in;
+}
+
+EnergyAudit TimeIntegrator::accept(const la::Vector& u_n, const la::Vector& u_np1, double dt, const Assembler::Stats& last) {
+  du_->update(1.0, u_np1, -1.0, u_n, 0.0);
+  EnergyAudit au;
+  if (midpoint_family()) {
+    au.external_work = assembler_.external_force().dot(*du_);  // f_ext(t_{n+1/2}, x_{n+1/2}) . du
+    v_->update(2.0 / dt, *du_, -1.0);                           // v_{n+1} = 2 du/dt - v_n
+  } else {
+    // Trapezoidal work of the end-point loads.
+    au.external_work = 0.5 * (assembler_.external_force().dot(*du_) + f_ext_n_->dot(*du_));
+    la::Vector a_new(dist_.owned_map());
+    a_new.update(1.0 / (beta_ * dt * dt), *du_, -1.0 / (beta_ * dt), *v_, 0.0);
+    a_new.update(-(0.5 / beta_ - 1.0), *a_, 1.0);
+    v_->update(dt * (1.0 - gamma_), *a_, dt * gamma_, a_new, 1.0);
+    a_->update(1.0, a_new, 0.0);
+    r_static_n_->update(1.0, assembler_.static_residual(), 0.0);
+    f_ext_n_->update(1.0, assembler_.external_force(), 0.0);
+  }
+  au.support_work = assembler_.support_work(*du_);
+  au.dissipation = last.dissipation;
+  const EnergyAudit state = audit(u_np1);
+  au.kinetic = state.kinetic;
+  au.momentum = state.momentum;
+  au.angular_momentum = state.angular_momentum;
+  au.strain = last.energy;
+  const double e_new = au.kinetic + au.strain;
+  au.balance = e_new - energy_n_ - (au.external_work + au.support_work - au.dissipation);
+  energy_n_ = e_new;
+  return au;
+}
+
+// Kinetic energy 1/2 v.Mv, linear momentum sum(Mv), angular momentum sum x x (Mv) with
+// x = X + u (consistent mass: these are the discrete momenta the midpoint schemes conserve).
+EnergyAudit TimeIntegrator::audit(const la::Vector& u) const {
+  EnergyAudit au;
+  assembler_.mass()->apply(*v_, *Mv_);
+  au.kinetic = 0.5 * v_->dot(*Mv_);
+  const int dim = dist_.dim();
+  auto mv = Mv_->getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
+  double loc[6] = {0, 0, 0, 0, 0, 0}, glob[6];
+  for (la::LO n = 0; n < dist_.num_owned_nodes(); ++n) {
+    const double* X = &mesh_.x[3 * static_cast<std::size_t>(dist_.global_node(n))];
+    double x[3] = {X[0], X[1], X[2]}, p[3] = {0, 0, 0};
+    for (int c = 0; c < dim; ++c) {
+      x[c] += uh(n * dim + c, 0);
+      p[c] = mv(n * dim + c, 0);
+      loc[c] += p[c];
+    }
+    loc[3] += x[1] * p[2] - x[2] * p[1];
+    loc[4] += x[2] * p[0] - x[0] * p[2];
+    loc[5] += x[0] * p[1] - x[1] * p[0];
+  }
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 6, loc, glob);
+  au.momentum = {glob[0], glob[1], glob[2]};
+  au.angular_momentum = {glob[3], glob[4], glob[5]};
+  return au;
+}
+
+}  // namespace stentor

@@ -1,0 +1,65 @@
+// Time schemes of a dynamic analysis, and the energy audit that checks them.
+//
+// Every scheme is written as "static residual + inertia" so one Newton loop and one
+// assembler serve all of them (Assembler::StepInput):
+//   midpoint family (gonzalez, midpoint):  v_{n+1} = 2 (u_{n+1} - u_n)/dt - v_n,
+//     r = M (v_{n+1} - v_n)/dt + f_int,algo + f_visc - f_ext(t_{n+1/2})
+//       = (2/dt^2) M (u_{n+1} - u_n - dt v_n) + ...
+//   newmark (beta = 1/4, gamma = 1/2) and hht (alpha in [-1/3, 0], beta = (1-alpha)^2/4,
+//   gamma = 1/2 - alpha):
+//     r = M a_{n+1} + (1+alpha) (f_int - f_ext)_{n+1} - alpha (f_int - f_ext)_n.
+// The audit computes each energy term independently (kinetic from v and M, stored from
+// the strain-energy integral, dissipation from the viscous integral, external work from
+// f_ext . du, support work from the reactions) so that the balance residual
+//   E_{n+1} - E_n - (W_ext + W_support - D)
+// is a real check of the scheme, not an identity.
+#pragma once
+#include <array>
+#include <string>
+
+#include "assembly/Assembler.hpp"
+#include "deck/Config.hpp"
+#include "solver/LinearSolver.hpp"
+
+namespace stentor {
+
+struct EnergyAudit {
+  double kinetic = 0, strain = 0;                      // at t_{n+1}
+  double external_work = 0, support_work = 0, dissipation = 0;  // over the step
+  double balance = 0;                                  // E_{n+1} - E_n - (W_ext + W_sup - D)
+  std::array<double, 3> momentum{}, angular_momentum{};
+};
+
+class TimeIntegrator {
+ public:
+  TimeIntegrator(const Config& cfg, Assembler& assembler, const Distribution& dist, const Mesh& mesh);
+
+  // Sets v_0 from the deck's initial conditions (zero on constrained dofs) and, for
+  // newmark/hht, a_0 = M^{-1} (f_ext(0) - f_int(u_0)). Returns the audit of the state at t = 0.
+  EnergyAudit initialize(const la::Vector& u0, double end_time);
+
+  // Assembler input for the step t_n -> t_n + dt from u_n.
+  Assembler::StepInput step_input(double t_n, double dt, double end_time, const la::Vector& u_n);
+
+  // After a converged step (u_n -> u_{n+1}): velocities, accelerations, history; the audit.
+  EnergyAudit accept(const la::Vector& u_n, const la::Vector& u_np1, double dt, const Assembler::Stats& last);
+
+  const la::Vector& velocity() const { return *v_; }
+  bool midpoint_family() const { return scheme_ == "gonzalez" || scheme_ == "midpoint"; }
+  std::string description() const;
+
+ private:
+  EnergyAudit audit(const la::Vector& u) const;
+
+  std::string scheme_;
+  double alpha_ = 0.0, beta_ = 0.25, gamma_ = 0.5;
+  const Config& cfg_;
+  Assembler& assembler_;
+  const Distribution& dist_;
+  const Mesh& mesh_;
+  la::RCP<la::Vector> v_, a_, u_tilde_, extra_, r_static_n_, f_ext_n_, du_, Mv_;
+  double energy_n_ = 0.0;  // total mechanical energy at t_n
+  double dt_ = 0.0;
+};
+
+}  // namespace stentor
