@@ -5,8 +5,14 @@
 #include <BelosTpetraAdapter.hpp>
 #include <Ifpack2_Factory.hpp>
 #include <sstream>
+#include <cstdlib>
+#include <iostream>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
 
 #include "solver/MueLuPreconditioner.hpp"
+#include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #ifdef STENTOR_HAVE_AMESOS2
 #include <Amesos2.hpp>
@@ -23,9 +29,71 @@ struct LinearSolver::Impl {
   bool prec_initialized = false;
 #ifdef STENTOR_HAVE_AMESOS2
   la::RCP<Amesos2::Solver<la::CrsMatrix, la::MV>> direct;
+  la::RCP<la::CrsMatrix> Ac;  // A gathered on rank 0, on a one-process communicator (more than one rank)
+  bool gathered = false;
+
+  la::RCP<la::CrsMatrix> contiguous_copy(const la::CrsMatrix& A) const {
+    const auto om = A.getRowMap();
+    const auto inv = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+    auto cmap = Teuchos::rcp(new la::Map(inv, om->getNodeNumElements(), 0, comm));
+    // New global id of every column, carried as doubles (exact below 2^53).
+    la::Vector ids(om), ids_col(A.getColMap());
+    {
+      auto h = ids.getLocalViewHost(Tpetra::Access::OverwriteAll);
+      for (size_t i = 0; i < om->getNodeNumElements(); ++i) h(i, 0) = static_cast<double>(cmap->getGlobalElement(static_cast<la::LO>(i)));
+    }
+    ids_col.doImport(ids, la::Import(om, A.getColMap()), Tpetra::INSERT);
+    auto ch = ids_col.getLocalViewHost(Tpetra::Access::ReadOnly);
+    auto Ac = Teuchos::rcp(new la::CrsMatrix(cmap, A.getNodeMaxNumRowEntries()));
+    std::vector<la::GO> gcols;
+    std::vector<la::SC> gvals;
+    for (size_t i = 0; i < om->getNodeNumElements(); ++i) {
+      la::CrsMatrix::local_inds_host_view_type cols;
+      la::CrsMatrix::values_host_view_type vals;
+      A.getLocalRowView(static_cast<la::LO>(i), cols, vals);
+      gcols.resize(cols.extent(0));
+      gvals.resize(cols.extent(0));
+      for (size_t k = 0; k < cols.extent(0); ++k) {
+        gcols[k] = static_cast<la::GO>(ch(cols(k), 0));
+        gvals[k] = vals(k);
+      }
+      Ac->insertGlobalValues(cmap->getGlobalElement(static_cast<la::LO>(i)), Teuchos::ArrayView<const la::GO>(gcols),
+                             Teuchos::ArrayView<const la::SC>(gvals));
+    }
+    Ac->fillComplete(cmap, cmap);
+    // Everything on rank 0 (KLU2 is a serial solver; its distributed input path gives
+    // wrong answers here), still numbered 0..N-1.
+    const size_t n = cmap->getGlobalNumElements();
+    auto map0 = Teuchos::rcp(new la::Map(n, comm->getRank() == 0 ? n : 0, 0, comm));
+    auto A0 = Teuchos::rcp(new la::CrsMatrix(map0, 0));
+    A0->doImport(*Ac, la::Import(cmap, map0), Tpetra::INSERT);
+    A0->fillComplete(map0, map0);
+    if (comm->getRank() != 0) return Teuchos::null;
+    // On rank 0, the same rows as a matrix of a one-process communicator: KLU2's
+    // multi-process input path gave wrong answers even with every row on rank 0.
+    auto self = Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_SELF));
+    auto smap = Teuchos::rcp(new la::Map(n, 0, self));
+    auto As = Teuchos::rcp(new la::CrsMatrix(smap, A0->getNodeMaxNumRowEntries()));
+    const auto cm = A0->getColMap();
+    for (size_t i = 0; i < n; ++i) {
+      la::CrsMatrix::local_inds_host_view_type cols;
+      la::CrsMatrix::values_host_view_type vals;
+      A0->getLocalRowView(static_cast<la::LO>(i), cols, vals);
+      gcols.resize(cols.extent(0));
+      gvals.resize(cols.extent(0));
+      for (size_t k = 0; k < cols.extent(0); ++k) {
+        gcols[k] = cm->getGlobalElement(cols(k));
+        gvals[k] = vals(k);
+      }
+      As->insertGlobalValues(static_cast<la::GO>(i), Teuchos::ArrayView<const la::GO>(gcols), Teuchos::ArrayView<const la::SC>(gvals));
+    }
+    As->fillComplete(smap, smap);
+    return As;
+  }
 #endif
   Teuchos::RCP<Teuchos::ParameterList> belos_params;
   int dim = 0;
+  double t_setup = 0, t_solve = 0; int n_setup = 0;  // TMPTIMING
   std::vector<double> coords;  // owned nodes, 3 each (for multigrid null spaces)
 
   static Teuchos::RCP<Teuchos::ParameterList> parse(const std::string& xml) {
@@ -51,25 +119,41 @@ LinearSolver::LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la
 #endif
 }
 
-LinearSolver::~LinearSolver() = default;
+LinearSolver::~LinearSolver() {
+  if (std::getenv("STENTOR_LS_TIMING") && impl_->comm->getRank() == 0)  // TMPTIMING
+    std::printf("LSTIMING setups %d setup %.3f s solve %.3f s\n", impl_->n_setup, impl_->t_setup, impl_->t_solve);
+}
 
 void LinearSolver::set_node_coordinates(int dim, const std::vector<double>& owned_xyz) {
   impl_->dim = dim;
   impl_->coords = owned_xyz;
 }
 
+struct TmpTimer { double& acc; std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();  // TMPTIMING
+  ~TmpTimer() { acc += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); } };
 void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
   Impl& m = *impl_;
+  TmpTimer tt{m.t_setup}; ++m.n_setup;  // TMPTIMING
   const bool same = (m.A.get() == A.get());
   m.A = A;
   if (m.cfg.method == "direct") {
 #ifdef STENTOR_HAVE_AMESOS2
-    if (!same || m.direct.is_null()) {
+    if (m.comm->getSize() > 1) {
+      // Amesos2's KLU2 (Trilinos 13.2) solved our distributed systems wrongly (measured:
+      // |Ax - b| ~ |b| on 2 ranks, with contiguous or non-contiguous maps alike). Factor
+      // a copy gathered on rank 0 instead: renumbered contiguously, then imported.
+      m.Ac = m.contiguous_copy(*A);
+      m.gathered = true;
+      if (m.Ac.is_null()) return;  // ranks other than 0 only send and receive
+      m.direct = Amesos2::create<la::CrsMatrix, la::MV>("KLU2", m.Ac);
+      if (!m.cfg.amesos2_xml.empty()) m.direct->setParameters(Impl::parse(m.cfg.amesos2_xml));
+      m.direct->symbolicFactorization();
+    } else if (!same || m.direct.is_null()) {
       m.direct = Amesos2::create<la::CrsMatrix, la::MV>("KLU2", A);
       if (!m.cfg.amesos2_xml.empty()) m.direct->setParameters(Impl::parse(m.cfg.amesos2_xml));
       m.direct->symbolicFactorization();
     }
-    m.direct->numericFactorization();
+    if (!m.direct.is_null()) m.direct->numericFactorization();
 #endif
     return;
   }
@@ -78,7 +162,7 @@ void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
 #ifdef STENTOR_HAVE_MUELU
     // Built once per matrix; later Newton iterations recompute it for the new values
     // through MueLu's reuse path (same graph), which skips parsing and setup of the factories.
-    if (!same || m.mg.is_null())
+    if (!same || m.mg.is_null() || std::getenv("STENTOR_MUELU_REBUILD"))  // TMPTIMING
       m.mg = make_muelu_preconditioner(A, m.dim, m.coords, m.cfg.muelu_xml);
     else
       recompute_muelu_preconditioner(A, m.mg);
@@ -111,13 +195,50 @@ void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
 
 LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x) {
   Impl& m = *impl_;
+  TmpTimer tt{m.t_solve};  // TMPTIMING
   Result res;
   x.putScalar(0.0);
   if (m.cfg.method == "direct") {
 #ifdef STENTOR_HAVE_AMESOS2
-    m.direct->setX(Teuchos::rcpFromRef(static_cast<la::MV&>(x)));
-    m.direct->setB(Teuchos::rcpFromRef(static_cast<const la::MV&>(b)));
-    m.direct->solve();
+    if (m.gathered) {
+      // Renumber b contiguously (same local rows, same order), gather it on rank 0,
+      // solve there, and send the solution back the same way.
+      const auto om = b.getMap();
+      const auto inv = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
+      auto cmap = Teuchos::rcp(new la::Map(inv, om->getNodeNumElements(), 0, m.comm));
+      const size_t n = cmap->getGlobalNumElements();
+      auto map0 = Teuchos::rcp(new la::Map(n, m.comm->getRank() == 0 ? n : 0, 0, m.comm));
+      la::Vector bc(cmap), xc(cmap), b0(map0), x0(map0);
+      {
+        auto bh = b.getLocalViewHost(Tpetra::Access::ReadOnly);
+        auto ch = bc.getLocalViewHost(Tpetra::Access::OverwriteAll);
+        for (size_t i = 0; i < b.getLocalLength(); ++i) ch(i, 0) = bh(i, 0);
+      }
+      const la::Import to0(cmap, map0);
+      b0.doImport(bc, to0, Tpetra::INSERT);
+      if (!m.Ac.is_null()) {
+        la::Vector bs(m.Ac->getRowMap()), xs(m.Ac->getRowMap());
+        {
+          auto h0 = b0.getLocalViewHost(Tpetra::Access::ReadOnly);
+          auto hs = bs.getLocalViewHost(Tpetra::Access::OverwriteAll);
+          for (size_t i = 0; i < n; ++i) hs(i, 0) = h0(i, 0);
+        }
+        m.direct->setX(Teuchos::rcpFromRef(static_cast<la::MV&>(xs)));
+        m.direct->setB(Teuchos::rcpFromRef(static_cast<const la::MV&>(bs)));
+        m.direct->solve();
+        auto h0 = x0.getLocalViewHost(Tpetra::Access::OverwriteAll);
+        auto hs = xs.getLocalViewHost(Tpetra::Access::ReadOnly);
+        for (size_t i = 0; i < n; ++i) h0(i, 0) = hs(i, 0);
+      }
+      xc.doExport(x0, to0, Tpetra::INSERT);
+      auto xh = x.getLocalViewHost(Tpetra::Access::OverwriteAll);
+      auto ch = xc.getLocalViewHost(Tpetra::Access::ReadOnly);
+      for (size_t i = 0; i < x.getLocalLength(); ++i) xh(i, 0) = ch(i, 0);
+    } else {
+      m.direct->setX(Teuchos::rcpFromRef(static_cast<la::MV&>(x)));
+      m.direct->setB(Teuchos::rcpFromRef(static_cast<const la::MV&>(b)));
+      m.direct->solve();
+    }
     res.converged = true;
     res.iterations = 1;
 #endif
