@@ -195,7 +195,8 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   la::Import gather(dist->owned_map(), gather_map);
   la::Vector u_all(gather_map);
 
-  la::Vector u(dist->owned_map()), u_prev(dist->owned_map());
+  la::Vector u(dist->owned_map()), u_prev(dist->owned_map()), u_before_last(dist->owned_map());
+  double dt_last = 0.0;
   StepSystem system(*assembler, timers);
   system.input.end_time = cfg.stepping.end_time;
   // Cumulative energy terms (dynamics), written per step to <basename>_energy.csv.
@@ -282,7 +283,6 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     dt = std::min(dt, T - t);
     const double t_new = t + dt;
     u_prev.update(1.0, u, 0.0);
-    assembler->apply_dirichlet(u, t_new, T);
     if (dynamic) {
       system.input = integrator->step_input(t, dt, T, u_prev);
     } else {
@@ -290,8 +290,23 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
       system.input.load_time = t_new;
       system.input.end_time = T;
     }
+    // Initial guess. Statics: extrapolate the last converged increment, so a prescribed
+    // boundary motion is spread into the interior instead of squeezing the boundary
+    // layer of cells (which can invert them); fall back to u_n if that guess is inadmissible.
     NewtonResult nr;
+    bool predicted = false;
+    if (!dynamic && step > 0 && dt_last > 0.0) {
+      u.update(dt / dt_last, u_prev, -dt / dt_last, u_before_last, 1.0);
+      predicted = true;
+    }
+    assembler->apply_dirichlet(u, t_new, T);
     {
+      Timers::Scope s{timers, "newton"};
+      nr = newton_solve(system, u, linear, cfg.newton, newton_log);
+    }
+    if (predicted && !nr.converged && nr.iterations == 0) {
+      u.update(1.0, u_prev, 0.0);
+      assembler->apply_dirichlet(u, t_new, T);
       Timers::Scope s{timers, "newton"};
       nr = newton_solve(system, u, linear, cfg.newton, newton_log);
     }
@@ -315,6 +330,8 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     }
     t = t_new;
     ++step;
+    u_before_last.update(1.0, u_prev, 0.0);
+    dt_last = dt;
     const auto& reac = assembler->reactions();
     out << "  step " << std::setw(4) << step << "  t " << fmt(t, 4) << "  dt " << fmt(dt, 2) << "  newton " << std::setw(2)
         << nr.iterations << "  linear " << std::setw(4) << nr.linear_iterations << "  |r| " << fmt(nr.residual, 2) << "  W "
