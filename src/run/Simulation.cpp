@@ -62,6 +62,8 @@ class StepSystem : public NewtonSystem {
     return last.inverted == 0;
   }
   la::RCP<la::CrsMatrix> matrix() override { return a_.matrix(); }
+  // |f_ext| and |f_int - f_ext| over all rows (reactions included): the forces in play.
+  double force_scale() const override { return std::max(a_.external_force().norm2(), a_.static_residual().norm2()); }
 
  private:
   Assembler& a_;

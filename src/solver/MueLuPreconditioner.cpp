@@ -43,6 +43,27 @@ void zero_identity_rows(const la::CrsMatrix& A, la::MV& v) {
   }
 }
 
+#ifdef STENTOR_HAVE_MUELU
+// Teuchos' validation message without the file/line header and the list of every valid
+// parameter (MueLu's "Did you mean ...?" hint is kept).
+std::string short_message(const std::string& what) {
+  std::size_t b = what.find("Error, the parameter");
+  if (b == std::string::npos) b = what.find("Error,");
+  if (b == std::string::npos) return what;
+  std::size_t e = what.find("The valid parameters", b);
+  std::string msg = what.substr(b, e == std::string::npos ? std::string::npos : e - b);
+  const std::size_t hint = what.find("The parameter name \"");
+  if (hint != std::string::npos) msg += " " + what.substr(hint);
+  std::string out;
+  for (char c : msg) {
+    if (c == '\n') c = ' ';
+    if (c != ' ' || (!out.empty() && out.back() != ' ')) out += c;
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out;
+}
+#endif
+
 }  // namespace
 
 la::RCP<la::MV> rigid_body_modes(const la::RCP<const la::Map>& row_map, int dim, const std::vector<double>& owned_xyz) {
@@ -140,7 +161,7 @@ la::RCP<la::Operator> make_muelu_preconditioner(const la::RCP<la::CrsMatrix>& A,
   try {
     return MueLu::CreateTpetraPreconditioner<la::SC, la::LO, la::GO, la::Node>(Aop, p);
   } catch (const Teuchos::Exceptions::InvalidParameter& e) {  // unknown name, wrong type or value
-    throw InputError(std::string("Linear Solver->MueLu: ") + e.what());
+    throw InputError("Linear Solver->MueLu: " + short_message(e.what()));
   }
 }
 

@@ -16,7 +16,8 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
   double rn = r.norm2();
   res.residual0 = rn;
   res.residual = rn;
-  const double target = std::max(cfg.residual_tolerance * rn, cfg.absolute_tolerance);
+  const double ref = std::max(rn, sys.force_scale());
+  const double target = std::max(cfg.residual_tolerance * ref, cfg.absolute_tolerance);
   if (rn <= target) {
     res.converged = true;
     return res;
@@ -78,7 +79,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
       res.failure = "residual is not finite";
       return res;
     }
-    if (rn <= target || (step <= cfg.increment_tolerance * std::max(un, 1e-300) && rn <= std::sqrt(cfg.residual_tolerance) * res.residual0)) {
+    if (rn <= target || (step <= cfg.increment_tolerance * std::max(un, 1e-300) && rn <= std::sqrt(cfg.residual_tolerance) * ref)) {
       res.converged = true;
       return res;
     }

@@ -1,8 +1,8 @@
 // Newton's method with backtracking line search, for any residual the caller defines.
 //
 // Convergence (all norms global 2-norms over owned dofs):
-//   ||r|| <= max(rtol * ||r_0||, atol)                          (residual test), or
-//   ||du|| <= inc_tol * ||u||  and  ||r|| <= sqrt(rtol) * ||r_0||  (increment test, for
+//   ||r|| <= max(rtol * ref, atol)                          (residual test), or
+//   ||du|| <= inc_tol * ||u||  and  ||r|| <= sqrt(rtol) * ref  (increment test, for
 //   steps whose residual is limited by round-off).
 // A trial state the residual cannot be evaluated at (an inverted element) counts as a
 // failed line-search trial; if even the smallest step is inadmissible, or the iteration
@@ -24,6 +24,10 @@ class NewtonSystem {
   // u is inadmissible (e.g. det F <= 0 somewhere); r is then undefined.
   virtual bool evaluate(const la::Vector& u, la::Vector& r, bool tangent) = 0;
   virtual la::RCP<la::CrsMatrix> matrix() = 0;
+  // Size of the forces in play at the last evaluate() (e.g. |f_ext| and the reactions),
+  // the reference of the relative residual test: an initial guess that is already
+  // nearly exact makes |r_0| alone a useless (round-off sized) reference.
+  virtual double force_scale() const { return 0.0; }
 };
 
 struct NewtonResult {
