@@ -6,15 +6,18 @@
 # (C1, C2 and D all multiplied by F; same density) and each scheme. Steps are never cut back
 # (Stepping->max cutbacks = 0), so every run uses the dt it names, and a Newton failure ends
 # it with exit status 3. A run is classified
-#   blow-up  exit status != 0 (Newton failure), or total energy grew by more than 10%
-#   drift    max |E - E_0| / E_0 > 1% (growth or loss)
-#   stable   otherwise
+#   blow-up      total energy grew by more than 10% (whether or not Newton then failed)
+#   newton-fail  exit status 3 (Newton failed within Newton->max iterations = NEWTON_MAX)
+#                before the energy grew by 10%
+#   drift        ran to T, max |E - E_0| / E_0 > 1% (growth or loss)
+#   stable       ran to T, max |E - E_0| / E_0 <= 1%
+# (blow-up and newton-fail together are the "blow-up: exit 3 or energy growth > 10%" set.)
 #
 #   perf/studies/stability_map.sh [STENTOR]     (default: build-study/stentor)
 #
 # Environment (all optional):
 #   SCHEMES="gonzalez midpoint newmark hht"   FACTORS="1 10 100 1000"   NS="10 20 40 80 160"
-#   T=2  OMEGA=6  SIZE=0.2  ORDER=2  HHT_ALPHA=-0.1
+#   T=2  OMEGA=6  SIZE=0.2  ORDER=2  HHT_ALPHA=-0.1  NEWTON_MAX=25 (the deck default)
 #   WORK=<tmp dir>      where the runs write their results (kept: logs, CSVs)
 #
 # Writes docs/studies/stability_map.csv and docs/studies/stability_map.png; the generated
@@ -31,6 +34,7 @@ OMEGA=${OMEGA:-6}
 SIZE=${SIZE:-0.2}
 ORDER=${ORDER:-2}
 HHT_ALPHA=${HHT_ALPHA:--0.1}
+NEWTON_MAX=${NEWTON_MAX:-25}
 WORK=${WORK:-$(mktemp -d "${TMPDIR:-/tmp}/stentor_sm.XXXXXX")}
 decks=$here/decks/stability_map
 outdir=$root/docs/studies
@@ -88,6 +92,9 @@ template() {
     <Parameter name="steps" type="int" value="@N@"/>
     <Parameter name="max cutbacks" type="int" value="0"/>
   </ParameterList>
+  <ParameterList name="Newton">
+    <Parameter name="max iterations" type="int" value="$NEWTON_MAX"/>
+  </ParameterList>
   <ParameterList name="Linear Solver">
     <Parameter name="method" type="string" value="direct"/>
   </ParameterList>
@@ -126,7 +133,7 @@ for s in $SCHEMES; do
       # A failed step's iterations count in the Summary total but not in the history.
       [ "$rc" -ne 0 ] && nmax=$(grep -oE 'no convergence in [0-9]+' "$WORK/$name.log" | grep -oE '[0-9]+$' | head -1 || echo "$nmax")
       IFS=, read -r treach growth loss drift <<<"$en"
-      status=$(awk -v rc="$rc" -v g="$growth" -v m="$drift" 'BEGIN{ if (rc != 0 || g > 0.10) print "blow-up"; else if (m > 0.01) print "drift"; else print "stable"}')
+      status=$(awk -v rc="$rc" -v g="$growth" -v m="$drift" 'BEGIN{ if (g > 0.10) print "blow-up"; else if (rc != 0) print "newton-fail"; else if (m > 0.01) print "drift"; else print "stable"}')
       dt=$(awk -v t="$T" -v n="$n" 'BEGIN{printf "%.6g", t / n}')
       wdt=$(awk -v t="$T" -v n="$n" -v w="$OMEGA" 'BEGIN{printf "%.4g", w * t / n}')
       nmean=$(awk -v a="$newton" -v b="$steps" 'BEGIN{printf "%.2f", (b > 0) ? a / b : a}')
@@ -140,18 +147,18 @@ done
 # with the max energy drift (or the time reached, for a run that stopped).
 cd "$WORK" || exit 1
 for s in $SCHEMES; do
-  for st in stable drift blow-up; do
+  for st in stable drift blow-up newton-fail; do
     awk -F, -v s="$s" -v st="$st" 'NR>1 && $1==s && $16==st{print $4, $2}' "$csv" >"map_${s}_${st}.dat"
   done
-  awk -F, -v s="$s" 'NR>1 && $1==s{ if ($6 != 0) lab = sprintf("t=%.2g", $8); else lab = sprintf("%.0e", $14); print $4, $2, lab }' "$csv" >"map_${s}_labels.dat"
+  awk -F, -v s="$s" 'NR>1 && $1==s{ lab = sprintf("%.0e", $14); if ($6 != 0) lab = lab sprintf(" t=%.2g", $8); print $4, $2, lab }' "$csv" >"map_${s}_labels.dat"
 done
 ns=$(echo "$SCHEMES" | wc -w)
 rows=$(((ns + 1) / 2))
 {
   echo "set terminal pngcairo size 1100,$((430 * rows)) font ',10'"
   echo "set output '$outdir/stability_map.png'"
-  echo "set multiplot layout $rows,2 title 'Spinning free block (omega = $OMEGA rad/s, T = $T s, P2): label = max |E - E_0|/E_0, or the time reached if Newton failed'"
-  echo "set logscale xy; set yrange [0.4:2500]; set offsets graph 0.08, graph 0.08, 0, 0"
+  echo "set multiplot layout $rows,2 title 'Spinning free block (omega = $OMEGA rad/s, T = $T s, P2): Newton <= $NEWTON_MAX it.; label = max |E - E_0|/E_0 (t = time reached if Newton failed)'"
+  echo "set logscale xy; set format x '%g'; set ytics (1, 10, 100, 1000); set yrange [0.4:2500]; set offsets graph 0.08, graph 0.08, 0, 0"
   echo "set xlabel 'dt [s]'; set ylabel 'stiffness factor (C1, C2, D)'; set grid; set key outside bottom center horizontal"
   for s in $SCHEMES; do
     lbl=$s
@@ -159,7 +166,8 @@ rows=$(((ns + 1) / 2))
     echo "set title '$lbl'"
     echo "plot 'map_${s}_stable.dat' u 1:2 w p pt 7 ps 2.2 lc rgb '#2ca02c' t 'stable (<1%)', \
 'map_${s}_drift.dat' u 1:2 w p pt 5 ps 2.2 lc rgb '#ff9f1a' t 'drift (>1%)', \
-'map_${s}_blow-up.dat' u 1:2 w p pt 2 ps 2.4 lw 3 lc rgb '#d62728' t 'blow-up / Newton failure', \
+'map_${s}_blow-up.dat' u 1:2 w p pt 2 ps 2.4 lw 3 lc rgb '#d62728' t 'energy blow-up (>10%)', \
+'map_${s}_newton-fail.dat' u 1:2 w p pt 9 ps 2.4 lc rgb '#7f7f7f' t 'Newton failure (exit 3)', \
 'map_${s}_labels.dat' u 1:2:3 w labels offset 0,1.5 font ',8' notitle"
   done
   echo "unset multiplot"

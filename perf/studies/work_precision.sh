@@ -12,7 +12,7 @@
 #
 # Environment (all optional):
 #   SCHEMES="gonzalez midpoint newmark hht"   schemes (hht runs with hht alpha = HHT_ALPHA)
-#   NS="10 20 40 80 160"   steps per run;   NREF=1280   steps of the reference (gonzalez)
+#   NS="10 20 40 80 160 320"   steps per run;   NREF=1280   steps of the reference (gonzalez)
 #   T=1  OMEGA=4  VX=1  SIZE=0.2  ORDER=2  HHT_ALPHA=-0.1
 #   WORK=<tmp dir>         where the runs write their results (kept: logs, CSVs)
 #
@@ -24,7 +24,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 bin=${1:-$root/build-study/stentor}
 SCHEMES=${SCHEMES:-"gonzalez midpoint newmark hht"}
-NS=${NS:-"10 20 40 80 160"}
+NS=${NS:-"10 20 40 80 160 320"}
 NREF=${NREF:-1280}
 T=${T:-1}
 OMEGA=${OMEGA:-4}
@@ -192,6 +192,7 @@ if [ -n "$plots" ]; then
   gnuplot <<EOF
 set terminal pngcairo size 800,600 font ',11'
 set logscale xy
+set format y '10^{%L}'
 set grid
 set key top right
 set output '$outdir/work_precision.png'

@@ -765,6 +765,11 @@ void DeckReader::read_initial(const ParameterList& pl) {
   check_list(pl, "Initial Conditions", {&ls});
   auto& ic = cfg_.initial;
   const int dim = cfg_.mesh.dimension;
+  if (pl.isParameter("displacement")) {
+    const auto d = get_array(pl, ls, "displacement");
+    check_dim_length(d, "Initial Conditions->displacement");
+    for (std::size_t c = 0; c < d.size(); ++c) ic.displacement[c] = d[c];
+  }
   if (pl.isParameter("velocity")) {
     const auto v = get_array(pl, ls, "velocity");
     check_dim_length(v, "Initial Conditions->velocity");

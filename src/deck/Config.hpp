@@ -69,6 +69,7 @@ struct LoadConfig {
 };
 
 struct InitialConditionsConfig {
+  std::array<double, 3> displacement{};      // "Initial Conditions"->"displacement" (uniform)
   std::array<double, 3> velocity{};          // "Initial Conditions"->"velocity"
   std::array<double, 3> angular_velocity{};  // "angular velocity" (2D: z component only)
   std::array<double, 3> center{};            // "center"

@@ -175,9 +175,10 @@ std::vector<ListSpec> build_schema() {
 
   s.push_back(list(
       "Initial Conditions", "Initial Conditions",
-      "Initial velocity of every body (dynamic analysis): v0 = velocity + angular velocity x (X - center). "
-      "The initial displacement is zero.",
-      {arr("velocity", "Uniform initial velocity [m/s], one value per dimension.").len(2, 3).dflt_doc("zeros"),
+      "Initial state of every body (dynamic analysis): u0 = displacement (uniform), "
+      "v0 = velocity + angular velocity x (X - center). Constrained dofs keep their prescribed values.",
+      {arr("displacement", "Uniform initial displacement [m], one value per dimension.").len(2, 3).dflt_doc("zeros"),
+       arr("velocity", "Uniform initial velocity [m/s], one value per dimension.").len(2, 3).dflt_doc("zeros"),
        arr("angular velocity",
            "Rigid rotation rate [rad/s]: 1 value (about z) in 2D, 3 values in 3D.")
            .len(1, 3)

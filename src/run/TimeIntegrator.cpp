@@ -26,9 +26,14 @@ std::string TimeIntegrator::description() const {
   return os.str();
 }
 
-EnergyAudit TimeIntegrator::initialize(const la::Vector& u0, double end_time) {
+EnergyAudit TimeIntegrator::initialize(la::Vector& u0, double end_time) {
   const int dim = dist_.dim();
   const auto& ic = cfg_.initial;
+  {
+    auto uh = u0.getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (la::LO i = 0; i < static_cast<la::LO>(u0.getLocalLength()); ++i)
+      if (!assembler_.is_dirichlet(i)) uh(i, 0) = ic.displacement[static_cast<std::size_t>(i % dim)];
+  }
   {
     auto vh = v_->getLocalViewHost(Tpetra::Access::OverwriteAll);
     for (la::LO n = 0; n < dist_.num_owned_nodes(); ++n) {

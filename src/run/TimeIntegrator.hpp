@@ -34,9 +34,10 @@ class TimeIntegrator {
  public:
   TimeIntegrator(const Config& cfg, Assembler& assembler, const Distribution& dist, const Mesh& mesh);
 
-  // Sets v_0 from the deck's initial conditions (zero on constrained dofs) and, for
-  // newmark/hht, a_0 = M^{-1} (f_ext(0) - f_int(u_0)). Returns the audit of the state at t = 0.
-  EnergyAudit initialize(const la::Vector& u0, double end_time);
+  // Sets u_0 and v_0 from the deck's initial conditions (constrained dofs keep u = 0,
+  // v = 0) and, for newmark/hht, a_0 = M^{-1} (f_ext(0) - f_int(u_0)). Returns the audit
+  // of the state at t = 0.
+  EnergyAudit initialize(la::Vector& u0, double end_time);
 
   // Assembler input for the step t_n -> t_n + dt from u_n.
   Assembler::StepInput step_input(double t_n, double dt, double end_time, const la::Vector& u_n);
