@@ -19,6 +19,9 @@
 #   SCHEMES="gonzalez midpoint newmark hht"   FACTORS="1 10 100 1000"   NS="10 20 40 80 160"
 #   T=2  OMEGA=6  SIZE=0.2  ORDER=2  HHT_ALPHA=-0.1  NEWTON_MAX=25 (the deck default)
 #   WORK=<tmp dir>      where the runs write their results (kept: logs, CSVs)
+#   CSV=docs/studies/stability_map.csv  PNG=docs/studies/stability_map.png
+#   DECKS=perf/studies/decks/stability_map   (a folder directly under perf/studies/decks/)
+#   PLOT_ONLY=1         skip the runs, redraw the PNG from docs/studies/stability_map.csv
 #
 # Writes docs/studies/stability_map.csv and docs/studies/stability_map.png; the generated
 # decks go to perf/studies/decks/stability_map/.
@@ -36,9 +39,12 @@ ORDER=${ORDER:-2}
 HHT_ALPHA=${HHT_ALPHA:--0.1}
 NEWTON_MAX=${NEWTON_MAX:-25}
 WORK=${WORK:-$(mktemp -d "${TMPDIR:-/tmp}/stentor_sm.XXXXXX")}
-decks=$here/decks/stability_map
+decks=${DECKS:-$here/decks/stability_map}
 outdir=$root/docs/studies
-csv=$outdir/stability_map.csv
+csv=${CSV:-$outdir/stability_map.csv}
+png=${PNG:-$outdir/stability_map.png}
+case $csv in /*) ;; *) csv=$PWD/$csv ;; esac
+case $png in /*) ;; *) png=$PWD/$png ;; esac
 
 if [ ! -x "$bin" ]; then
   echo "stability_map.sh: $bin not found; build it first:" >&2
@@ -46,7 +52,6 @@ if [ ! -x "$bin" ]; then
   exit 2
 fi
 mkdir -p "$decks" "$outdir" "$WORK"
-rm -f "$decks"/*.xml
 
 echo "== machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(uname -sr)"
 echo "== stentor: $bin ($(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo '?'))"
@@ -106,6 +111,8 @@ template() {
 EOF
 }
 
+if [ "${PLOT_ONLY:-0}" != 1 ]; then
+rm -f "$decks"/*.xml
 hdr="scheme,factor,N,dt,omega_dt,rc,steps,t_reached,newton_iterations,newton_mean,newton_max,energy_growth_max,energy_loss_max,energy_drift_max,wall_s,status"
 echo "$hdr" >"$csv"
 printf '  %-9s %5s %5s %4s %6s %8s %9s %10s %10s  %s\n' scheme F N rc steps newton/st max_it growth loss status
@@ -143,6 +150,8 @@ for s in $SCHEMES; do
   done
 done
 
+fi
+
 # Plot: one panel per scheme, dt on x, stiffness factor on y, marker by status, labelled
 # with the max energy drift (or the time reached, for a run that stopped).
 cd "$WORK" || exit 1
@@ -150,15 +159,15 @@ for s in $SCHEMES; do
   for st in stable drift blow-up newton-fail; do
     awk -F, -v s="$s" -v st="$st" 'NR>1 && $1==s && $16==st{print $4, $2}' "$csv" >"map_${s}_${st}.dat"
   done
-  awk -F, -v s="$s" 'NR>1 && $1==s{ lab = sprintf("%.0e", $14); if ($6 != 0) lab = lab sprintf(" t=%.2g", $8); print $4, $2, lab }' "$csv" >"map_${s}_labels.dat"
+  awk -F, -v s="$s" 'NR>1 && $1==s{ lab = sprintf("%.1e", $14); if ($6 != 0) lab = ($7 > 0) ? lab sprintf(", t=%.2g", $8) : "t=0"; printf "%s %s \"%s\"\n", $4, $2, lab }' "$csv" >"map_${s}_labels.dat"
 done
 ns=$(echo "$SCHEMES" | wc -w)
 rows=$(((ns + 1) / 2))
 {
   echo "set terminal pngcairo size 1100,$((430 * rows)) font ',10'"
-  echo "set output '$outdir/stability_map.png'"
+  echo "set output '$png'"
   echo "set multiplot layout $rows,2 title 'Spinning free block (omega = $OMEGA rad/s, T = $T s, P2): Newton <= $NEWTON_MAX it.; label = max |E - E_0|/E_0 (t = time reached if Newton failed)'"
-  echo "set logscale xy; set format x '%g'; set ytics (1, 10, 100, 1000); set yrange [0.4:2500]; set offsets graph 0.08, graph 0.08, 0, 0"
+  echo "set logscale xy; set format x '%g'; set xrange [0.008:0.32]; set ytics (1, 10, 100, 1000); set yrange [0.4:2500]; set offsets graph 0.08, graph 0.08, 0, 0"
   echo "set xlabel 'dt [s]'; set ylabel 'stiffness factor (C1, C2, D)'; set grid; set key outside bottom center horizontal"
   for s in $SCHEMES; do
     lbl=$s
@@ -172,4 +181,4 @@ rows=$(((ns + 1) / 2))
   done
   echo "unset multiplot"
 } | gnuplot 2>&1 | grep -v 'empty\|Skipping data file' || true
-echo "== wrote $csv and $outdir/stability_map.png"
+echo "== wrote $csv and $png"

@@ -3,7 +3,8 @@
 // that every dynamic run writes (per step: kinetic, strain, total, cumulative external
 // work / support work / dissipation, the balance residual E_{n+1} - E_n - (W_ext + W_sup - D)
 // of the step, linear and angular momentum).
-//  a. Free-flying L-block (inputs/lblock.xml): self-equilibrated pulse, then free flight.
+//  a. Free-flying L-block (inputs/lblock.xml): self-equilibrated pulse, then free flight;
+//     midpoint drifts at dt = 0.5 and blows up at dt = 1.
 //  b. Stiff spinning strip at growing dt: midpoint blows up, Gonzalez does not.
 //  c. Viscous spinning square: balance to solver tolerance, E decreases by exactly D.
 //  d. Second order in dt of all four schemes (clamped block under a ramped body force).
@@ -162,18 +163,19 @@ Config make_deck(const Spec& s, const std::string& tag) {
 // ---------------------------------------------------------------------------------------
 // a. Free-flying L-block (inputs/lblock.xml; geometry, loads and resultants documented
 // there): dt = 0.5 (10 steps of pulse, then 20 of free flight), coarse P1 (173 nodes).
-RunOut lblock(const std::string& scheme) {
+RunOut lblock(const std::string& scheme, double dt, double T) {
   Config cfg = read_deck(std::string(STENTOR_SOURCE_DIR) + "/inputs/lblock.xml");
   cfg.output.fields = false;
   cfg.time.scheme = scheme;
-  cfg.stepping.end_time = 15.0;
-  cfg.stepping.num_steps = 30;
-  cfg.stepping.max_cutbacks = 0;
-  return run(cfg, "lblock_" + scheme);
+  cfg.stepping.end_time = T;
+  cfg.stepping.num_steps = static_cast<int>(std::lround(T / dt));
+  cfg.stepping.max_cutbacks = 0;  // dt stays the one named
+  cfg.newton.max_iterations = 30;
+  return run(cfg, "lblock_" + scheme + "_" + std::to_string(cfg.stepping.num_steps));
 }
 
 TEST(Dynamics, LBlockGonzalezConservesEnergyAndMomentaMidpointDrifts) {
-  const RunOut g = lblock("gonzalez");
+  const RunOut g = lblock("gonzalez", 0.5, 15.0);
   ASSERT_EQ(g.status, 0);
   const Series& s = g.energy;
   ASSERT_EQ(s.rows(), 31u);
@@ -203,7 +205,7 @@ TEST(Dynamics, LBlockGonzalezConservesEnergyAndMomentaMidpointDrifts) {
   EXPECT_NEAR(norm(H5), 2.5 * 204.0 * std::sqrt(3.0), 0.1 * 2.5 * 204.0 * std::sqrt(3.0));
 
   // Plain midpoint rule, same dt.
-  const RunOut m = lblock("midpoint");
+  const RunOut m = lblock("midpoint", 0.5, 15.0);
   if (m.status == 0) {
     const Series& q = m.energy;
     ASSERT_EQ(q.rows(), 31u);
@@ -220,6 +222,33 @@ TEST(Dynamics, LBlockGonzalezConservesEnergyAndMomentaMidpointDrifts) {
   } else {
     // Newton failure at this dt is acceptable evidence, but it must be reported as such.
     std::printf("[lblock] midpoint dt 0.5: FAILED (status %d) after %d steps\n", m.status, m.res.steps);
+    EXPECT_EQ(m.status, 3);
+    EXPECT_FALSE(m.res.converged);
+  }
+}
+
+// Same block at dt = 1 (5 steps of pulse) to t = 20: Gonzalez still conserves; the
+// midpoint rule's energy grows until Newton fails (no cut-back allowed, so dt stays 1).
+TEST(Dynamics, LBlockLargeStepMidpointBlowsUpGonzalezDoesNot) {
+  const std::size_t i5 = 5;
+  const RunOut g = lblock("gonzalez", 1.0, 20.0);
+  ASSERT_EQ(g.status, 0);
+  ASSERT_EQ(g.energy.rows(), 21u);
+  const double E5 = g.energy["total"][i5];
+  const double drift = energy_drift(g.energy, i5, E5);
+  const double hdrift = vector_drift(g.energy, "angular_momentum", i5) / norm(g.energy.vec("angular_momentum", i5));
+  EXPECT_LT(drift, 1e-9);
+  EXPECT_LT(hdrift, 1e-8);
+  const RunOut m = lblock("midpoint", 1.0, 20.0);
+  const Series& q = m.energy;
+  ASSERT_GT(q.rows(), i5 + 1) << "midpoint must at least get through the pulse";
+  const double E5m = q["total"][i5];
+  double grow = 0.0;
+  for (std::size_t i = i5; i < q.rows(); ++i) grow = std::max(grow, q["total"][i] / E5m);
+  std::printf("[lblock] dt 1: gonzalez max |E - E(5)|/E %.2e, |H - H(5)|/|H| %.2e; midpoint max E/E(5) %.3f, %s at t = %g\n", drift,
+              hdrift, grow, m.status == 0 ? "completed" : "Newton FAILED", q["time"][q.rows() - 1] + (m.status == 0 ? 0.0 : 1.0));
+  EXPECT_GT(grow, 1.5) << "midpoint energy should grow by more than 50% at dt = 1";
+  if (m.status != 0) {
     EXPECT_EQ(m.status, 3);
     EXPECT_FALSE(m.res.converged);
   }
