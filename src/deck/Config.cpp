@@ -189,7 +189,8 @@ class DeckReader {
   void read_newton(const ParameterList& pl);
   void read_linear(const ParameterList& pl);
   void read_output(const ParameterList& pl);
-  Ramp read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls) const;
+  Ramp read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls, const std::string& key = "ramp") const;
+  void read_contact(const ParameterList& pl);
   void check_dim_length(const std::vector<double>& v, const std::string& path) const;
 };
 
@@ -615,30 +616,108 @@ void DeckReader::read_bodies(const ParameterList& pl) {
   if (cfg_.bodies.empty()) fail("'Bodies' defines no body; add one sublist per body");
 }
 
-Ramp DeckReader::read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls) const {
+Ramp DeckReader::read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls, const std::string& key) const {
   Ramp r;
-  const std::string kind = get_string(pl, ls, "ramp");
-  const bool has_t = pl.isParameter("ramp times"), has_f = pl.isParameter("ramp factors");
+  const std::string kt = key + " times", kf = key + " factors";
+  const std::string kind = get_string(pl, ls, key);
+  const bool has_t = pl.isParameter(kt), has_f = pl.isParameter(kf);
   if (kind != "table") {
     r.kind = kind == "constant" ? Ramp::Kind::Constant : Ramp::Kind::Linear;
     if (has_t || has_f)
-      fail(quoted(path + (has_t ? "->ramp times" : "->ramp factors")) + " is only used with \"ramp\" = table (ramp is " +
-           kind + ")");
+      fail(quoted(path + "->" + (has_t ? kt : kf)) + " is only used with \"" + key + "\" = table (" + key + " is " + kind + ")");
     return r;
   }
   r.kind = Ramp::Kind::Table;
-  if (!has_t) fail("missing required parameter " + quoted(path + "->ramp times") + " (Array(double)) for \"ramp\" = table");
-  if (!has_f) fail("missing required parameter " + quoted(path + "->ramp factors") + " (Array(double)) for \"ramp\" = table");
-  r.times = get_array(pl, ls, "ramp times");
-  r.factors = get_array(pl, ls, "ramp factors");
+  if (!has_t) fail("missing required parameter " + quoted(path + "->" + kt) + " (Array(double)) for \"" + key + "\" = table");
+  if (!has_f) fail("missing required parameter " + quoted(path + "->" + kf) + " (Array(double)) for \"" + key + "\" = table");
+  r.times = get_array(pl, ls, kt);
+  r.factors = get_array(pl, ls, kf);
   if (r.times.size() != r.factors.size())
-    fail(quoted(path + "->ramp factors") + " must have as many values as 'ramp times' (" + std::to_string(r.times.size()) +
-         "), got " + std::to_string(r.factors.size()));
+    fail(quoted(path + "->" + kf) + " must have as many values as '" + kt + "' (" + std::to_string(r.times.size()) + "), got " +
+         std::to_string(r.factors.size()));
   for (std::size_t i = 1; i < r.times.size(); ++i)
     if (!(r.times[i] > r.times[i - 1]))
-      fail(quoted(path + "->ramp times") + " must be strictly increasing, got " + num(r.times[i - 1]) + " then " +
-           num(r.times[i]) + " at positions " + std::to_string(i) + ", " + std::to_string(i + 1));
+      fail(quoted(path + "->" + kt) + " must be strictly increasing, got " + num(r.times[i - 1]) + " then " + num(r.times[i]) +
+           " at positions " + std::to_string(i) + ", " + std::to_string(i + 1));
   return r;
+}
+
+void DeckReader::read_contact(const ParameterList& pl) {
+  const ListSpec& top = deck_list_spec("Contact");
+  const ListSpec& ls = deck_list_spec("Contact/*");
+  check_list(pl, "Contact", {&top});
+  for (auto it = pl.begin(); it != pl.end(); ++it) {
+    const std::string& name = pl.name(it);
+    const std::string path = "Contact->" + name;
+    const ParameterList& sub = pl.sublist(name);
+    check_list(sub, path, {&ls});
+    require(sub, path, {&ls});
+    ContactPairConfig c;
+    c.name = name;
+    c.slave = get_string(sub, ls, "slave");
+    if (c.slave.empty()) fail(quoted(path + "->slave") + " must name a boundary physical group");
+    c.obstacle = get_string(sub, ls, "obstacle");
+    const bool curved = c.obstacle != "plane";
+    auto vec = [&](const std::string& key, std::array<double, 3>& out, int& len) {
+      const auto v = get_array(sub, ls, key);
+      check_dim_length(v, path + "->" + key);
+      len = static_cast<int>(v.size());
+      for (std::size_t k = 0; k < v.size(); ++k) out[k] = v[k];
+    };
+    vec("point", c.point, c.point_len);
+    const int dim = cfg_.mesh.dimension;
+    if (c.obstacle == "plane") {
+      if (!sub.isParameter("normal")) fail("missing required parameter " + quoted(path + "->normal") + " (Array(double)) for a plane obstacle");
+      vec("normal", c.normal, c.normal_len);
+      const double nn = std::sqrt(c.normal[0] * c.normal[0] + c.normal[1] * c.normal[1] + c.normal[2] * c.normal[2]);
+      if (!(nn > 0.0)) fail(quoted(path + "->normal") + " must not be the zero vector");
+      for (auto& x : c.normal) x /= nn;
+      if (c.normal_len != c.point_len)
+        fail(quoted(path + "->normal") + " must have as many values as 'point' (" + std::to_string(c.point_len) + ")");
+      for (const char* k : {"radius", "radius change", "axis", "side"})
+        if (sub.isParameter(k)) fail(quoted(path + "->" + k) + " is not used by a plane obstacle");
+    } else {
+      if (!sub.isParameter("radius"))
+        fail("missing required parameter " + quoted(path + "->radius") + " (double, > 0) for a " + c.obstacle + " obstacle");
+      c.radius = get_double(sub, ls, "radius");
+      c.side = get_string(sub, ls, "side");
+      if (sub.isParameter("normal")) fail(quoted(path + "->normal") + " is only used by a plane obstacle");
+      if (c.obstacle == "circle" && (dim == 3 || c.point_len == 3))
+        fail(quoted(path + "->obstacle") + " = circle is 2D only; use cylinder or sphere in 3D");
+      if ((c.obstacle == "cylinder" || c.obstacle == "sphere") && (dim == 2 || c.point_len == 2))
+        fail(quoted(path + "->obstacle") + " = " + c.obstacle + " is 3D only; use circle in 2D");
+      if (c.obstacle == "cylinder") {
+        if (!sub.isParameter("axis")) fail("missing required parameter " + quoted(path + "->axis") + " (Array(double), 3 values) for a cylinder obstacle");
+        const auto a = get_array(sub, ls, "axis");
+        c.axis_len = static_cast<int>(a.size());
+        const double an = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        if (!(an > 0.0)) fail(quoted(path + "->axis") + " must not be the zero vector");
+        for (std::size_t k = 0; k < 3; ++k) c.axis[k] = a[k] / an;
+      } else if (sub.isParameter("axis")) {
+        fail(quoted(path + "->axis") + " is only used by a cylinder obstacle");
+      }
+    }
+    int tl = 0;
+    if (sub.isParameter("translation")) {
+      vec("translation", c.translation, tl);
+      if (tl != c.point_len) fail(quoted(path + "->translation") + " must have as many values as 'point' (" + std::to_string(c.point_len) + ")");
+    }
+    c.translation_ramp = read_ramp(sub, path, ls, "translation ramp");
+    c.radius_change = get_double(sub, ls, "radius change");
+    c.radius_ramp = read_ramp(sub, path, ls, "radius ramp");
+    if (!curved && (sub.isParameter("radius ramp") || sub.isParameter("radius ramp times")))
+      fail(quoted(path + "->radius ramp") + " is not used by a plane obstacle");
+    c.friction = get_double(sub, ls, "friction");
+    c.c_normal = get_double(sub, ls, "c normal");
+    c.c_tangent = get_double(sub, ls, "c tangent");
+    c.formulation = get_string(sub, ls, "formulation");
+    for (const auto& o : cfg_.contact)
+      if (o.slave == c.slave)
+        fail("'Contact->" + o.name + "' and " + quoted(path) + " both use slave group '" + c.slave +
+             "'; a node may belong to one contact pair only");
+    cfg_.contact.push_back(c);
+  }
+  if (cfg_.contact.empty()) fail("'Contact' defines no contact pair; add one sublist per pair or remove 'Contact'");
 }
 
 void DeckReader::read_loads(const ParameterList& pl) {
@@ -940,6 +1019,7 @@ Config DeckReader::read() {
   if (root.isSublist("Newton")) read_newton(root.sublist("Newton"));
   if (root.isSublist("Linear Solver")) read_linear(root.sublist("Linear Solver"));
   if (root.isSublist("Output")) read_output(root.sublist("Output"));
+  if (root.isSublist("Contact")) read_contact(root.sublist("Contact"));
   return cfg_;
 }
 

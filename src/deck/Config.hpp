@@ -122,6 +122,28 @@ struct OutputConfig {
   std::vector<ProbeConfig> probes;    // "Output"->"Probes"
 };
 
+// One node-to-rigid-obstacle contact pair: sublist of "Contact" (name = name).
+// See docs/contact.md. Geometry in reference coordinates; the obstacle moves rigidly by
+// translation * ramp(t) and its radius changes by radius_change * radius_ramp(t).
+struct ContactPairConfig {
+  std::string name;
+  std::string slave;                      // "slave": boundary physical group whose nodes are the slave nodes
+  std::string obstacle;                   // "obstacle": plane | circle (2D) | cylinder (3D) | sphere (3D)
+  std::array<double, 3> point{};          // "point": plane point / circle, sphere centre / cylinder axis point
+  std::array<double, 3> normal{};         // "normal": plane outward normal (normalized here; the body lies on its side)
+  std::array<double, 3> axis{};           // "axis": cylinder axis direction (normalized here)
+  double radius = 0.0;                    // "radius" (circle, cylinder, sphere)
+  std::string side = "outside";           // "side": outside (body outside the obstacle) | inside (body inside)
+  int point_len = 0, normal_len = 0, axis_len = 0;  // lengths as given (checked against the mesh dimension at run time)
+  std::array<double, 3> translation{};    // "translation" [m], times translation_ramp(t)
+  Ramp translation_ramp;                  // "translation ramp" (+ "translation ramp times"/"factors")
+  double radius_change = 0.0;             // "radius change" [m], times radius_ramp(t)
+  Ramp radius_ramp;                       // "radius ramp" (+ times/factors)
+  double c_normal = 0.0, c_tangent = 0.0; // "c normal", "c tangent": PDAS parameters (0: automatic, scale-aware)
+  double friction = 0.0;                  // "friction": Coulomb coefficient mu >= 0 (0: frictionless)
+  std::string formulation = "auto";       // "formulation": auto | persistence | gap (auto: persistence in dynamics, gap in statics)
+};
+
 struct Config {
   std::string deck_path;  // absolute path of the deck file
   ProblemConfig problem;
@@ -135,6 +157,7 @@ struct Config {
   NewtonConfig newton;
   LinearSolverConfig linear;
   OutputConfig output;
+  std::vector<ContactPairConfig> contact;  // "Contact": empty = no contact (costs nothing)
 
   const MaterialConfig& material(const std::string& name) const;  // throws InputError
 };

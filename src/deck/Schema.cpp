@@ -81,7 +81,7 @@ std::vector<ListSpec> build_schema() {
                      "The root `<ParameterList>` (any name) holds only sublists; `Mesh`, `Materials` "
                      "and `Bodies` are required.");
     root.sublists = {"Problem", "Mesh", "Materials", "Bodies", "Boundary Conditions", "Initial Conditions",
-                     "Time Integration", "Stepping", "Newton", "Linear Solver", "Output"};
+                     "Time Integration", "Stepping", "Newton", "Linear Solver", "Output", "Contact"};
     root.required_sublists = {"Mesh", "Materials", "Bodies"};
     s.push_back(root);
   }
@@ -252,6 +252,52 @@ std::vector<ListSpec> build_schema() {
   }
   s.push_back(list("Output/Probes/*", "Output->Probes-><probe>", "One probe; the sublist name names its output column. The nearest node is probed.",
                    {arr("point", "Reference coordinates [m] (2 or 3 values).").req().len(2, 3)}));
+  {
+    auto l = list("Contact", "Contact",
+                  "Node-to-rigid-obstacle frictional contact (docs/contact.md), solved by the primal-dual active set "
+                  "(semi-smooth Newton) method inside the Newton loop. Without this sublist no contact work is done.");
+    l.named_sublists = "contact pair";
+    s.push_back(l);
+  }
+  s.push_back(list(
+      "Contact/*", "Contact-><pair>",
+      "One contact pair: the nodes of a boundary group against an analytic rigid obstacle, which may translate "
+      "(translation x ramp) and change radius (radius change x radius ramp). Signed gap d >= 0 on the body's side.",
+      {str("slave", "", "Mesh physical group (boundary) whose nodes may touch the obstacle.").req().allowed("physical group name"),
+       str("obstacle", "", "Obstacle shape: `circle` (2D), `cylinder` (3D, infinite), `sphere` (3D), `plane`.")
+           .req()
+           .one_of({"plane", "circle", "cylinder", "sphere"}),
+       arr("point", "A point of the plane; the centre of a circle/sphere; a point of the cylinder axis [m].")
+           .req()
+           .len(2, 3),
+       arr("normal", "Plane: normal pointing to the body's side (normalized).").len(2, 3).dflt_doc("required for `plane`"),
+       arr("axis", "Cylinder: axis direction (normalized).").len(3, 3).dflt_doc("required for `cylinder`"),
+       dbl("radius", 1.0, "Radius of circle, cylinder, sphere [m].").gt(0.0).dflt_doc("required for curved obstacles"),
+       str("side", "outside",
+           "`outside`: the body is outside the obstacle (a rod, a balloon); `inside`: the body is inside (a tube wall).")
+           .one_of({"outside", "inside"}),
+       arr("translation", "Rigid translation of the obstacle [m], one value per dimension, times the translation ramp.")
+           .len(2, 3)
+           .dflt_doc("zeros"),
+       str("translation ramp", "linear", "Time function of the translation: `linear`, `constant`, `table`.")
+           .one_of({"linear", "constant", "table"}),
+       arr("translation ramp times", "`table`: strictly increasing times [s].").len(2, 0).dflt_doc("required for `table`"),
+       arr("translation ramp factors", "`table`: factors at the times.").len(2, 0).dflt_doc("required for `table`"),
+       dbl("radius change", 0.0, "Radius increment [m] (balloon inflation) times the radius ramp; curved obstacles only."),
+       str("radius ramp", "linear", "Time function of the radius change.").one_of({"linear", "constant", "table"}),
+       arr("radius ramp times", "`table`: strictly increasing times [s].").len(2, 0).dflt_doc("required for `table`"),
+       arr("radius ramp factors", "`table`: factors at the times.").len(2, 0).dflt_doc("required for `table`"),
+       dbl("friction", 0.0, "Coulomb friction coefficient mu (0: frictionless).").ge(0.0),
+       str("formulation", "auto",
+           "`persistence`: persistency condition on the discrete normal velocity with leapfrog gap prediction "
+           "(energy-conserving); `gap`: standard KKT conditions on the end-of-step gap; `auto`: persistence in "
+           "dynamics, gap in statics.")
+           .one_of({"auto", "persistence", "gap"}),
+       dbl("c normal", 0.0,
+           "Active-set parameter c_nu (> 0) of the normal complementarity function; 0: automatic (node's tangent "
+           "diagonal, times dt for persistence).")
+           .ge(0.0),
+       dbl("c tangent", 0.0, "Active-set parameter c_tau of the friction complementarity function; 0: automatic.").ge(0.0)}));
   return s;
 }
 

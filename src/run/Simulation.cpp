@@ -21,6 +21,7 @@
 #include "parallel/Distribution.hpp"
 #include "solver/LinearSolver.hpp"
 #include "solver/Newton.hpp"
+#include "contact/Contact.hpp"
 #include "run/TimeIntegrator.hpp"
 
 namespace stentor {
@@ -56,9 +57,19 @@ class StepSystem : public NewtonSystem {
   StepSystem(Assembler& a, Timers& timers) : a_(a), timers_(timers) {}
   Assembler::StepInput input;
   Assembler::Stats last;
+  Contact* contact = nullptr;         // null without a "Contact" sublist
+  std::ostream* contact_log = nullptr;  // --verbose: active/stick/slip sets per evaluation
   bool evaluate(const la::Vector& u, la::Vector& r, bool tangent) override {
     Timers::Scope s{timers_, "assembly"};
     last = a_.assemble(u, input, r, tangent);
+    if (contact) {
+      Timers::Scope sc{timers_, "contact"};
+      contact->apply(u, r, tangent ? a_.matrix().get() : nullptr);
+      if (contact_log) {
+        const std::string line = contact->iteration_summary();
+        *contact_log << line << "\n";
+      }
+    }
     return last.inverted == 0;
   }
   la::RCP<la::CrsMatrix> matrix() override { return a_.matrix(); }
@@ -144,11 +155,16 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     linear.set_node_coordinates(dim, xyz);
   }
   const bool dynamic = cfg.problem.dynamic();
+  std::unique_ptr<Contact> contact = Contact::create(cfg, mesh, *dist, *assembler);
   std::unique_ptr<TimeIntegrator> integrator;
   if (dynamic) integrator = std::make_unique<TimeIntegrator>(cfg, *assembler, *dist, mesh);
   out << "  dofs     " << dist->owned_map()->getGlobalNumElements() << "\n"
       << "  analysis " << (dynamic ? "dynamic: " + integrator->description() : std::string("static (load stepping)")) << "\n"
       << "  solver   " << linear.description() << "\n";
+  if (contact) {
+    const std::string d = contact->description();  // collective
+    out << "  contact  " << d << "\n";
+  }
 
   // ---- Output: staged in <dir>.partial, moved into place only when the run succeeds.
   const std::string out_dir = opts.output_dir.empty() ? cfg.output.directory : opts.output_dir;
@@ -158,11 +174,15 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   const std::vector<std::string> energy_columns = {"step", "time", "kinetic", "strain", "total", "external_work", "support_work",
                                                    "dissipation", "balance_residual", "momentum_x", "momentum_y", "momentum_z",
                                                    "angular_momentum_x", "angular_momentum_y", "angular_momentum_z"};
+  std::vector<std::string> energy_cols = energy_columns;
+  if (contact) energy_cols.insert(energy_cols.end(), {"contact_work", "friction_dissipation"});
   std::vector<std::string> columns = {"step", "time", "dt", "newton_iterations", "linear_iterations", "cutbacks", "strain_energy"};
   for (const auto& d : assembler->dirichlet_sets())
     for (int k = 0; k < dim; ++k) columns.push_back("reaction_" + d.name + "_" + kAxes[k]);
   for (const auto& p : cfg.output.probes)
     for (int k = 0; k < dim; ++k) columns.push_back("u_" + p.name + "_" + kAxes[k]);
+  if (contact)
+    for (const auto& c : contact->history_columns()) columns.push_back(c);
   int io_error = 0;
   std::string io_message;
   if (rank == 0) {
@@ -170,7 +190,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
       staging = std::make_unique<OutputDir>(out_dir);
       if (cfg.output.fields) xdmf = std::make_unique<XdmfWriter>(staging->path(), cfg.output.basename, mesh);
       history = std::make_unique<CsvWriter>(staging->path() + "/" + cfg.output.basename + "_history.csv", columns);
-      if (dynamic) energy_csv = std::make_unique<CsvWriter>(staging->path() + "/" + cfg.output.basename + "_energy.csv", energy_columns);
+      if (dynamic) energy_csv = std::make_unique<CsvWriter>(staging->path() + "/" + cfg.output.basename + "_energy.csv", energy_cols);
     } catch (const std::exception& e) {
       io_error = 1;
       io_message = e.what();
@@ -203,13 +223,21 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   system.input.end_time = cfg.stepping.end_time;
   // Cumulative energy terms (dynamics), written per step to <basename>_energy.csv.
   double cum_ext = 0.0, cum_sup = 0.0, cum_diss = 0.0, max_balance = 0.0;
+  double cum_contact = 0.0, cum_friction = 0.0;  // contact work on the body, frictional dissipation
   auto energy_row = [&](int step_no, double time, const EnergyAudit& au) {
     if (rank != 0 || !energy_csv) return;
-    energy_csv->row({double(step_no), time, au.kinetic, au.strain, au.kinetic + au.strain, cum_ext, cum_sup, cum_diss, au.balance,
-                     au.momentum[0], au.momentum[1], au.momentum[2], au.angular_momentum[0], au.angular_momentum[1],
-                     au.angular_momentum[2]});
+    std::vector<double> row = {double(step_no), time, au.kinetic, au.strain, au.kinetic + au.strain, cum_ext, cum_sup, cum_diss, au.balance,
+                               au.momentum[0], au.momentum[1], au.momentum[2], au.angular_momentum[0], au.angular_momentum[1],
+                               au.angular_momentum[2]};
+    if (contact) row.insert(row.end(), {cum_contact, cum_friction});
+    energy_csv->row(row);
   };
   if (dynamic) energy_row(0, 0.0, integrator->initialize(u, cfg.stepping.end_time));
+  if (contact) {
+    contact->initialize(u, cfg.stepping.end_time);
+    system.contact = contact.get();
+    if (opts.verbose) system.contact_log = (rank == 0) ? static_cast<std::ostream*>(&std::cout) : &null_stream;
+  }
 
   auto write_fields = [&](double t) {
     Timers::Scope s{timers, "output"};
@@ -295,6 +323,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     // Initial guess. Statics: extrapolate the last converged increment, so a prescribed
     // boundary motion is spread into the interior instead of squeezing the boundary
     // layer of cells (which can invert them); fall back to u_n if that guess is inadmissible.
+    if (contact) contact->begin_step(t, dt, u_prev);
     NewtonResult nr;
     bool predicted = false;
     if (!dynamic && step > 0 && dt_last > 0.0) {
@@ -338,11 +367,22 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     out << "  step " << std::setw(4) << step << "  t " << fmt(t, 4) << "  dt " << fmt(dt, 2) << "  newton " << std::setw(2)
         << nr.iterations << "  linear " << std::setw(4) << nr.linear_iterations << "  |r| " << fmt(nr.residual, 2) << "  W "
         << fmt(system.last.energy, 6);
+    Contact::StepStats cstats;
+    if (contact) {
+      cstats = contact->accept(u);
+      out << contact->progress(cstats);
+    }
     if (dynamic) {
-      const EnergyAudit au = integrator->accept(u_prev, u, dt, system.last);
+      EnergyAudit au = integrator->accept(u_prev, u, dt, system.last);
       cum_ext += au.external_work;
       cum_sup += au.support_work;
       cum_diss += au.dissipation;
+      if (contact) {
+        // E_{n+1} - E_n = W_ext + W_sup - D + W_contact - D_friction.
+        au.balance -= cstats.work - cstats.friction_dissipation;
+        cum_contact += cstats.work;
+        cum_friction += cstats.friction_dissipation;
+      }
       max_balance = std::max(max_balance, std::abs(au.balance));
       out << "  K " << fmt(au.kinetic, 6) << "  E " << fmt(au.kinetic + au.strain, 9) << "  balance " << fmt(au.balance, 2);
       energy_row(step, t, au);
@@ -356,6 +396,8 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
       const auto pv = probe_values();
       for (std::size_t p = 0; p < probe_node.size(); ++p)
         for (int k = 0; k < dim; ++k) row.push_back(pv[3 * p + k]);
+      if (contact)
+        for (double v : contact->history_values(cstats)) row.push_back(v);
       Timers::Scope s{timers, "output"};
       history->row(row);
     } else {
@@ -386,7 +428,9 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     result->mesh = mesh;
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-  if (dynamic) out << "Energy balance: max |E_{n+1} - E_n - (W_ext + W_sup - D)| per step = " << fmt(max_balance, 3) << "\n";
+  if (dynamic)
+    out << "Energy balance: max |E_{n+1} - E_n - (W_ext + W_sup - D" << (contact ? " + W_contact - D_friction" : "")
+        << ")| per step = " << fmt(max_balance, 3) << "\n";
   out << (failed ? "FAILED: " + failure + "\n" : "") << "Summary: " << step << " steps, " << total_cuts << " cut-backs, " << total_newton
       << " Newton iterations, " << total_linear << " linear iterations, " << std::fixed << std::setprecision(2) << wall << " s\n";
   for (const auto& n : timers.names()) out << "  " << std::left << std::setw(10) << n << std::right << std::setw(10) << timers.get(n) << " s\n";
@@ -408,7 +452,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
         plot_csv_png(ecsv, staging->path() + "/" + cfg.output.basename + "_energy.png", "time",
                      {"kinetic", "strain", "total", "dissipation", "external_work"}, "Energy (" + cfg.time.scheme + ")", "energy");
         plot_csv_png(ecsv, staging->path() + "/" + cfg.output.basename + "_balance.png", "time", {"balance_residual"},
-                     "Energy balance residual per step", "E_{n+1} - E_n - (W_ext - D)");
+                     "Energy balance residual per step", "E_{n+1} - E_n - (W_ext + W_sup - D)");
       } else {
         plot_csv_png(csv, staging->path() + "/" + cfg.output.basename + "_energy.png", "time", {"strain_energy"}, "Stored energy",
                      "energy");

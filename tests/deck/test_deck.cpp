@@ -391,8 +391,11 @@ TEST_F(Deck, UnknownSublist) {
                        "<ParameterList name=\"Steping\"/>\n<ParameterList name=\"Bodies\">"),
                {"unknown sublist 'Steping'; did you mean 'Stepping'?"});
   expect_error(replace(kMinimalDeck, "<ParameterList name=\"Bodies\">",
-                       "<ParameterList name=\"Contact\"/>\n<ParameterList name=\"Bodies\">"),
-               {"unknown sublist 'Contact'", "valid sublists of the root list: Problem, Mesh"});
+                       "<ParameterList name=\"Contacts\"/>\n<ParameterList name=\"Bodies\">"),
+               {"unknown sublist 'Contacts'; did you mean 'Contact'?"});
+  expect_error(replace(kMinimalDeck, "<ParameterList name=\"Bodies\">",
+                       "<ParameterList name=\"Plasticity\"/>\n<ParameterList name=\"Bodies\">"),
+               {"unknown sublist 'Plasticity'", "valid sublists of the root list: Problem, Mesh"});
   expect_error(replace(kMinimalDeck, "<Parameter name=\"C1\" type=\"double\" value=\"1\"/>",
                        "<ParameterList name=\"C1\"/>"),
                {"'Materials->steel->C1' must be a parameter (double), not a sublist"});

@@ -1,0 +1,299 @@
+// Node-to-rigid-obstacle frictional contact (docs/contact.md): primal-dual active set
+// inside Newton, "persistence" (leapfrog) and "gap" formulations.
+//  1. Static block pressed onto a plane by its top: total contact force = reaction, no penetration.
+//  2. Dynamic frictionless impact (gonzalez, persistence): energy conserved to solver tolerance
+//     through the impact, the block bounces; the "gap" formulation loses energy at impact.
+//  3. Coulomb friction: (a) static block under tangential traction below mu p sticks;
+//     (b) dynamic: a block sliding under gravity stops at t = v0 / (mu g) (within 5 %: the
+//     elastic block rocks and its contact set chatters) having dissipated its kinetic energy by
+//     friction (within 3 %); (c) dynamic: traction above mu p: the block slips with
+//     |F_t| = mu |F_n| on the sliding nodes.
+//  4. Same deck on 1 and 2 MPI ranks (stentor executable via mpirun): same history.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run/Simulation.hpp"
+
+using namespace stentor;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "contact";
+const std::string kInputs = std::string(STENTOR_SOURCE_DIR) + "/inputs/";
+
+struct Series {
+  std::map<std::string, std::vector<double>> col;
+  const std::vector<double>& operator[](const std::string& name) const {
+    auto it = col.find(name);
+    if (it == col.end()) throw std::runtime_error("no column " + name);
+    return it->second;
+  }
+  std::size_t rows() const { return col.empty() ? 0 : col.begin()->second.size(); }
+};
+
+Series read_csv(const fs::path& path) {
+  Series s;
+  std::ifstream in(path);
+  if (!in) {
+    ADD_FAILURE() << "cannot read " << path;
+    return s;
+  }
+  std::string line, cell;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  for (std::istringstream h(line); std::getline(h, cell, ',');) names.push_back(cell);
+  while (std::getline(in, line)) {
+    std::istringstream r(line);
+    for (const auto& n : names) {
+      std::getline(r, cell, ',');
+      s.col[n].push_back(std::stod(cell));
+    }
+  }
+  return s;
+}
+
+struct Outcome {
+  int status = -1;
+  RunResult res;
+  Series history, energy;
+};
+
+Outcome run(const Config& cfg, const std::string& tag) {
+  RunOptions opts;
+  const fs::path dir = kDir / tag;
+  opts.output_dir = dir.string();
+  Outcome r;
+  r.status = run_simulation(cfg, opts, &r.res);
+  EXPECT_EQ(r.status, 0) << tag;
+  r.history = read_csv(dir / (cfg.output.basename + "_history.csv"));
+  if (cfg.problem.dynamic()) r.energy = read_csv(dir / (cfg.output.basename + "_energy.csv"));
+  return r;
+}
+
+LoadConfig traction(const std::string& boundary, double tx, double ty) {
+  LoadConfig l;
+  l.type = LoadConfig::Type::Traction;
+  l.name = "load";
+  l.group = boundary;
+  l.vector = {tx, ty, 0.0};
+  l.ramp.kind = Ramp::Kind::Constant;
+  return l;
+}
+
+// ---- 1. Static, frictionless: force balance and no penetration.
+TEST(Contact, StaticBlockOnPlane) {
+  Config cfg = read_deck(kInputs + "contact_block_static.xml");
+  const Outcome r = run(cfg, "static");
+  ASSERT_EQ(r.history.rows(), 4u);
+  for (std::size_t i = 0; i < r.history.rows(); ++i) {
+    const double fy = r.history["contact_floor_force_y"][i], reac = r.history["reaction_press_y"][i];
+    std::printf("[contact] static step %zu: contact force %.10e, top reaction %.10e, active %g, min gap %.2e\n", i + 1, fy,
+                reac, r.history["contact_floor_active"][i], r.history["contact_floor_min_gap"][i]);
+    EXPECT_GT(fy, 0.0);
+    EXPECT_NEAR(fy, -reac, 1e-9 * std::abs(reac));
+    EXPECT_NEAR(r.history["contact_floor_force_x"][i], -r.history["reaction_press_x"][i], 1e-9 * std::abs(reac));
+    EXPECT_GE(r.history["contact_floor_min_gap"][i], -1e-10);
+    EXPECT_EQ(r.history["contact_floor_active"][i], 9.0);  // every bottom node (h = 1/8)
+  }
+  // No node below the plane.
+  for (std::size_t n = 0; n < r.res.mesh.num_nodes(); ++n) EXPECT_GE(r.res.mesh.x[3 * n + 1] + r.res.displacement[3 * n + 1], -1e-10);
+}
+
+// ---- 2. Dynamic frictionless impact.
+Config impact_deck(const std::string& formulation) {
+  Config cfg = read_deck(kInputs + "contact_block_impact.xml");
+  cfg.contact[0].formulation = formulation;
+  return cfg;
+}
+
+TEST(Contact, ImpactPersistenceConservesEnergy) {
+  const Outcome r = run(impact_deck("persistence"), "impact_persistence");
+  const Series& e = r.energy;
+  ASSERT_GT(e.rows(), 100u);
+  const double E0 = e["total"][0];
+  double max_bal = 0, max_dev = 0;
+  for (std::size_t i = 0; i < e.rows(); ++i) {
+    max_bal = std::max(max_bal, std::abs(e["balance_residual"][i]));
+    max_dev = std::max(max_dev, std::abs(e["total"][i] - E0));
+  }
+  const double py0 = e["momentum_y"][0], py1 = e["momentum_y"][e.rows() - 1];
+  double active_steps = 0;
+  for (double a : r.history["contact_floor_active"]) active_steps += a > 0;
+  std::printf("[contact] impact persistence: E0 %.9e, max |E - E0| %.3e (rel %.2e), max |balance| %.3e, contact work %.3e, "
+              "p_y %.4e -> %.4e, %g steps with contact\n",
+              E0, max_dev, max_dev / E0, max_bal, e["contact_work"][e.rows() - 1], py0, py1, active_steps);
+  EXPECT_LT(max_bal, 1e-8 * E0);
+  EXPECT_LT(max_dev, 1e-8 * E0);                                   // frictionless persistence: no energy lost or gained
+  EXPECT_LT(std::abs(e["contact_work"][e.rows() - 1]), 1e-8 * E0);  // the normal increment vanishes on active nodes
+  EXPECT_GT(active_steps, 3);
+  EXPECT_LT(py0, 0.0);
+  EXPECT_GT(py1, 0.5 * std::abs(py0));  // bounced
+}
+
+TEST(Contact, ImpactGapLosesEnergy) {
+  const Outcome r = run(impact_deck("gap"), "impact_gap");
+  const Series& e = r.energy;
+  const std::size_t last = e.rows() - 1;
+  const double E0 = e["total"][0], E1 = e["total"][last];
+  double max_bal = 0;
+  for (std::size_t i = 0; i < e.rows(); ++i) max_bal = std::max(max_bal, std::abs(e["balance_residual"][i]));
+  double min_gap = 1e300;
+  for (double g : r.history["contact_floor_min_gap"]) min_gap = std::min(min_gap, g);
+  std::printf("[contact] impact gap: E0 %.6e, E_end %.6e (loss %.2f %%), contact work %.4e, max |balance| %.3e, min gap %.2e\n", E0, E1,
+              100 * (E0 - E1) / E0, e["contact_work"][last], max_bal, min_gap);
+  EXPECT_LT(E1, 0.99 * E0);                                          // measurable loss at impact
+  EXPECT_NEAR(E1 - E0, e["contact_work"][last], 1e-6 * E0);          // ... all of it through the contact work
+  EXPECT_LT(max_bal, 1e-8 * E0);
+  for (double g : r.history["contact_floor_min_gap"]) EXPECT_GE(g, -1e-10);  // gap: no penetration
+}
+
+// ---- 3. Coulomb friction.
+TEST(Contact, CoulombStickBelowLimit) {
+  Config cfg = read_deck(kInputs + "contact_block_static.xml");
+  const double p = 1e5, mu = 0.5;
+  cfg.loads = {traction("top", 0.2 * p, -p)};
+  cfg.loads[0].ramp.kind = Ramp::Kind::Linear;
+  cfg.contact[0].friction = mu;
+  const Outcome r = run(cfg, "stick");
+  const std::size_t last = r.history.rows() - 1;
+  const double fx = r.history["contact_floor_force_x"][last], fy = r.history["contact_floor_force_y"][last];
+  double ux_bottom = 0, ux_top = 0;
+  for (std::size_t n = 0; n < r.res.mesh.num_nodes(); ++n) {
+    const double X = r.res.mesh.x[3 * n];
+    if (std::abs(r.res.mesh.x[3 * n + 1]) < 1e-12 && X > 0.2 && X < 0.8) ux_bottom = std::max(ux_bottom, std::abs(r.res.displacement[3 * n]));
+    if (std::abs(r.res.mesh.x[3 * n + 1] - 1) < 1e-12) ux_top = std::max(ux_top, std::abs(r.res.displacement[3 * n]));
+  }
+  std::printf("[contact] stick: F = (%.6e, %.6e) (applied (%.1e, %.1e)), stick %g slip %g, max |u_x| bottom (0.2 < x < 0.8) %.3e top %.3e\n", fx, fy,
+              0.2 * p, -p, r.history["contact_floor_stick"][last], r.history["contact_floor_slip"][last], ux_bottom, ux_top);
+  EXPECT_NEAR(fx, -0.2 * p, 1e-8 * p);
+  EXPECT_NEAR(fy, p, 1e-8 * p);
+  EXPECT_GT(ux_top, 1e-3);
+  EXPECT_LT(ux_bottom, 1e-10);
+  EXPECT_EQ(r.history["contact_floor_slip"][last], 0.0);
+}
+
+Config sliding_deck(double mu, double v0, double g) {
+  Config cfg = read_deck(kInputs + "contact_block_impact.xml");
+  cfg.contact[0].point = {0.0, 0.0, 0.0};
+  cfg.contact[0].friction = mu;
+  cfg.initial.velocity = {v0, 0.0, 0.0};
+  LoadConfig grav;
+  grav.type = LoadConfig::Type::BodyForce;
+  grav.name = "gravity";
+  grav.vector = {0.0, -1000.0 * g, 0.0};
+  grav.ramp.kind = Ramp::Kind::Constant;
+  cfg.loads = {grav};
+  // Stiff (C1 = 50 MPa) so the block is nearly rigid: the elastic shear oscillation left
+  // when it stops, and the start-up of the normal force, are small.
+  cfg.materials[0].C1 = 50e6;
+  cfg.materials[0].C2 = 0.5e6;
+  cfg.materials[0].D = 35e6;
+  return cfg;
+}
+
+TEST(Contact, CoulombSlidingBlockStops) {
+  const double mu = 0.5, v0 = 1.0, g = 10.0, m = 1000.0;
+  Config cfg = sliding_deck(mu, v0, g);
+  cfg.stepping.end_time = 0.3;
+  cfg.stepping.num_steps = 150;
+  const Outcome r = run(cfg, "sliding");
+  const Series& e = r.energy;
+  const std::size_t last = e.rows() - 1;
+  // Stop time: first time the x momentum reaches (nearly) zero, interpolated.
+  double t_stop = -1;
+  for (std::size_t i = 1; i < e.rows(); ++i)
+    if (e["momentum_x"][i] <= 1e-3 * m * v0) {
+      const double a = e["momentum_x"][i - 1], b = e["momentum_x"][i];
+      t_stop = e["time"][i - 1] + (e["time"][i] - e["time"][i - 1]) * a / std::max(a - b, 1e-300);
+      break;
+    }
+  const double t_exact = m * v0 / (mu * m * g), ke0 = 0.5 * m * v0 * v0;
+  double max_bal = 0;
+  for (std::size_t i = 0; i < e.rows(); ++i) max_bal = std::max(max_bal, std::abs(e["balance_residual"][i]));
+  std::printf("[contact] sliding: stop time %.5f (analytic m v0/(mu N) = %.5f, %.2f %%), friction dissipation %.5e (KE0 %.5e, %.2f %%), "
+              "final p_x %.3e, max |balance| %.3e, final stick %g slip %g\n",
+              t_stop, t_exact, 100 * (t_stop - t_exact) / t_exact, e["friction_dissipation"][last], ke0,
+              100 * (e["friction_dissipation"][last] - ke0) / ke0, e["momentum_x"][last], max_bal, r.history["contact_floor_stick"].back(),
+              r.history["contact_floor_slip"].back());
+  EXPECT_NEAR(t_stop, t_exact, 0.05 * t_exact);
+  EXPECT_NEAR(e["friction_dissipation"][last], ke0, 0.03 * ke0);
+  EXPECT_LT(std::abs(e["momentum_x"][last]), 3e-2 * m * v0);
+  EXPECT_LT(max_bal, 1e-7 * ke0);
+}
+
+TEST(Contact, CoulombSlipAboveLimit) {
+  // Pushed sideways by a body force above mu * weight (uniform, so the block does not tip
+  // over as it would under a push on its top): slips, |F_t| = mu |F_n|.
+  const double mu = 0.3, g = 10.0, m = 1000.0;
+  Config cfg = sliding_deck(mu, 0.0, g);
+  cfg.loads[0].vector[0] = 0.6 * m * g;
+  cfg.stepping.end_time = 0.1;
+  cfg.stepping.num_steps = 50;
+  const Outcome r = run(cfg, "slip");
+  const Series& h = r.history;
+  const std::size_t last = h.rows() - 1;
+  double worst = 0;
+  for (std::size_t i = 0; i < h.rows(); ++i)
+    if (h["contact_floor_stick"][i] == 0 && h["contact_floor_slip"][i] > 0)
+      worst = std::max(worst, std::abs(std::abs(h["contact_floor_force_x"][i]) - mu * std::abs(h["contact_floor_force_y"][i])));
+  // Momentum balance (exact in the discrete scheme): p_x(T) = F_push T + int F_x dt.
+  std::printf("[contact] slip: final p_x %.5e (rigid estimate (0.6 - mu) m g T = %.5e), max ||F_x| - mu |F_y|| %.3e on all-slip steps, "
+              "slip %g stick %g, friction dissipation %.4e\n",
+              r.energy["momentum_x"][r.energy.rows() - 1], (0.6 - mu) * m * g * 0.1, worst, h["contact_floor_slip"][last],
+              h["contact_floor_stick"][last], r.energy["friction_dissipation"][r.energy.rows() - 1]);
+  EXPECT_GT(h["contact_floor_slip"][last], 0);
+  EXPECT_LT(worst, 1e-6 * m * g);
+  // Exact discrete momentum balance (midpoint family): p_x(T) = F_push T + sum_n dt F_x,n, with
+  // F_x the reported contact force; on all-slip steps F_x = -mu F_y (checked above).
+  const double T = 0.1, px = r.energy["momentum_x"].back();
+  double impulse = 0.6 * m * g * T;
+  for (std::size_t i = 0; i < h.rows(); ++i) impulse += h["dt"][i] * h["contact_floor_force_x"][i];
+  std::printf("[contact] slip: p_x %.8e, F_push T + sum dt F_x = %.8e\n", px, impulse);
+  EXPECT_NEAR(px, impulse, 1e-6 * m * g * T);
+  EXPECT_NEAR(px, (0.6 - mu) * m * g * T, 0.05 * (0.6 - mu) * m * g * T);
+  EXPECT_GT(r.energy["friction_dissipation"][r.energy.rows() - 1], 0.0);
+}
+
+// ---- 4. 1 vs 2 MPI ranks through the executable.
+TEST(Contact, SameHistoryOnOneAndTwoRanks) {
+  if (std::system("command -v mpirun > /dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
+  const std::string exe = std::string(STENTOR_BINARY_DIR) + "/stentor";
+  const std::string deck = kInputs + "contact_block_impact.xml";
+  Series h[2], e[2];
+  for (int np = 1; np <= 2; ++np) {
+    const fs::path dir = kDir / ("mpi" + std::to_string(np));
+    // env -i: the test process is itself an MPI singleton; its OMPI_*/PMIX_* variables would
+    // confuse the nested mpirun.
+    const std::string cmd = "env -i PATH=\"$PATH\" HOME=\"$HOME\" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 mpirun --oversubscribe -np " +
+                            std::to_string(np) + " " + exe + " " + deck + " --output " + dir.string() + " > " + dir.string() +
+                            ".log 2>&1";
+    const int st = std::system(cmd.c_str());
+    ASSERT_EQ(st, 0) << cmd << " (see " << dir.string() << ".log)";
+    h[np - 1] = read_csv(dir / "contact_block_impact_history.csv");
+    e[np - 1] = read_csv(dir / "contact_block_impact_energy.csv");
+  }
+  ASSERT_EQ(h[0].rows(), h[1].rows());
+  double dforce = 0, dact = 0, dE = 0, fscale = 0;
+  for (std::size_t i = 0; i < h[0].rows(); ++i) {
+    dact = std::max(dact, std::abs(h[0]["contact_floor_active"][i] - h[1]["contact_floor_active"][i]));
+    dforce = std::max(dforce, std::abs(h[0]["contact_floor_force_y"][i] - h[1]["contact_floor_force_y"][i]));
+    fscale = std::max(fscale, std::abs(h[0]["contact_floor_force_y"][i]));
+  }
+  for (std::size_t i = 0; i < e[0].rows(); ++i) dE = std::max(dE, std::abs(e[0]["total"][i] - e[1]["total"][i]));
+  std::printf("[contact] 1 vs 2 ranks: max |d active| %g, max |d F_y| %.3e (scale %.3e), max |d E| %.3e\n", dact, dforce, fscale, dE);
+  EXPECT_EQ(dact, 0.0);
+  EXPECT_LT(dforce, 1e-6 * fscale);
+  EXPECT_LT(dE, 1e-8 * e[0]["total"][0]);
+}
+
+}  // namespace
