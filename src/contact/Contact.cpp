@@ -362,6 +362,27 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
   return s;
 }
 
+Contact::NodalFields Contact::nodal_fields(const la::Vector& u) const {
+  NodalFields out;
+  auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (const Pair& p : pairs_)
+    for (const Node& nd : p.nodes) {
+      double x[3] = {nd.X[0], nd.X[1], nd.X[2]}, n[3] = {0, 0, 0};
+      for (int c = 0; c < dim_; ++c) x[c] += uh(nd.lid * dim_ + c, 0);
+      const double d = gap(p, x, t1_, n);
+      const bool active = nd.state >= 2;
+      // Condensed multipliers (talk's signs): lambda_nu = -n . f, lambda_tau = -(I - n n) f.
+      double fn = 0.0;
+      for (int c = 0; c < 3; ++c) fn += n[c] * nd.f[c];
+      out.nodes.push_back(static_cast<long long>(dist_.global_node(nd.lid)));
+      out.values.push_back(static_cast<double>(nd.state));
+      out.values.push_back(d);
+      out.values.push_back(active ? -fn : 0.0);
+      for (int c = 0; c < 3; ++c) out.values.push_back(active ? -(nd.f[c] - fn * n[c]) : 0.0);
+    }
+  return out;
+}
+
 std::vector<std::string> Contact::history_columns() const {
   std::vector<std::string> c;
   for (const auto& p : pairs_) {

@@ -61,6 +61,15 @@ class Contact {
   // terms, set sizes (collective); then d_{n-1} <- d_n <- d(x_{n+1}, t_{n+1}).
   StepStats accept(const la::Vector& u_np1);
 
+  // Per owned slave node, for the HDF5 output: global node id and 6 values
+  // (state: 0 free, 1 inactive, 2 stick, 3 slip; gap d(x, t); lambda_nu; lambda_tau x, y, z),
+  // from the last apply() at u.
+  struct NodalFields {
+    std::vector<long long> nodes;
+    std::vector<double> values;  // 6 per node
+  };
+  NodalFields nodal_fields(const la::Vector& u) const;
+
   std::vector<std::string> history_columns() const;
   std::vector<double> history_values(const StepStats& s) const;
   std::string progress(const StepStats& s) const;

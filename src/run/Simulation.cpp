@@ -264,6 +264,45 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     for (auto& c : counts8) c *= 8;
     for (auto& d : displs8) d *= 8;
     MPI_Gatherv(packed_loc.data(), 8 * nloc, MPI_DOUBLE, packed.data(), counts8.data(), displs8.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    // Contact fields at slave nodes (zero elsewhere): gathered like the cell fields.
+    struct ContactNodes {
+      std::vector<double> status, gap, lambda_n, lambda_t;
+    };
+    std::unique_ptr<ContactNodes> contact_nodes;
+    if (contact) {
+      const Contact::NodalFields nf = contact->nodal_fields(u);
+      const int m = static_cast<int>(nf.nodes.size());
+      std::vector<int> cnt(static_cast<std::size_t>(nranks)), dsp(static_cast<std::size_t>(nranks));
+      MPI_Gather(&m, 1, MPI_INT, cnt.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+      int tot = 0;
+      for (int r = 0; r < nranks; ++r) {
+        dsp[static_cast<std::size_t>(r)] = tot;
+        tot += cnt[static_cast<std::size_t>(r)];
+      }
+      std::vector<long long> gn(static_cast<std::size_t>(tot));
+      std::vector<double> gv(6 * static_cast<std::size_t>(tot));
+      MPI_Gatherv(nf.nodes.data(), m, MPI_LONG_LONG, gn.data(), cnt.data(), dsp.data(), MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+      std::vector<int> cnt6(cnt), dsp6(dsp);
+      for (auto& c : cnt6) c *= 6;
+      for (auto& d : dsp6) d *= 6;
+      MPI_Gatherv(nf.values.data(), 6 * m, MPI_DOUBLE, gv.data(), cnt6.data(), dsp6.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+      if (rank == 0) {
+        const std::size_t nn = mesh.num_nodes();
+        contact_nodes = std::make_unique<ContactNodes>();
+        contact_nodes->status.assign(nn, 0.0);
+        contact_nodes->gap.assign(nn, 0.0);
+        contact_nodes->lambda_n.assign(nn, 0.0);
+        contact_nodes->lambda_t.assign(3 * nn, 0.0);
+        for (int i = 0; i < tot; ++i) {
+          const auto g = static_cast<std::size_t>(gn[static_cast<std::size_t>(i)]);
+          const double* v = &gv[6 * static_cast<std::size_t>(i)];
+          contact_nodes->status[g] = v[0];
+          contact_nodes->gap[g] = v[1];
+          contact_nodes->lambda_n[g] = v[2];
+          for (int k = 0; k < 3; ++k) contact_nodes->lambda_t[3 * g + k] = v[3 + k];
+        }
+      }
+    }
     if (rank != 0 || !xdmf) return;
     const std::size_t nc = mesh.num_volume_cells();
     std::vector<double> disp(3 * mesh.num_nodes(), 0.0), stress(6 * nc), vm(nc), J(nc), owner(nc);
@@ -285,6 +324,12 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     xdmf->cell_field("von_mises", 1, vm);
     xdmf->cell_field("J", 1, J);
     xdmf->cell_field("mpi_rank", 1, owner);
+    if (contact_nodes) {
+      xdmf->node_field("contact_status", 1, contact_nodes->status);
+      xdmf->node_field("contact_gap", 1, contact_nodes->gap);
+      xdmf->node_field("contact_lambda_normal", 1, contact_nodes->lambda_n);
+      xdmf->node_field("contact_lambda_tangent", 3, contact_nodes->lambda_t);
+    }
     xdmf->end_step();
   };
 
