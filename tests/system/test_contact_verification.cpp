@@ -31,9 +31,12 @@
 #include "assembly/Assembler.hpp"
 #include "bc/Loads.hpp"
 #include "parallel/Distribution.hpp"
+#include "CsvSeries.hpp"
 #include "run/Simulation.hpp"
 
 using namespace stentor;
+using stentor::testing::read_csv;
+using stentor::testing::Series;
 namespace fs = std::filesystem;
 
 namespace {
@@ -41,36 +44,6 @@ namespace {
 const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "contact_verification";
 const std::string kInputs = std::string(STENTOR_SOURCE_DIR) + "/inputs/";
 
-struct Series {
-  std::map<std::string, std::vector<double>> col;
-  const std::vector<double>& operator[](const std::string& name) const {
-    auto it = col.find(name);
-    if (it == col.end()) throw std::runtime_error("no column " + name);
-    return it->second;
-  }
-  std::size_t rows() const { return col.empty() ? 0 : col.begin()->second.size(); }
-};
-
-Series read_csv(const fs::path& path) {
-  Series s;
-  std::ifstream in(path);
-  if (!in) {
-    ADD_FAILURE() << "cannot read " << path;
-    return s;
-  }
-  std::string line, cell;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  for (std::istringstream h(line); std::getline(h, cell, ',');) names.push_back(cell);
-  while (std::getline(in, line)) {
-    std::istringstream r(line);
-    for (const auto& n : names) {
-      std::getline(r, cell, ',');
-      s.col[n].push_back(std::stod(cell));
-    }
-  }
-  return s;
-}
 
 struct Outcome {
   int status = -1;

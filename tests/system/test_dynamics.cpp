@@ -23,9 +23,12 @@
 #include <string>
 #include <vector>
 
+#include "CsvSeries.hpp"
 #include "run/Simulation.hpp"
 
 using namespace stentor;
+using stentor::testing::read_csv;
+using stentor::testing::Series;
 namespace fs = std::filesystem;
 
 namespace {
@@ -33,39 +36,6 @@ namespace {
 const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "dynamics";
 
 // ---- Energy CSV.
-struct Series {
-  std::map<std::string, std::vector<double>> col;
-  const std::vector<double>& operator[](const std::string& name) const {
-    auto it = col.find(name);
-    if (it == col.end()) throw std::runtime_error("no column " + name);
-    return it->second;
-  }
-  std::size_t rows() const { return col.empty() ? 0 : col.begin()->second.size(); }
-  std::array<double, 3> vec(const std::string& stem, std::size_t i) const {
-    return {(*this)[stem + "_x"][i], (*this)[stem + "_y"][i], (*this)[stem + "_z"][i]};
-  }
-};
-
-Series read_csv(const fs::path& path) {
-  Series s;
-  std::ifstream in(path);
-  if (!in) {
-    ADD_FAILURE() << "cannot read " << path;
-    return s;
-  }
-  std::string line, cell;
-  std::getline(in, line);
-  std::vector<std::string> names;
-  for (std::istringstream h(line); std::getline(h, cell, ',');) names.push_back(cell);
-  while (std::getline(in, line)) {
-    std::istringstream r(line);
-    for (const auto& n : names) {
-      std::getline(r, cell, ',');
-      s.col[n].push_back(std::stod(cell));
-    }
-  }
-  return s;
-}
 
 double norm(const std::array<double, 3>& a) { return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]); }
 double dist(const std::array<double, 3>& a, const std::array<double, 3>& b) {
