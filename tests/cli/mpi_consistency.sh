@@ -33,6 +33,8 @@ for np in "$@"; do
       if (name ~ /^u_/) return "probe"
       if (name == "strain_energy") return "energy"
       if (name == "newton_iterations" || name == "linear_iterations") return ""
+      if (name ~ /_force_[xyz]$/) return "contact_force"
+      if (name ~ /_min_gap$/) return "gap"
       return "exact"
     }
     FNR == 1 { if (NR == 1) { nc = NF; for (i = 1; i <= NF; ++i) h[i] = $i }
