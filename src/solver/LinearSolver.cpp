@@ -7,9 +7,6 @@
 #include <sstream>
 #include <cstdlib>
 #include <iostream>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
 
 #include "solver/MueLuPreconditioner.hpp"
 #include <Teuchos_DefaultMpiComm.hpp>
@@ -93,7 +90,6 @@ struct LinearSolver::Impl {
 #endif
   Teuchos::RCP<Teuchos::ParameterList> belos_params;
   int dim = 0;
-  double t_setup = 0, t_solve = 0; int n_setup = 0;  // TMPTIMING
   std::vector<double> coords;  // owned nodes, 3 each (for multigrid null spaces)
 
   static Teuchos::RCP<Teuchos::ParameterList> parse(const std::string& xml) {
@@ -119,21 +115,15 @@ LinearSolver::LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la
 #endif
 }
 
-LinearSolver::~LinearSolver() {
-  if (std::getenv("STENTOR_LS_TIMING") && impl_->comm->getRank() == 0)  // TMPTIMING
-    std::printf("LSTIMING setups %d setup %.3f s solve %.3f s\n", impl_->n_setup, impl_->t_setup, impl_->t_solve);
-}
+LinearSolver::~LinearSolver() = default;
 
 void LinearSolver::set_node_coordinates(int dim, const std::vector<double>& owned_xyz) {
   impl_->dim = dim;
   impl_->coords = owned_xyz;
 }
 
-struct TmpTimer { double& acc; std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();  // TMPTIMING
-  ~TmpTimer() { acc += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); } };
 void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
   Impl& m = *impl_;
-  TmpTimer tt{m.t_setup}; ++m.n_setup;  // TMPTIMING
   const bool same = (m.A.get() == A.get());
   m.A = A;
   if (m.cfg.method == "direct") {
@@ -162,7 +152,7 @@ void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
 #ifdef STENTOR_HAVE_MUELU
     // Built once per matrix; later Newton iterations recompute it for the new values
     // through MueLu's reuse path (same graph), which skips parsing and setup of the factories.
-    if (!same || m.mg.is_null() || std::getenv("STENTOR_MUELU_REBUILD"))  // TMPTIMING
+    if (!same || m.mg.is_null())
       m.mg = make_muelu_preconditioner(A, m.dim, m.coords, m.cfg.muelu_xml);
     else
       recompute_muelu_preconditioner(A, m.mg);
@@ -195,7 +185,6 @@ void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
 
 LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x) {
   Impl& m = *impl_;
-  TmpTimer tt{m.t_solve};  // TMPTIMING
   Result res;
   x.putScalar(0.0);
   if (m.cfg.method == "direct") {
