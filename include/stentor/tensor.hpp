@@ -121,4 +121,20 @@ KOKKOS_INLINE_FUNCTION Mat3 deviator(const Mat3& x) {
   return r;
 }
 
+// Largest absolute entry (a norm for comparisons in tests and checks).
+KOKKOS_INLINE_FUNCTION double max_abs(const Mat3& m) {
+  double r = 0.0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) r = std::fmax(r, std::fabs(m.a[i][j]));
+  return r;
+}
+KOKKOS_INLINE_FUNCTION double max_abs(const Ten4& t) {
+  double r = 0.0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) r = std::fmax(r, std::fabs(t.a[i][j][k][l]));
+  return r;
+}
+
 }  // namespace stentor

@@ -35,22 +35,6 @@ Mat3 diag(double x, double y, double z) {
   return m;
 }
 
-double max_abs(const Mat3& m) {
-  double r = 0.0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) r = std::fmax(r, std::fabs(m(i, j)));
-  return r;
-}
-
-double max_abs(const Ten4& t) {
-  double r = 0.0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l) r = std::fmax(r, std::fabs(t(i, j, k, l)));
-  return r;
-}
-
 // Random deformation gradient with det F >= 0.3 (3D) or a plane-strain one
 // (F_33 = 1, no out-of-plane shear) when plane = true.
 Mat3 random_F(std::mt19937& rng, bool plane = false) {

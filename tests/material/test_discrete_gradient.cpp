@@ -26,22 +26,6 @@ namespace {
 // Same parameter sets as test_ciarlet_geymonat: moderate, and nearly incompressible.
 const CiarletGeymonat kMats[] = {{0.8, 0.3, 1.5}, {50.0, 0.0, 2000.0}};
 
-double max_abs(const Mat3& m) {
-  double r = 0.0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) r = std::fmax(r, std::fabs(m(i, j)));
-  return r;
-}
-
-double max_abs(const Ten4& t) {
-  double r = 0.0;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l) r = std::fmax(r, std::fabs(t(i, j, k, l)));
-  return r;
-}
-
 double norm(const Mat3& m) { return std::sqrt(stentor::ddot(m, m)); }
 
 // Random deformation gradient with det F >= 0.3 (3D) or a plane-strain one
