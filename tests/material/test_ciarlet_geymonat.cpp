@@ -15,17 +15,17 @@
 #include <cmath>
 #include <random>
 
+#include "MaterialSamples.hpp"
 #include "material/CiarletGeymonat.hpp"
 #include "material/Kinematics.hpp"
 
 using stentor::CiarletGeymonat;
 using stentor::Mat3;
 using stentor::Ten4;
+using stentor::testing::kMats;
+using stentor::testing::random_F;
 
 namespace {
-
-// Two parameter sets: moderate, and nearly incompressible (D >> C1, C2) with C2 = 0.
-const CiarletGeymonat kMats[] = {{0.8, 0.3, 1.5}, {50.0, 0.0, 2000.0}};
 
 Mat3 diag(double x, double y, double z) {
   Mat3 m = Mat3::zero();
@@ -33,22 +33,6 @@ Mat3 diag(double x, double y, double z) {
   m(1, 1) = y;
   m(2, 2) = z;
   return m;
-}
-
-// Random deformation gradient with det F >= 0.3 (3D) or a plane-strain one
-// (F_33 = 1, no out-of-plane shear) when plane = true.
-Mat3 random_F(std::mt19937& rng, bool plane = false) {
-  std::uniform_real_distribution<double> u(-0.4, 0.4);
-  for (;;) {
-    Mat3 F = Mat3::identity();
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) F(i, j) += u(rng);
-    if (plane) {
-      F(0, 2) = F(1, 2) = F(2, 0) = F(2, 1) = 0.0;
-      F(2, 2) = 1.0;
-    }
-    if (stentor::det(F) >= 0.3) return F;
-  }
 }
 
 // Rotation by angle theta about unit axis n (Rodrigues).

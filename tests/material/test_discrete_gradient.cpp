@@ -14,35 +14,19 @@
 #include <random>
 #include <string>
 
+#include "MaterialSamples.hpp"
 #include "material/CiarletGeymonat.hpp"
 #include "material/DiscreteGradient.hpp"
 
 using stentor::CiarletGeymonat;
 using stentor::Mat3;
 using stentor::Ten4;
+using stentor::testing::kMats;
+using stentor::testing::random_F;
 
 namespace {
 
-// Same parameter sets as test_ciarlet_geymonat: moderate, and nearly incompressible.
-const CiarletGeymonat kMats[] = {{0.8, 0.3, 1.5}, {50.0, 0.0, 2000.0}};
-
 double norm(const Mat3& m) { return std::sqrt(stentor::ddot(m, m)); }
-
-// Random deformation gradient with det F >= 0.3 (3D) or a plane-strain one
-// (F_33 = 1, no out-of-plane shear) when plane = true.
-Mat3 random_F(std::mt19937& rng, bool plane) {
-  std::uniform_real_distribution<double> u(-0.4, 0.4);
-  for (;;) {
-    Mat3 F = Mat3::identity();
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) F(i, j) += u(rng);
-    if (plane) {
-      F(0, 2) = F(1, 2) = F(2, 0) = F(2, 1) = 0.0;
-      F(2, 2) = 1.0;
-    }
-    if (stentor::det(F) >= 0.3) return F;
-  }
-}
 
 Mat3 random_C(std::mt19937& rng, bool plane) {
   const Mat3 F = random_F(rng, plane);

@@ -1,0 +1,29 @@
+// Shared samples for material-point tests: parameter sets and random deformations.
+#pragma once
+#include <random>
+
+#include "material/CiarletGeymonat.hpp"
+#include "stentor/tensor.hpp"
+
+namespace stentor::testing {
+
+// Two parameter sets: moderate, and nearly incompressible (D >> C1, C2) with C2 = 0.
+inline const CiarletGeymonat kMats[] = {{0.8, 0.3, 1.5}, {50.0, 0.0, 2000.0}};
+
+// Random deformation gradient with det F >= 0.3 (3D) or a plane-strain one
+// (F_33 = 1, no out-of-plane shear) when plane = true.
+inline Mat3 random_F(std::mt19937& rng, bool plane = false) {
+  std::uniform_real_distribution<double> u(-0.4, 0.4);
+  for (;;) {
+    Mat3 F = Mat3::identity();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) F(i, j) += u(rng);
+    if (plane) {
+      F(0, 2) = F(1, 2) = F(2, 0) = F(2, 1) = 0.0;
+      F(2, 2) = 1.0;
+    }
+    if (det(F) >= 0.3) return F;
+  }
+}
+
+}  // namespace stentor::testing
