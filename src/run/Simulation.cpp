@@ -51,6 +51,34 @@ class Timers {
   std::vector<std::string> order_;
 };
 
+// Records (a global id and k values each) of every rank, gathered on rank 0 (empty
+// elsewhere); `from` is the rank each record came from.
+struct Gathered {
+  std::vector<long long> ids;
+  std::vector<double> values;
+  std::vector<int> from;
+};
+Gathered gather_on_root(const std::vector<long long>& ids, const std::vector<double>& values, int k, int nranks) {
+  const int n = static_cast<int>(ids.size());
+  std::vector<int> counts(static_cast<std::size_t>(nranks)), displs(static_cast<std::size_t>(nranks));
+  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  int total = 0;
+  for (int r = 0; r < nranks; ++r) {
+    displs[static_cast<std::size_t>(r)] = total;
+    total += counts[static_cast<std::size_t>(r)];
+  }
+  Gathered g;
+  g.ids.resize(static_cast<std::size_t>(total));
+  g.values.resize(static_cast<std::size_t>(total) * static_cast<std::size_t>(k));
+  MPI_Gatherv(ids.data(), n, MPI_LONG_LONG, g.ids.data(), counts.data(), displs.data(), MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  std::vector<int> counts_k(counts), displs_k(displs);
+  for (auto& c : counts_k) c *= k;
+  for (auto& d : displs_k) d *= k;
+  MPI_Gatherv(values.data(), k * n, MPI_DOUBLE, g.values.data(), counts_k.data(), displs_k.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  for (int r = 0; r < nranks; ++r) g.from.insert(g.from.end(), static_cast<std::size_t>(counts[static_cast<std::size_t>(r)]), r);
+  return g;
+}
+
 // The residual of one step (static equilibrium, or a time scheme's), for Newton.
 class StepSystem : public NewtonSystem {
  public:
@@ -243,92 +271,53 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     Timers::Scope s{timers, "output"};
     u_all.doImport(u, gather, Tpetra::INSERT);
     Assembler::CellFields cf = assembler->cell_fields(u);
-    const int nloc = static_cast<int>(cf.cell_ids.size());
-    std::vector<int> counts(static_cast<std::size_t>(nranks)), displs(static_cast<std::size_t>(nranks));
-    MPI_Gather(&nloc, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-    int total = 0;
-    for (int r = 0; r < nranks; ++r) {
-      displs[static_cast<std::size_t>(r)] = total;
-      total += counts[static_cast<std::size_t>(r)];
+    std::vector<double> packed;  // per local cell: stress (6), von Mises, J
+    for (std::size_t c = 0; c < cf.cell_ids.size(); ++c) {
+      packed.insert(packed.end(), cf.stress.begin() + static_cast<std::ptrdiff_t>(6 * c),
+                    cf.stress.begin() + static_cast<std::ptrdiff_t>(6 * c + 6));
+      packed.push_back(cf.von_mises[c]);
+      packed.push_back(cf.J[c]);
     }
-    std::vector<long long> ids(static_cast<std::size_t>(total));
-    std::vector<double> packed_loc, packed(static_cast<std::size_t>(total) * 8);
-    for (int c = 0; c < nloc; ++c) {
-      for (int k = 0; k < 6; ++k) packed_loc.push_back(cf.stress[static_cast<std::size_t>(6 * c + k)]);
-      packed_loc.push_back(cf.von_mises[static_cast<std::size_t>(c)]);
-      packed_loc.push_back(cf.J[static_cast<std::size_t>(c)]);
-    }
-    std::vector<long long> ids_loc(cf.cell_ids.begin(), cf.cell_ids.end());
-    MPI_Gatherv(ids_loc.data(), nloc, MPI_LONG_LONG, ids.data(), counts.data(), displs.data(), MPI_LONG_LONG, 0, MPI_COMM_WORLD);
-    std::vector<int> counts8(counts), displs8(displs);
-    for (auto& c : counts8) c *= 8;
-    for (auto& d : displs8) d *= 8;
-    MPI_Gatherv(packed_loc.data(), 8 * nloc, MPI_DOUBLE, packed.data(), counts8.data(), displs8.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
-    // Contact fields at slave nodes (zero elsewhere): gathered like the cell fields.
-    struct ContactNodes {
-      std::vector<double> status, gap, lambda_n, lambda_t;
-    };
-    std::unique_ptr<ContactNodes> contact_nodes;
+    const Gathered cells = gather_on_root(std::vector<long long>(cf.cell_ids.begin(), cf.cell_ids.end()), packed, 8, nranks);
+    // Contact fields at slave nodes (zero elsewhere).
+    Gathered slaves;
     if (contact) {
       const Contact::NodalFields nf = contact->nodal_fields(u);
-      const int m = static_cast<int>(nf.nodes.size());
-      std::vector<int> cnt(static_cast<std::size_t>(nranks)), dsp(static_cast<std::size_t>(nranks));
-      MPI_Gather(&m, 1, MPI_INT, cnt.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-      int tot = 0;
-      for (int r = 0; r < nranks; ++r) {
-        dsp[static_cast<std::size_t>(r)] = tot;
-        tot += cnt[static_cast<std::size_t>(r)];
-      }
-      std::vector<long long> gn(static_cast<std::size_t>(tot));
-      std::vector<double> gv(6 * static_cast<std::size_t>(tot));
-      MPI_Gatherv(nf.nodes.data(), m, MPI_LONG_LONG, gn.data(), cnt.data(), dsp.data(), MPI_LONG_LONG, 0, MPI_COMM_WORLD);
-      std::vector<int> cnt6(cnt), dsp6(dsp);
-      for (auto& c : cnt6) c *= 6;
-      for (auto& d : dsp6) d *= 6;
-      MPI_Gatherv(nf.values.data(), 6 * m, MPI_DOUBLE, gv.data(), cnt6.data(), dsp6.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
-      if (rank == 0) {
-        const std::size_t nn = mesh.num_nodes();
-        contact_nodes = std::make_unique<ContactNodes>();
-        contact_nodes->status.assign(nn, 0.0);
-        contact_nodes->gap.assign(nn, 0.0);
-        contact_nodes->lambda_n.assign(nn, 0.0);
-        contact_nodes->lambda_t.assign(3 * nn, 0.0);
-        for (int i = 0; i < tot; ++i) {
-          const auto g = static_cast<std::size_t>(gn[static_cast<std::size_t>(i)]);
-          const double* v = &gv[6 * static_cast<std::size_t>(i)];
-          contact_nodes->status[g] = v[0];
-          contact_nodes->gap[g] = v[1];
-          contact_nodes->lambda_n[g] = v[2];
-          for (int k = 0; k < 3; ++k) contact_nodes->lambda_t[3 * g + k] = v[3 + k];
-        }
-      }
+      slaves = gather_on_root(nf.nodes, nf.values, 6, nranks);
     }
     if (rank != 0 || !xdmf) return;
-    const std::size_t nc = mesh.num_volume_cells();
-    std::vector<double> disp(3 * mesh.num_nodes(), 0.0), stress(6 * nc), vm(nc), J(nc), owner(nc);
+    const std::size_t nc = mesh.num_volume_cells(), nn = mesh.num_nodes();
+    std::vector<double> disp(3 * nn, 0.0), stress(6 * nc), vm(nc), J(nc), owner(nc);
     auto uh = u_all.getLocalViewHost(Tpetra::Access::ReadOnly);
     for (std::size_t i = 0; i < all_dofs.size(); ++i)
       disp[3 * static_cast<std::size_t>(all_dofs[i] / dim) + static_cast<std::size_t>(all_dofs[i] % dim)] = uh(i, 0);
-    for (int r = 0; r < nranks; ++r)
-      for (int c = 0; c < counts[static_cast<std::size_t>(r)]; ++c) {
-        const std::size_t i = static_cast<std::size_t>(displs[static_cast<std::size_t>(r)] + c);
-        const auto id = static_cast<std::size_t>(ids[i]);
-        for (int k = 0; k < 6; ++k) stress[6 * id + k] = packed[8 * i + k];
-        vm[id] = packed[8 * i + 6];
-        J[id] = packed[8 * i + 7];
-        owner[id] = r;
-      }
+    for (std::size_t i = 0; i < cells.ids.size(); ++i) {
+      const auto id = static_cast<std::size_t>(cells.ids[i]);
+      for (int k = 0; k < 6; ++k) stress[6 * id + k] = cells.values[8 * i + k];
+      vm[id] = cells.values[8 * i + 6];
+      J[id] = cells.values[8 * i + 7];
+      owner[id] = cells.from[i];
+    }
     xdmf->begin_step(t);
     xdmf->node_field("displacement", 3, disp);
     xdmf->cell_field("cauchy_stress", 6, stress);
     xdmf->cell_field("von_mises", 1, vm);
     xdmf->cell_field("J", 1, J);
     xdmf->cell_field("mpi_rank", 1, owner);
-    if (contact_nodes) {
-      xdmf->node_field("contact_status", 1, contact_nodes->status);
-      xdmf->node_field("contact_gap", 1, contact_nodes->gap);
-      xdmf->node_field("contact_lambda_normal", 1, contact_nodes->lambda_n);
-      xdmf->node_field("contact_lambda_tangent", 3, contact_nodes->lambda_t);
+    if (contact) {
+      std::vector<double> status(nn, 0.0), gap(nn, 0.0), lambda_n(nn, 0.0), lambda_t(3 * nn, 0.0);
+      for (std::size_t i = 0; i < slaves.ids.size(); ++i) {
+        const auto g = static_cast<std::size_t>(slaves.ids[i]);
+        const double* v = &slaves.values[6 * i];
+        status[g] = v[0];
+        gap[g] = v[1];
+        lambda_n[g] = v[2];
+        for (int k = 0; k < 3; ++k) lambda_t[3 * g + k] = v[3 + k];
+      }
+      xdmf->node_field("contact_status", 1, status);
+      xdmf->node_field("contact_gap", 1, gap);
+      xdmf->node_field("contact_lambda_normal", 1, lambda_n);
+      xdmf->node_field("contact_lambda_tangent", 3, lambda_t);
     }
     xdmf->end_step();
   };
