@@ -80,7 +80,9 @@ void usage() {
                "  --newton-iterations N  cap Newton iterations (Newton->max iterations); a capped solve\n"
                "               is reported as 'newton_total(not converged)' with the cost of the iterations done\n"
                "  --fill-level K  override Linear Solver->fill level (RILUK level of fill)\n"
-               "  --tag TEXT   appended to the deck name in the CSV, as cube_p1[TEXT]\n";
+               "  --tag TEXT   appended to the deck name in the CSV, as cube_p1[TEXT]\n"
+               "  --assembly atomic|coloring  override Problem->assembly (thread-safe sums)\n"
+               "  --preconditioner schwarz|muelu|none  override Linear Solver->preconditioner\n";
 }
 
 }  // namespace
@@ -91,7 +93,7 @@ int main(int argc, char** argv) {
   const int rank = comm->getRank();
   const int nranks = comm->getSize();
 
-  std::string deck, csv, tag;
+  std::string deck, csv, tag, assembly, preconditioner;
   int repeat = 5;
   double size = 0.0;
   bool newton = true;
@@ -117,6 +119,10 @@ int main(int argc, char** argv) {
       tag = next();
     else if (a == "--fill-level")
       fill_level = std::stoi(next());
+    else if (a == "--assembly")
+      assembly = next();
+    else if (a == "--preconditioner")
+      preconditioner = next();
     else if (a == "--no-newton")
       newton = false;
     else if (a == "-h" || a == "--help") {
@@ -141,11 +147,15 @@ int main(int argc, char** argv) {
     if (size > 0.0) cfg.mesh.size = size;
     if (newton_cap > 0) cfg.newton.max_iterations = newton_cap;
     if (fill_level >= 0) cfg.linear.fill_level = fill_level;
+    if (!assembly.empty()) cfg.problem.assembly = assembly;
+    if (!preconditioner.empty()) cfg.linear.preconditioner = preconditioner;
     // CSV label: deck name plus the overrides, e.g. cube_p2[h=0.1][fill=0].
     std::ostringstream label_os;
     label_os << std::filesystem::path(deck).stem().string();
     if (size > 0.0) label_os << "[h=" << size << "]";
     if (fill_level >= 0) label_os << "[fill=" << fill_level << "]";
+    if (!assembly.empty()) label_os << "[" << assembly << "]";
+    if (!preconditioner.empty()) label_os << "[" << preconditioner << "]";
     if (!tag.empty()) label_os << "[" << tag << "]";
     const std::string label = label_os.str();
 
@@ -180,7 +190,9 @@ int main(int argc, char** argv) {
         << "  mesh     " << mesh.num_nodes() << " nodes, " << cells << " cells (" << cell_types << "), " << gauss_points
         << " Gauss points, " << dofs << " dofs\n"
         << "  matrix   " << assembler.matrix()->getGlobalNumEntries() << " nonzeros\n"
-        << "  parallel " << nranks << " MPI rank(s) x " << threads << " " << la::ExecSpace::name() << " thread(s)\n"
+        << "  parallel " << nranks << " MPI rank(s) x " << threads << " " << la::ExecSpace::name() << " thread(s), " << cfg.problem.assembly
+        << " assembly" << (assembler.num_colors() > 0 ? " (" + std::to_string(assembler.num_colors()) + " colours)" : std::string())
+        << "\n"
         << "  solver   " << linear.description() << "\n"
         << "  repeat   " << repeat << "\n";
     if (rank == 0) {

@@ -1,6 +1,7 @@
 #include "assembly/Assembler.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <set>
 #include <unordered_set>
 
@@ -31,12 +32,17 @@ KOKKOS_INLINE_FUNCTION void gather_cell(int c, int nn, int dim, const Conn& conn
 }
 
 // Sums an element vector/matrix into overlap storage, skipping constrained rows.
-template <bool WithTangent, class RView, class Flags>
+// Atomic: cells running at the same time may share nodes. Without it the caller
+// guarantees they do not (cells of one colour, see Assembler::color_cells).
+template <bool WithTangent, bool Atomic, class RView, class Flags>
 KOKKOS_INLINE_FUNCTION void scatter(int nd, const int* dofs, const double* re, const double (*ke)[kMaxCellDofs],
                                     const RView& r, const DeviceMatrix& K, const Flags& flag) {
   for (int i = 0; i < nd; ++i) {
-    Kokkos::atomic_add(&r(dofs[i], 0), re[i]);
-    if (WithTangent && !flag(dofs[i])) K.sumIntoValues(dofs[i], dofs, nd, ke[i], false, true);
+    if (Atomic)
+      Kokkos::atomic_add(&r(dofs[i], 0), re[i]);
+    else
+      r(dofs[i], 0) += re[i];
+    if (WithTangent && !flag(dofs[i])) K.sumIntoValues(dofs[i], dofs, nd, ke[i], false, Atomic);
   }
 }
 
@@ -53,6 +59,7 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
     block_eta_.push_back(cfg.problem.dynamic() ? m.viscosity : 0.0);
     quad_degree_.push_back(default_quadrature_degree(mesh.volumes[b].type));
   }
+  if (cfg.problem.assembly == "coloring") color_cells();
   exporter_ = Teuchos::rcp(new la::Export(dist.overlap_map(), dist.owned_map()));
   u_overlap_ = Teuchos::rcp(new la::Vector(dist.overlap_map()));
   u0_overlap_ = Teuchos::rcp(new la::Vector(dist.overlap_map()));
@@ -136,6 +143,62 @@ void Assembler::build_graph() {
   owned_graph->fillComplete(dist_.owned_map(), dist_.owned_map());
   K_ = Teuchos::rcp(new la::CrsMatrix(owned_graph));
   K_->fillComplete(dist_.owned_map(), dist_.owned_map());
+}
+
+void Assembler::color_cells() {
+  // Greedy colouring of each block's cells so that no two cells of a colour share a node:
+  // a cell takes the lowest colour none of its nodes has seen yet. Per node a bit set of
+  // the colours already used there (kMaxColors bits). Colours are then stored as ranges
+  // of a permutation of the block's cells, in the original order within each colour.
+  constexpr int kWords = kMaxColors / 64;
+  const auto nloc = static_cast<std::size_t>(dist_.num_local_nodes());
+  colors_.clear();
+  for (const auto& b : dist_.blocks()) {
+    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), b.conn);
+    const std::size_t nc = h.extent(0);
+    std::vector<std::uint64_t> used(nloc * kWords, 0);
+    std::vector<int> color(nc, 0);
+    int ncolors = 0;
+    for (std::size_t c = 0; c < nc; ++c) {
+      std::uint64_t forbidden[kWords] = {};
+      for (int a = 0; a < b.nodes_per_cell; ++a)
+        for (int w = 0; w < kWords; ++w) forbidden[w] |= used[static_cast<std::size_t>(h(c, a)) * kWords + w];
+      int k = 0;
+      while (k < kMaxColors && (forbidden[k / 64] >> (k % 64) & 1u)) ++k;
+      if (k == kMaxColors)
+        throw std::runtime_error("Problem->assembly = coloring: a cell needs more than " + std::to_string(kMaxColors) +
+                                 " colours (nodes shared by very many cells); use assembly = atomic");
+      color[c] = k;
+      ncolors = std::max(ncolors, k + 1);
+      for (int a = 0; a < b.nodes_per_cell; ++a) used[static_cast<std::size_t>(h(c, a)) * kWords + k / 64] |= std::uint64_t{1} << (k % 64);
+    }
+    BlockColors bc;
+    bc.offsets.assign(static_cast<std::size_t>(ncolors) + 1, 0);
+    for (std::size_t c = 0; c < nc; ++c) ++bc.offsets[static_cast<std::size_t>(color[c]) + 1];
+    for (int k = 0; k < ncolors; ++k) bc.offsets[static_cast<std::size_t>(k) + 1] += bc.offsets[static_cast<std::size_t>(k)];
+    bc.cells = Kokkos::View<int*, la::ExecSpace>("colored_cells", nc);
+    auto ch = Kokkos::create_mirror_view(bc.cells);
+    std::vector<std::size_t> next(bc.offsets.begin(), bc.offsets.end() - 1);
+    for (std::size_t c = 0; c < nc; ++c) ch(next[static_cast<std::size_t>(color[c])]++) = static_cast<int>(c);
+    Kokkos::deep_copy(bc.cells, ch);
+    colors_.push_back(std::move(bc));
+  }
+}
+
+int Assembler::num_colors() const {
+  std::size_t n = 0;
+  for (const auto& bc : colors_) n = std::max(n, bc.offsets.empty() ? 0 : bc.offsets.size() - 1);
+  return static_cast<int>(n);
+}
+
+std::vector<int> Assembler::cell_colors(std::size_t b) const {
+  if (b >= colors_.size()) return {};
+  const BlockColors& bc = colors_[b];
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), bc.cells);
+  std::vector<int> color(h.extent(0), -1);
+  for (std::size_t k = 0; k + 1 < bc.offsets.size(); ++k)
+    for (std::size_t i = bc.offsets[k]; i < bc.offsets[k + 1]; ++i) color[static_cast<std::size_t>(h(i))] = static_cast<int>(k);
+  return color;
 }
 
 void Assembler::setup_loads(const Mesh& mesh) {
@@ -298,7 +361,8 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
     auto u0v = u0_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
     auto rv = r_overlap_->getLocalViewDevice(Tpetra::Access::ReadWrite);
     auto rxv = rext_overlap_->getLocalViewDevice(Tpetra::Access::ReadWrite);
-    for (const auto& lb : dist_.blocks()) {
+    for (std::size_t bi = 0; bi < dist_.blocks().size(); ++bi) {
+      const auto& lb = dist_.blocks()[bi];
       const std::size_t nc = lb.cell_ids.size();
       if (nc == 0) continue;
       const CiarletGeymonat mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
@@ -313,8 +377,9 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
       auto conn = lb.conn;
       double e_block = 0.0;
       Kokkos::View<double*, la::ExecSpace> dsum("dissipation", 1);
-      auto body = [=](const int c, double& e, auto tangent_tag) {
+      auto body = [=](const int c, double& e, auto tangent_tag, auto atomic_tag) {
         constexpr bool T = decltype(tangent_tag)::value;
+        constexpr bool A = decltype(atomic_tag)::value;
         double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], U0e[kMaxCellNodes][3], re[kMaxCellDofs];
         double ke[T ? kMaxCellDofs : 1][kMaxCellDofs];
         int dofs[kMaxCellDofs];
@@ -330,16 +395,36 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
         }
         e += ec;
         if (dc != 0.0) Kokkos::atomic_add(&dsum(0), dc);
-        scatter<T>(nn * dim, dofs, re, ke, rv, Kl, flags);
+        scatter<T, A>(nn * dim, dofs, re, ke, rv, Kl, flags);
       };
-      if (with_tangent)
-        Kokkos::parallel_reduce(
-            "stentor::solid_residual_tangent", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
-            KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::true_type{}); }, e_block);
-      else
-        Kokkos::parallel_reduce(
-            "stentor::solid_residual", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
-            KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::false_type{}); }, e_block);
+      if (colors_.empty()) {
+        // Atomic sums: all cells in one kernel.
+        if (with_tangent)
+          Kokkos::parallel_reduce(
+              "stentor::solid_residual_tangent", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
+              KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::true_type{}, std::true_type{}); }, e_block);
+        else
+          Kokkos::parallel_reduce(
+              "stentor::solid_residual", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
+              KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::false_type{}, std::true_type{}); }, e_block);
+      } else {
+        // One kernel per colour: its cells share no node, so plain sums are race-free.
+        const BlockColors& bc = colors_[bi];
+        auto cells = bc.cells;
+        for (std::size_t k = 0; k + 1 < bc.offsets.size(); ++k) {
+          double e_color = 0.0;
+          const Kokkos::RangePolicy<la::ExecSpace> range(bc.offsets[k], bc.offsets[k + 1]);
+          if (with_tangent)
+            Kokkos::parallel_reduce(
+                "stentor::solid_residual_tangent_colored", range,
+                KOKKOS_LAMBDA(const int i, double& e) { body(cells(i), e, std::true_type{}, std::false_type{}); }, e_color);
+          else
+            Kokkos::parallel_reduce(
+                "stentor::solid_residual_colored", range,
+                KOKKOS_LAMBDA(const int i, double& e) { body(cells(i), e, std::false_type{}, std::false_type{}); }, e_color);
+          e_block += e_color;
+        }
+      }
       auto dh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dsum);
       energy += e_block;
       dissipation += dh(0);
@@ -412,9 +497,9 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
               }
             }
             if (T)
-              scatter<true>(nd, dofs, re, ke, rxv, Kl, flags);
+              scatter<true, true>(nd, dofs, re, ke, rxv, Kl, flags);
             else
-              scatter<false>(nd, dofs, re, ke, rxv, Kl, flags);
+              scatter<false, true>(nd, dofs, re, ke, rxv, Kl, flags);
           });
     }
   }

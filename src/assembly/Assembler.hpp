@@ -8,6 +8,12 @@
 // Dirichlet dofs: their values are imposed on u before each solve; their residual rows
 // are zeroed and their matrix rows replaced by the identity, so Newton increments
 // vanish there. Reactions are read from those rows before zeroing.
+//
+// Threads: element kernels run in Kokkos' default execution space (OpenMP threads on an
+// OpenMP build). Two cells on different threads may sum into the same rows; by default
+// those sums are atomic (Problem->assembly = atomic); `coloring` instead launches one
+// kernel per colour of cells that share no node and sums without atomics.
+// docs/performance.md compares the two.
 #pragma once
 #include <array>
 #include <vector>
@@ -71,6 +77,11 @@ class Assembler {
 
   const la::RCP<la::CrsMatrix>& matrix() const { return K_; }
 
+  // Colours of the largest local block when Problem->assembly = coloring (0: atomic sums).
+  int num_colors() const;
+  // Colour of each cell of local block b (Distribution::blocks() order); empty with atomics.
+  std::vector<int> cell_colors(std::size_t b) const;
+
   // Sets the prescribed values at time t on the owned Dirichlet dofs of u.
   void apply_dirichlet(la::Vector& u, double t, double end_time) const;
 
@@ -89,6 +100,7 @@ class Assembler {
  private:
   void build_graph();
   void setup_loads(const Mesh& mesh);
+  void color_cells();
 
   const Distribution& dist_;
   const Loads& loads_;
@@ -96,6 +108,15 @@ class Assembler {
   std::vector<CiarletGeymonat> block_mat_;  // per mesh volume block
   std::vector<double> block_density_, block_eta_;
   std::vector<int> quad_degree_;            // per mesh volume block
+
+  // Problem->assembly = coloring: per local block (Distribution::blocks() order), its
+  // cells permuted so that colour k is cells(offsets[k] .. offsets[k+1]-1). Empty: atomics.
+  static constexpr int kMaxColors = 256;
+  struct BlockColors {
+    std::vector<std::size_t> offsets;
+    Kokkos::View<int*, la::ExecSpace> cells;
+  };
+  std::vector<BlockColors> colors_;
 
   la::RCP<const la::Export> exporter_;       // overlap -> owned
   la::RCP<la::CrsMatrix> K_overlap_, K_;

@@ -532,6 +532,7 @@ void DeckReader::read_problem(const ParameterList& pl) {
   check_list(pl, "Problem", {&ls});
   cfg_.problem.title = get_string(pl, ls, "title");
   cfg_.problem.analysis = get_string(pl, ls, "analysis");
+  cfg_.problem.assembly = get_string(pl, ls, "assembly");
 }
 
 void DeckReader::read_mesh(const ParameterList& pl) {

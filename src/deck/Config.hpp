@@ -27,6 +27,7 @@ struct Ramp {
 struct ProblemConfig {
   std::string title;                 // "Problem"->"title"
   std::string analysis = "static";   // "Problem"->"analysis": "static" | "dynamic"
+  std::string assembly = "atomic";   // "Problem"->"assembly": "atomic" | "coloring" (thread-safe sums)
   bool dynamic() const { return analysis == "dynamic"; }
 };
 

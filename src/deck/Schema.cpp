@@ -91,7 +91,12 @@ std::vector<ListSpec> build_schema() {
                     str("analysis", "static",
                         "`static`: equilibrium at each load step; `dynamic`: momentum balance with inertia "
                         "(see `Time Integration`).")
-                        .one_of({"static", "dynamic"})}));
+                        .one_of({"static", "dynamic"}),
+                    str("assembly", "atomic",
+                        "How threads sum element contributions into shared rows: `atomic` additions, or "
+                        "`coloring` (one kernel per colour of cells that share no node, plain additions). "
+                        "Results agree to round-off; docs/performance.md compares their speed.")
+                        .one_of({"atomic", "coloring"})}));
 
   s.push_back(list(
       "Mesh", "Mesh", "The gmsh mesh; physical groups name the bodies and the boundaries.",

@@ -160,7 +160,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     out << (b ? ", " : "") << mesh.volumes[b].name << ": " << mesh.volumes[b].num_cells() << " " << cell_name(mesh.volumes[b].type);
   out << ")\n";
   out << "  parallel " << nranks << " MPI rank(s), Kokkos " << la::ExecSpace::name() << " x " << la::ExecSpace().concurrency()
-      << " thread(s)\n";
+      << " thread(s), " << cfg.problem.assembly << " assembly\n";
   if (opts.check_only) {
     out << "deck and mesh are valid: " << cfg.bodies.size() << " bodies, " << cfg.materials.size() << " materials, " << cfg.loads.size()
         << " boundary conditions\n";

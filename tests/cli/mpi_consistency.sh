@@ -4,7 +4,11 @@
 # relative difference below TOL. Reactions are scaled by the largest reaction,
 # probe displacements by the largest probe displacement, the energy by its largest
 # value (so components that are zero up to round-off do not count as relative noise).
-# usage: mpi_consistency.sh STENTOR MPIEXEC NPFLAG WORKDIR DECK BASENAME TOL NP...
+# usage: mpi_consistency.sh STENTOR MPIEXEC NPFLAG WORKDIR DECK BASENAME TOL RUN...
+# Each RUN is a rank count R or RxT: R MPI ranks with T OpenMP threads each
+# (OMP_NUM_THREADS=T; ranks are then not bound to one core, so their threads can spread).
+# A run with T > 1 also checks that the log's header reports T threads, so a
+# Serial-only build cannot pass a threaded case by accident.
 set -u
 . "$(dirname "$0")/lib.sh"
 stentor=$1 mpiexec=$2 npflag=$3 work=$4 deck=$5 base=$6 tol=$7
@@ -13,20 +17,30 @@ rm -rf "$work" && mkdir -p "$work" && cd "$work" || fail "cannot make $work"
 flags=$(mpi_flags "$mpiexec")
 ref=""
 status=0
-for np in "$@"; do
-  echo "=== $np rank(s)"
+for run in "$@"; do
+  np=${run%%x*}
+  threads=1
+  [ "$run" != "$np" ] && threads=${run#*x}
+  tag=$run
+  echo "=== $np rank(s) x $threads thread(s)"
+  bind=""
+  [ "$threads" -gt 1 ] && [ -n "$flags" ] && bind="--bind-to none"
   # shellcheck disable=SC2086
-  "$mpiexec" $npflag "$np" $flags "$stentor" --output "out$np" "$deck" > "log$np.txt" 2>&1
+  OMP_NUM_THREADS=$threads OMP_PROC_BIND=false \
+    "$mpiexec" $npflag "$np" $flags $bind "$stentor" --output "out$tag" "$deck" > "log$tag.txt" 2>&1
   rc=$?
-  grep -E "parallel|dofs|solver|Summary" "log$np.txt"
-  [ "$rc" -eq 0 ] || { cat "log$np.txt"; fail "$np ranks: exit status $rc"; }
-  csv="out$np/${base}_history.csv"
+  grep -E "parallel|dofs|solver|Summary" "log$tag.txt"
+  [ "$rc" -eq 0 ] || { cat "log$tag.txt"; fail "$run: exit status $rc"; }
+  if [ "$threads" -gt 1 ]; then
+    grep -q "x $threads thread(s)" "log$tag.txt" || fail "$run: the log header does not report $threads threads (is this an OpenMP Kokkos build?)"
+  fi
+  csv="out$tag/${base}_history.csv"
   [ -s "$csv" ] || fail "$csv missing"
   if [ -z "$ref" ]; then
     ref=$csv
     continue
   fi
-  awk -F, -v tol="$tol" -v np="$np" '
+  awk -F, -v tol="$tol" -v np="$run" '
     function abs(x) { return x < 0 ? -x : x }
     function group(name) {
       if (name ~ /^reaction_/) return "reaction"
@@ -55,7 +69,7 @@ for np in "$@"; do
         if (rel > worst) { worst = rel; where = h[i] " (row " r ")" }
         if (rel > maxg[g]) maxg[g] = rel
       }
-      printf "%d ranks vs reference: max relative difference %.3e at %s", np, worst, where
+      printf "%s vs reference: max relative difference %.3e at %s", np, worst, where
       for (g in maxg) printf "; %s %.3e", g, maxg[g]
       printf "\n"
       if (worst > tol) { print "exceeds " tol; bad = 1 }
@@ -63,7 +77,7 @@ for np in "$@"; do
     }' "$ref" "$csv" || status=1
   # Newton iteration counts should match too; report, do not fail (a residual right
   # at the tolerance may take one more iteration on another partition).
-  cut -d, -f4 "$ref" | cmp -s - <(cut -d, -f4 "$csv") || echo "note: Newton iteration counts differ between 1st run and $np ranks"
+  cut -d, -f4 "$ref" | cmp -s - <(cut -d, -f4 "$csv") || echo "note: Newton iteration counts differ between 1st run and $run"
 done
 [ "$status" -eq 0 ] || fail "histories differ"
 echo "PASS"
