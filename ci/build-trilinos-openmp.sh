@@ -112,5 +112,7 @@ if [ ! -f "$BUILD_DIR/build.ninja" ]; then
   cmake -S . -B "$BUILD_DIR" -G Ninja -DCMAKE_BUILD_TYPE=Release \
     -DTrilinos_DIR="$PREFIX/lib/cmake/Trilinos" ${STENTOR_CMAKE_ARGS:-}
 fi
-cmake --build "$BUILD_DIR" -j "$JOBS"
+# STENTOR_OMP_TARGETS: build only these targets (ci/test-openmp.sh); default everything.
+# shellcheck disable=SC2086
+cmake --build "$BUILD_DIR" -j "$JOBS" ${STENTOR_OMP_TARGETS:+--target $STENTOR_OMP_TARGETS}
 log "Stentor built in $BUILD_DIR against $PREFIX"

@@ -81,6 +81,8 @@ void usage() {
                "               is reported as 'newton_total(not converged)' with the cost of the iterations done\n"
                "  --fill-level K  override Linear Solver->fill level (RILUK level of fill)\n"
                "  --tag TEXT   appended to the deck name in the CSV, as cube_p1[TEXT]\n"
+               "  --steps N    override Stepping->steps (the Newton solve is the first load step; more\n"
+               "               steps make it milder)\n"
                "  --assembly atomic|coloring  override Problem->assembly (thread-safe sums)\n"
                "  --preconditioner schwarz|muelu|none  override Linear Solver->preconditioner\n";
 }
@@ -97,7 +99,7 @@ int main(int argc, char** argv) {
   int repeat = 5;
   double size = 0.0;
   bool newton = true;
-  int newton_cap = 0, fill_level = -1;
+  int newton_cap = 0, fill_level = -1, steps = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto next = [&]() -> std::string {
@@ -119,6 +121,8 @@ int main(int argc, char** argv) {
       tag = next();
     else if (a == "--fill-level")
       fill_level = std::stoi(next());
+    else if (a == "--steps")
+      steps = std::stoi(next());
     else if (a == "--assembly")
       assembly = next();
     else if (a == "--preconditioner")
@@ -148,12 +152,14 @@ int main(int argc, char** argv) {
     if (newton_cap > 0) cfg.newton.max_iterations = newton_cap;
     if (fill_level >= 0) cfg.linear.fill_level = fill_level;
     if (!assembly.empty()) cfg.problem.assembly = assembly;
+    if (steps > 0) cfg.stepping.num_steps = steps;
     if (!preconditioner.empty()) cfg.linear.preconditioner = preconditioner;
     // CSV label: deck name plus the overrides, e.g. cube_p2[h=0.1][fill=0].
     std::ostringstream label_os;
     label_os << std::filesystem::path(deck).stem().string();
     if (size > 0.0) label_os << "[h=" << size << "]";
     if (fill_level >= 0) label_os << "[fill=" << fill_level << "]";
+    if (steps > 0) label_os << "[steps=" << steps << "]";
     if (!assembly.empty()) label_os << "[" << assembly << "]";
     if (!preconditioner.empty()) label_os << "[" << preconditioner << "]";
     if (!tag.empty()) label_os << "[" << tag << "]";
@@ -171,8 +177,15 @@ int main(int argc, char** argv) {
     Assembler assembler(mesh, dist, cfg, loads, block_mat);
     rows.push_back({"setup", max_over_ranks(*comm, seconds_since(t0)), 0.0, 1});
     LinearSolver linear(cfg.linear, comm);
-
     const int dim = dist.dim();
+    {
+      // Node coordinates for MueLu's rigid-body null space (as run_simulation does).
+      std::vector<double> xyz(3 * static_cast<std::size_t>(dist.num_owned_nodes()));
+      for (la::LO n = 0; n < dist.num_owned_nodes(); ++n)
+        for (int k = 0; k < 3; ++k) xyz[3 * static_cast<std::size_t>(n) + k] = mesh.x[3 * static_cast<std::size_t>(dist.global_node(n)) + k];
+      linear.set_node_coordinates(dim, xyz);
+    }
+
     const long dofs = static_cast<long>(dist.owned_map()->getGlobalNumElements());
     const long cells = static_cast<long>(mesh.num_volume_cells());
     long gauss_points = 0;

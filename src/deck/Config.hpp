@@ -98,7 +98,7 @@ struct NewtonConfig {
 
 struct LinearSolverConfig {
   std::string method = "gmres";          // "Linear Solver"->"method": "gmres" | "direct"
-  std::string preconditioner = "schwarz";// "preconditioner": "schwarz" | "muelu" | "none"
+  std::string preconditioner = "auto";   // "preconditioner": "auto" | "schwarz" | "muelu" | "none" (auto: muelu if built)
   double tolerance = 1e-10;              // "tolerance": relative residual of each linear solve
   int max_iterations = 1000;             // "max iterations"
   int restart = 200;                     // "restart": GMRES Krylov subspace size

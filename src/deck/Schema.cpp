@@ -222,8 +222,10 @@ std::vector<ListSpec> build_schema() {
         "Linear solves inside Newton. The optional sublists `Belos`, `Ifpack2`, `MueLu` and "
         "`Amesos2` are passed to Trilinos unchanged and override the values here.",
         {str("method", "gmres", "Krylov (Belos GMRES) or sparse direct (Amesos2).").one_of({"gmres", "direct"}),
-         str("preconditioner", "schwarz", "Additive Schwarz (Ifpack2), algebraic multigrid (MueLu) or none.")
-             .one_of({"schwarz", "muelu", "none"}),
+         str("preconditioner", "auto",
+             "Additive Schwarz (Ifpack2), algebraic multigrid (MueLu) or none. `auto`: `muelu` where "
+             "this build's Trilinos has MueLu (Debian's does), else `schwarz`; the log's `solver` line says which.")
+             .one_of({"auto", "schwarz", "muelu", "none"}),
          dbl("tolerance", 1e-10, "Relative residual of each linear solve.").gt(0.0).lt(1.0),
          integer("max iterations", 1000, "Krylov iterations per solve.").ge(1),
          integer("restart", 200, "GMRES Krylov subspace size.").ge(1),

@@ -24,6 +24,7 @@ struct LinearSolver::Impl {
   la::RCP<Ifpack2::Preconditioner<la::SC, la::LO, la::GO, la::Node>> prec;  // schwarz
   la::RCP<la::Operator> mg;  // muelu (a MueLu::TpetraOperator)
   bool prec_initialized = false;
+  bool auto_chosen = false;  // preconditioner = auto, resolved for this build
 #ifdef STENTOR_HAVE_AMESOS2
   la::RCP<Amesos2::Solver<la::CrsMatrix, la::MV>> direct;
   la::RCP<la::CrsMatrix> Ac;  // A gathered on rank 0, on a one-process communicator (more than one rank)
@@ -101,6 +102,17 @@ struct LinearSolver::Impl {
 LinearSolver::LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la::Comm>& comm) : impl_(new Impl) {
   impl_->cfg = cfg;
   impl_->comm = comm;
+  if (cfg.preconditioner == "auto") {
+    // The default: multigrid where this Trilinos has MueLu. Its GMRES iteration counts stay
+    // flat under mesh refinement and weak scaling, one-level Schwarz's grow
+    // (docs/performance.md, "Preconditioners under weak scaling").
+#ifdef STENTOR_HAVE_MUELU
+    impl_->cfg.preconditioner = "muelu";
+#else
+    impl_->cfg.preconditioner = "schwarz";
+#endif
+    impl_->auto_chosen = true;
+  }
   auto& p = impl_->belos_params;
   p = Teuchos::rcp(new Teuchos::ParameterList("Belos"));
   p->set("Convergence Tolerance", cfg.tolerance);
@@ -259,6 +271,7 @@ std::string LinearSolver::description() const {
     s += ", MueLu smoothed-aggregation AMG (rigid-body modes)";
   else
     s += ", no preconditioner";
+  if (impl_->auto_chosen) s += " (preconditioner = auto)";
   return s;
 }
 
