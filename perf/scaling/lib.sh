@@ -23,6 +23,8 @@ MPIEXEC=${MPIEXEC:-mpirun}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 [ -x "$BENCH" ] || { echo "scaling: $BENCH not found (build the project first)" >&2; exit 2; }
 
+# Cores of this machine (not `nproc`: it follows OMP_NUM_THREADS, which launch() sets).
+CORES=$(getconf _NPROCESSORS_ONLN)
 CSV_HEADER="study,ranks,threads,h,dofs,preconditioner,assembly,backend,assembly_call_s,newton_iterations,gmres_iterations,gmres_per_newton,assembly_per_newton_s,setup_per_newton_s,solve_per_newton_s,newton_step_s,converged"
 
 # launch R T CMD...: R ranks with T threads each. Where R*T fits the cores, each rank gets
@@ -32,17 +34,20 @@ CSV_HEADER="study,ranks,threads,h,dofs,preconditioner,assembly,backend,assembly_
 launch() {
   local R=$1 T=$2
   shift 2
-  local cores bind
-  cores=$(nproc)
-  if [ $((R * T)) -gt "$cores" ]; then
+  local bind
+  if [ $((R * T)) -gt "$CORES" ]; then
+    # Threads that find no work sleep (passive) instead of spinning on a core another
+    # process needs.
     bind="--oversubscribe --bind-to none"
-    export OMP_PROC_BIND=false
+    export OMP_PROC_BIND=false OMP_WAIT_POLICY=passive
     unset OMP_PLACES
   else
+    # Each thread owns its core: spinning between kernels (active) is what makes short
+    # kernels (SpMV, vector updates) pay off.
     bind="--map-by slot:PE=$T --bind-to core"
-    export OMP_PROC_BIND=spread OMP_PLACES=threads
+    export OMP_PROC_BIND=spread OMP_PLACES=threads OMP_WAIT_POLICY=active
   fi
-  export OMP_NUM_THREADS=$T OMP_WAIT_POLICY=passive
+  export OMP_NUM_THREADS=$T
   # shellcheck disable=SC2086
   "$MPIEXEC" -np "$R" $bind -x OMP_NUM_THREADS -x OMP_PROC_BIND -x OMP_WAIT_POLICY \
     ${OMP_PLACES:+-x OMP_PLACES} "$@"
@@ -87,7 +92,7 @@ plot() {
   local csv=$1 png=$2 title=$3
   command -v gnuplot > /dev/null || { echo "gnuplot not found: $png not drawn"; return 0; }
   gnuplot <<GP
-set terminal pngcairo size 1100,520 font ",10"
+set terminal pngcairo size 1100,520 font ",10" noenhanced
 set output "$png"
 set datafile separator ","
 set multiplot layout 1,2 title "$title"
@@ -103,6 +108,7 @@ plot "$csv" every ::1 using 13:xtic(sprintf("%s %dx%d %s", stringcolumn(6), colu
      "" every ::1 using 14 title "preconditioner setup", \
      "" every ::1 using 15 title "linear solve"
 set style histogram clustered
+set yrange [0:*]
 set ylabel "GMRES iterations per Newton iteration"
 set title "iterations"
 set key top left

@@ -18,7 +18,7 @@ mkdir -p "$OUT"
 NAME=${NAME:-strong}
 csv=$OUT/$NAME.csv
 echo "$CSV_HEADER" > "$csv"
-echo "strong scaling: $BENCH on $(nproc) cores, $(uname -n), deck $DECK, h = $H"
+echo "strong scaling: $BENCH on $CORES cores, $(uname -n), deck $DECK, h = $H"
 status=0
 for asm in $ASSEMBLY; do
   for prec in $PRECS; do
@@ -27,5 +27,5 @@ for asm in $ASSEMBLY; do
     done
   done
 done
-plot "$csv" "$OUT/$NAME.png" "Strong scaling, $(basename "$DECK" .xml), h = $H, $(nproc)-core $(uname -n)"
+plot "$csv" "$OUT/$NAME.png" "Strong scaling, $(basename "$DECK" .xml), h = $H, $CORES-core $(uname -n)"
 exit $status

@@ -20,7 +20,7 @@ OUT=${OUT:-$root/perf/results/scaling}
 mkdir -p "$OUT"
 csv=$OUT/weak.csv
 echo "$CSV_HEADER" > "$csv"
-echo "weak scaling: $BENCH on $(nproc) cores, $(uname -n), deck $DECK, h(1 rank) = $H1"
+echo "weak scaling: $BENCH on $CORES cores, $(uname -n), deck $DECK, h(1 rank) = $H1"
 status=0
 for prec in $PRECS; do
   for R in $RANKS; do
@@ -28,5 +28,5 @@ for prec in $PRECS; do
     run_case weak "$R" "$THREADS" "$h" "$prec" "$ASSEMBLY" "$csv" "$OUT/logs" || status=1
   done
 done
-plot "$csv" "$OUT/weak.png" "Weak scaling, $(basename "$DECK" .xml), ~dofs/rank fixed, $(nproc)-core $(uname -n)"
+plot "$csv" "$OUT/weak.png" "Weak scaling, $(basename "$DECK" .xml), ~dofs/rank fixed, $CORES-core $(uname -n)"
 exit $status
