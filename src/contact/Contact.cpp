@@ -164,122 +164,144 @@ void Contact::begin_step(double t_n, double dt, const la::Vector& u_n) {
 }
 
 void Contact::apply(const la::Vector& u, la::Vector& r, la::CrsMatrix* K) {
+  // One Kokkos kernel per pair over its slave nodes: each node reads and rewrites only its
+  // own dim residual entries and tangent rows, so nodes are independent (no atomics). The
+  // node records and the obstacle description live in host memory, which the execution
+  // spaces Stentor is built for (Serial, OpenMP) can read.
+  static_assert(Kokkos::SpaceAccessibility<la::ExecSpace, Kokkos::HostSpace>::accessible,
+                "contact kernels read host-side node records");
   const int dim = dim_;
   auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
   auto rh = r.getLocalViewHost(Tpetra::Access::ReadWrite);
   // fillComplete is collective: every rank reopens and closes the tangent, whether or not
   // it has candidate nodes this time.
   if (K) K->resumeFill();
-  std::vector<la::LO> cols;
-  std::vector<double> rows[3], out[3];
+  using LocalMatrix = la::CrsMatrix::local_matrix_device_type;
+  LocalMatrix Kl;
+  if (K) Kl = K->getLocalMatrixDevice();
+  Kokkos::View<int, la::ExecSpace> bad_pattern("contact_bad_pattern");
   for (auto& p : pairs_) {
     const double mu = p.cfg.friction;
     const auto w0 = translation(p, t0_), w1 = translation(p, t1_);
     const double lf = dt_last_ > 0.0 ? 0.5 * dt_ / dt_last_ : 0.5;
-    for (auto& nd : p.nodes) {
-      double x[3] = {nd.X[0], nd.X[1], nd.X[2]}, n[3], t[2][3], rp[3] = {0, 0, 0};
-      for (int c = 0; c < dim; ++c) {
-        x[c] += uh(nd.lid * dim + c, 0);
-        rp[c] = rh(nd.lid * dim + c, 0);
-      }
-      for (int c = 0; c < 3; ++c) nd.f[c] = rp[c];
-      nd.state = 0;
-      // Leapfrog: free this step, unless the node ended the last step in contact (then the
-      // persistence condition itself decides whether it separates).
-      if (p.persistence && !nd.was_active && nd.d_n + lf * (nd.d_n - nd.d_prev) > gap_tol_) continue;
-      const double d = gap(p, x, t1_, n);
-      tangents(dim, n, t);
-      // The node's dim rows of the tangent (they share one column pattern).
-      std::size_t nnz = 0;
-      if (K) {
-        for (int c = 0; c < dim; ++c) {
-          const la::LO row = nd.lid * dim + c;
-          const size_t len = K->getNumEntriesInLocalRow(row);
-          la::CrsMatrix::nonconst_local_inds_host_view_type ci("cols", len);
-          la::CrsMatrix::nonconst_values_host_view_type vi("vals", len);
-          K->getLocalRowCopy(row, ci, vi, nnz);
-          if (c == 0) cols.assign(ci.data(), ci.data() + nnz);
-          else if (nnz != cols.size() || !std::equal(cols.begin(), cols.end(), ci.data()))
-            throw std::logic_error("stentor contact: the rows of a node do not share one column pattern");
-          rows[c].assign(vi.data(), vi.data() + nnz);
-        }
-        nnz = cols.size();
-        double s = 0.0;
-        for (int c = 0; c < dim; ++c)
-          for (std::size_t k = 0; k < nnz; ++k)
-            if (cols[k] == nd.col[static_cast<std::size_t>(c)]) s = std::max(s, std::abs(rows[c][k]));
-        if (s > 0.0) nd.scale = s;
-      }
-      const double sp = nd.scale;
-      const double rn = dot3(n, rp);
-      const double lam_n = -rn;
-      double lam_t[3];
-      for (int c = 0; c < 3; ++c) lam_t[c] = -(rp[c] - rn * n[c]);
-      const double cn = p.cfg.c_normal > 0.0 ? p.cfg.c_normal : sp * (p.persistence ? dt_ : 1.0);
-      const double g = p.persistence ? (d - nd.d_n) / dt_ : d;
-      if (lam_n + cn * g > 0.0) {
-        // Inactive: lambda = 0, bulk rows unchanged. (A node touching with zero force,
-        // lambda + c g = 0, counts as active: it keeps a body that only rests on the
-        // obstacle from being a free rigid body at the first iteration.)
-        nd.state = 1;
-        continue;
-      }
-      // Active. Relative tangential motion over the step (obstacle translation removed).
-      double du[3], dtau[3];
-      for (int c = 0; c < 3; ++c) du[c] = x[c] - nd.x_n[c] - (w1[static_cast<std::size_t>(c)] - w0[static_cast<std::size_t>(c)]);
-      const double dun = dot3(du, n);
-      for (int c = 0; c < 3; ++c) dtau[c] = du[c] - dun * n[c];
-      bool stick = false;
-      double sdir[3] = {0, 0, 0};
-      if (mu > 0.0) {
-        const double ct = p.cfg.c_tangent > 0.0 ? p.cfg.c_tangent : sp * dt_;
-        double q[3];
-        for (int c = 0; c < 3; ++c) q[c] = lam_t[c] + ct * dtau[c] / dt_;
-        const double qn = std::sqrt(dot3(q, q));
-        if (qn + mu * lam_n >= 0.0 && qn > 0.0) {
-          for (int c = 0; c < 3; ++c) sdir[c] = q[c] / qn;
-        } else {
-          stick = true;
-        }
-      }
-      nd.state = stick ? 2 : 3;
-      // Row slots: the normal row goes to the component most aligned with n.
-      int slot_n = 0;
-      for (int c = 1; c < dim; ++c)
-        if (std::abs(n[c]) > std::abs(n[slot_n])) slot_n = c;
-      int slot_t[2], nt = 0;
-      for (int c = 0; c < dim; ++c)
-        if (c != slot_n) slot_t[nt++] = c;
-      double res[3];
-      res[slot_n] = sp * (d - (p.persistence ? nd.d_n : 0.0));
-      double comb[2][3];  // slip/frictionless: row combination of the bulk rows
-      for (int i = 0; i < dim - 1; ++i) {
-        const double st = dot3(sdir, t[i]);
-        for (int c = 0; c < 3; ++c) comb[i][c] = t[i][c] + mu * st * n[c];
-        res[slot_t[i]] = stick ? sp * dot3(t[i], dtau) : dot3(comb[i], rp);
-      }
-      for (int c = 0; c < dim; ++c) rh(nd.lid * dim + c, 0) = res[c];
-      if (!K) continue;
-      for (int c = 0; c < dim; ++c) out[c].assign(nnz, 0.0);
-      for (std::size_t k = 0; k < nnz; ++k)
-        for (int c = 0; c < dim; ++c)
-          if (cols[k] == nd.col[static_cast<std::size_t>(c)]) {
-            out[slot_n][k] = sp * n[c];
-            if (stick)
-              for (int i = 0; i < dim - 1; ++i) out[slot_t[i]][k] = sp * t[i][c];
+    Node* nodes = p.nodes.data();
+    const Pair* pp = &p;
+    const bool with_k = K != nullptr;
+    const double t1 = t1_, dt = dt_, gap_tol = gap_tol_;
+    Kokkos::parallel_for(
+        "stentor::contact_nodes", Kokkos::RangePolicy<la::ExecSpace>(0, p.nodes.size()), [=](const std::size_t i) {
+          Node& nd = nodes[i];
+          const Pair& pr = *pp;
+          double x[3] = {nd.X[0], nd.X[1], nd.X[2]}, n[3], t[2][3], rp[3] = {0, 0, 0};
+          for (int c = 0; c < dim; ++c) {
+            x[c] += uh(nd.lid * dim + c, 0);
+            rp[c] = rh(nd.lid * dim + c, 0);
           }
-      if (!stick)
-        for (int i = 0; i < dim - 1; ++i)
-          for (std::size_t k = 0; k < nnz; ++k) {
-            double v = 0.0;
-            for (int c = 0; c < dim; ++c) v += comb[i][c] * rows[c][k];
-            out[slot_t[i]][k] = v;
+          for (int c = 0; c < 3; ++c) nd.f[c] = rp[c];
+          nd.state = 0;
+          // Leapfrog: free this step, unless the node ended the last step in contact (then
+          // the persistence condition itself decides whether it separates).
+          if (pr.persistence && !nd.was_active && nd.d_n + lf * (nd.d_n - nd.d_prev) > gap_tol) return;
+          const double d = gap(pr, x, t1, n);
+          tangents(dim, n, t);
+          // The node's dim rows of the tangent share one column pattern: row c is
+          // values(b[c] .. b[c] + len - 1) with the columns of row 0.
+          std::size_t b[3] = {0, 0, 0}, len = 0;
+          if (with_k) {
+            const la::LO row0 = nd.lid * dim;
+            len = static_cast<std::size_t>(Kl.graph.row_map(row0 + 1) - Kl.graph.row_map(row0));
+            for (int c = 0; c < dim; ++c) {
+              b[c] = static_cast<std::size_t>(Kl.graph.row_map(row0 + c));
+              const auto lc = static_cast<std::size_t>(Kl.graph.row_map(row0 + c + 1)) - b[c];
+              bool same = lc == len;
+              for (std::size_t k = 0; same && k < len; ++k) same = Kl.graph.entries(b[c] + k) == Kl.graph.entries(b[0] + k);
+              if (!same) {
+                Kokkos::atomic_increment(&bad_pattern());
+                return;
+              }
+            }
+            double s = 0.0;
+            for (int c = 0; c < dim; ++c)
+              for (std::size_t k = 0; k < len; ++k)
+                if (Kl.graph.entries(b[0] + k) == nd.col[static_cast<std::size_t>(c)]) s = std::max(s, std::abs(Kl.values(b[c] + k)));
+            if (s > 0.0) nd.scale = s;
           }
-      for (int c = 0; c < dim; ++c)
-        K->replaceLocalValues(nd.lid * dim + c, Teuchos::ArrayView<const la::LO>(cols.data(), static_cast<int>(nnz)),
-                              Teuchos::ArrayView<const double>(out[c].data(), static_cast<int>(nnz)));
-    }
+          const double sp = nd.scale;
+          const double rn = dot3(n, rp);
+          const double lam_n = -rn;
+          double lam_t[3];
+          for (int c = 0; c < 3; ++c) lam_t[c] = -(rp[c] - rn * n[c]);
+          const double cn = pr.cfg.c_normal > 0.0 ? pr.cfg.c_normal : sp * (pr.persistence ? dt : 1.0);
+          const double g = pr.persistence ? (d - nd.d_n) / dt : d;
+          if (lam_n + cn * g > 0.0) {
+            // Inactive: lambda = 0, bulk rows unchanged. (A node touching with zero force,
+            // lambda + c g = 0, counts as active: it keeps a body that only rests on the
+            // obstacle from being a free rigid body at the first iteration.)
+            nd.state = 1;
+            return;
+          }
+          // Active. Relative tangential motion over the step (obstacle translation removed).
+          double du[3], dtau[3];
+          for (int c = 0; c < 3; ++c) du[c] = x[c] - nd.x_n[c] - (w1[static_cast<std::size_t>(c)] - w0[static_cast<std::size_t>(c)]);
+          const double dun = dot3(du, n);
+          for (int c = 0; c < 3; ++c) dtau[c] = du[c] - dun * n[c];
+          bool stick = false;
+          double sdir[3] = {0, 0, 0};
+          if (mu > 0.0) {
+            const double ct = pr.cfg.c_tangent > 0.0 ? pr.cfg.c_tangent : sp * dt;
+            double q[3];
+            for (int c = 0; c < 3; ++c) q[c] = lam_t[c] + ct * dtau[c] / dt;
+            const double qn = std::sqrt(dot3(q, q));
+            if (qn + mu * lam_n >= 0.0 && qn > 0.0) {
+              for (int c = 0; c < 3; ++c) sdir[c] = q[c] / qn;
+            } else {
+              stick = true;
+            }
+          }
+          nd.state = stick ? 2 : 3;
+          // Row slots: the normal row goes to the component most aligned with n.
+          int slot_n = 0;
+          for (int c = 1; c < dim; ++c)
+            if (std::abs(n[c]) > std::abs(n[slot_n])) slot_n = c;
+          int slot_t[2] = {0, 0}, nt = 0;
+          for (int c = 0; c < dim; ++c)
+            if (c != slot_n) slot_t[nt++] = c;
+          double res[3];
+          res[slot_n] = sp * (d - (pr.persistence ? nd.d_n : 0.0));
+          double comb[2][3];  // slip/frictionless: row combination of the bulk rows
+          for (int k = 0; k < dim - 1; ++k) {
+            const double st = dot3(sdir, t[k]);
+            for (int c = 0; c < 3; ++c) comb[k][c] = t[k][c] + mu * st * n[c];
+            res[slot_t[k]] = stick ? sp * dot3(t[k], dtau) : dot3(comb[k], rp);
+          }
+          for (int c = 0; c < dim; ++c) rh(nd.lid * dim + c, 0) = res[c];
+          if (!with_k) return;
+          // Rewrite the rows column by column (each new entry needs the old entries of the
+          // same column only): normal row = sp n on the node's own dofs; stick rows = sp t;
+          // slip rows = comb . (bulk rows).
+          for (std::size_t k = 0; k < len; ++k) {
+            const la::LO col = Kl.graph.entries(b[0] + k);
+            double old[3] = {0, 0, 0}, out[3] = {0, 0, 0};
+            for (int c = 0; c < dim; ++c) old[c] = Kl.values(b[c] + k);
+            for (int c = 0; c < dim; ++c)
+              if (col == nd.col[static_cast<std::size_t>(c)]) {
+                out[slot_n] = sp * n[c];
+                if (stick)
+                  for (int j = 0; j < dim - 1; ++j) out[slot_t[j]] = sp * t[j][c];
+              }
+            if (!stick)
+              for (int j = 0; j < dim - 1; ++j) {
+                double v = 0.0;
+                for (int c = 0; c < dim; ++c) v += comb[j][c] * old[c];
+                out[slot_t[j]] = v;
+              }
+            for (int c = 0; c < dim; ++c) Kl.values(b[c] + k) = out[c];
+          }
+        });
   }
+  Kokkos::fence();
+  auto bad = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), bad_pattern);
+  if (bad() > 0) throw std::logic_error("stentor contact: the rows of a node do not share one column pattern");
   if (K) K->fillComplete(dist_.owned_map(), dist_.owned_map());
 }
 
