@@ -42,7 +42,9 @@ KOKKOS_INLINE_FUNCTION void scatter(int nd, const int* dofs, const double* re, c
       Kokkos::atomic_add(&r(dofs[i], 0), re[i]);
     else
       r(dofs[i], 0) += re[i];
-    if (WithTangent && !flag(dofs[i])) K.sumIntoValues(dofs[i], dofs, nd, ke[i], false, Atomic);
+    // Rows are sorted (checked in build_graph): binary search for each node's first dof,
+    // its other dofs are the next entries (the search hint finds them at once).
+    if (WithTangent && !flag(dofs[i])) K.sumIntoValues(dofs[i], dofs, nd, ke[i], true, Atomic);
   }
 }
 
@@ -135,6 +137,8 @@ void Assembler::build_graph() {
     for (int d = 0; d < dim_; ++d) overlap_graph->insertLocalIndices(n * dim_ + d, Teuchos::ArrayView<const la::LO>(cols));
   }
   overlap_graph->fillComplete(dist_.owned_map(), dist_.owned_map());
+  if (!overlap_graph->isSorted())
+    throw std::logic_error("Assembler: the overlap graph's rows are not sorted (the element scatter relies on it)");
   K_overlap_ = Teuchos::rcp(new la::CrsMatrix(overlap_graph));
   K_overlap_->fillComplete(dist_.owned_map(), dist_.owned_map());
 
@@ -143,6 +147,59 @@ void Assembler::build_graph() {
   owned_graph->fillComplete(dist_.owned_map(), dist_.owned_map());
   K_ = Teuchos::rcp(new la::CrsMatrix(owned_graph));
   K_->fillComplete(dist_.owned_map(), dist_.owned_map());
+
+  // Moving the summed overlap matrix into the owned one. Owned nodes come first in the
+  // overlap numbering, so the overlap matrix's owned rows are its first rows and the
+  // owned matrix has every one of their entries: for those, a precomputed position in the
+  // owned matrix's value array (a threaded copy, no global index lookups). Only the ghost
+  // rows (the tail of the value array) travel by a Tpetra export, from a matrix holding
+  // just them. (Exporting the whole overlap matrix cost 14-35% of a residual+tangent call
+  // even on one rank, see docs/performance.md.)
+  {
+    const la::LO n_owned_rows = static_cast<la::LO>(dist_.owned_map()->getNodeNumElements());
+    auto ov = K_overlap_->getLocalMatrixHost();
+    auto ow = K_->getLocalMatrixHost();
+    const auto ocol = K_overlap_->getColMap(), wcol = K_->getColMap();
+    const std::size_t n_owned_entries = ov.graph.row_map(n_owned_rows);
+    owned_value_pos_ = Kokkos::View<std::size_t*, la::ExecSpace>("owned_value_pos", n_owned_entries);
+    auto pos = Kokkos::create_mirror_view(owned_value_pos_);
+    for (la::LO row = 0; row < n_owned_rows; ++row) {
+      const std::size_t b = ow.graph.row_map(row), e = ow.graph.row_map(row + 1);
+      for (std::size_t j = ov.graph.row_map(row); j < ov.graph.row_map(row + 1); ++j) {
+        const la::LO c = wcol->getLocalElement(ocol->getGlobalElement(ov.graph.entries(j)));
+        std::size_t k = b;
+        while (k < e && ow.graph.entries(k) != c) ++k;
+        if (c == Teuchos::OrdinalTraits<la::LO>::invalid() || k == e)
+          throw std::logic_error("Assembler: an owned row of the overlap matrix has an entry the owned matrix lacks");
+        pos(j) = k;
+      }
+    }
+    Kokkos::deep_copy(owned_value_pos_, pos);
+
+    // Ghost rows: a matrix on the ghost dofs only, same column map and column pattern as
+    // the overlap matrix, so its value array is the overlap's value array past the owned rows.
+    const std::size_t n_all_rows = dist_.overlap_map()->getNodeNumElements();
+    std::vector<la::GO> ghost_gids;
+    for (std::size_t row = static_cast<std::size_t>(n_owned_rows); row < n_all_rows; ++row)
+      ghost_gids.push_back(dist_.overlap_map()->getGlobalElement(static_cast<la::LO>(row)));
+    ghost_map_ = Teuchos::rcp(new la::Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                          Teuchos::ArrayView<const la::GO>(ghost_gids), 0, dist_.comm()));
+    const std::size_t n_ghost_rows = ghost_gids.size();
+    Kokkos::View<std::size_t*, la::ExecSpace> rowptr("ghost_rowptr", n_ghost_rows + 1);
+    Kokkos::View<la::LO*, la::ExecSpace> cols("ghost_cols", ov.graph.entries.extent(0) - n_owned_entries);
+    Kokkos::View<double*, la::ExecSpace> vals("ghost_vals", cols.extent(0));
+    {
+      auto rh = Kokkos::create_mirror_view(rowptr);
+      auto ch = Kokkos::create_mirror_view(cols);
+      for (std::size_t r = 0; r <= n_ghost_rows; ++r) rh(r) = ov.graph.row_map(static_cast<std::size_t>(n_owned_rows) + r) - n_owned_entries;
+      for (std::size_t j = 0; j < ch.extent(0); ++j) ch(j) = ov.graph.entries(n_owned_entries + j);
+      Kokkos::deep_copy(rowptr, rh);
+      Kokkos::deep_copy(cols, ch);
+    }
+    K_ghost_ = Teuchos::rcp(new la::CrsMatrix(ghost_map_, ocol, rowptr, cols, vals));
+    K_ghost_->fillComplete(dist_.owned_map(), dist_.owned_map());
+    ghost_exporter_ = Teuchos::rcp(new la::Export(ghost_map_, dist_.owned_map()));
+  }
 }
 
 void Assembler::color_cells() {
@@ -328,7 +385,7 @@ const la::RCP<la::CrsMatrix>& Assembler::mass() {
             for (int d = 0; d < dim; ++d) dofs[a * dim + d] = l * dim + d;
           }
           mass_element(dim, type, nn, Xe, rho, q, me);
-          for (int i = 0; i < nn * dim; ++i) Ml.sumIntoValues(dofs[i], dofs, nn * dim, me[i], false, true);
+          for (int i = 0; i < nn * dim; ++i) Ml.sumIntoValues(dofs[i], dofs, nn * dim, me[i], true, true);
         });
   }
   M_ = Teuchos::rcp(new la::CrsMatrix(K_->getCrsGraph()));
@@ -558,11 +615,24 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
         "stentor::dirichlet_rows", Kokkos::RangePolicy<la::ExecSpace>(0, ndir), KOKKOS_LAMBDA(const int i) {
           const la::LO row = rows(i);
           const double one = 1.0;
-          Kl.replaceValues(row, &row, 1, &one, false, true);
+          Kl.replaceValues(row, &row, 1, &one, true, true);
         });
     K_->resumeFill();
-    K_->setAllToScalar(0.0);
-    K_->doExport(*K_overlap_, *exporter_, Tpetra::ADD);
+    {
+      // Owned rows: scatter the overlap values to their precomputed positions (all
+      // distinct, so no atomics); ghost rows: copy the overlap value tail, export (ADD).
+      auto Kw = K_->getLocalMatrixDevice();
+      auto Kg = K_ghost_->getLocalMatrixDevice();
+      auto posv = owned_value_pos_;
+      Kokkos::deep_copy(Kw.values, 0.0);
+      const std::size_t n_owned_entries = posv.extent(0);
+      Kokkos::parallel_for(
+          "stentor::owned_rows_to_owned_matrix", Kokkos::RangePolicy<la::ExecSpace>(0, n_owned_entries),
+          KOKKOS_LAMBDA(const std::size_t j) { Kw.values(posv(j)) = Kl.values(j); });
+      Kokkos::deep_copy(Kg.values, Kokkos::subview(Kl.values, Kokkos::make_pair(n_owned_entries, Kl.values.extent(0))));
+      Kokkos::fence();
+      K_->doExport(*K_ghost_, *ghost_exporter_, Tpetra::ADD);
+    }
     if (in.scale != 1.0 || in.mass_coeff != 0.0) {
       // K = s K + c M on unconstrained rows (K and M share one graph, so their local
       // value arrays line up entry by entry).

@@ -120,6 +120,12 @@ class Assembler {
 
   la::RCP<const la::Export> exporter_;       // overlap -> owned
   la::RCP<la::CrsMatrix> K_overlap_, K_;
+  // overlap -> owned matrix: positions in K_'s values of the overlap's owned-row entries;
+  // the ghost rows as a matrix of their own, exported (ADD) into K_.
+  Kokkos::View<std::size_t*, la::ExecSpace> owned_value_pos_;
+  la::RCP<const la::Map> ghost_map_;
+  la::RCP<la::CrsMatrix> K_ghost_;
+  la::RCP<const la::Export> ghost_exporter_;
   la::RCP<la::Vector> u_overlap_, u0_overlap_, r_overlap_, rext_overlap_;
   la::RCP<la::Vector> r_static_, f_ext_, work_;  // owned
   la::RCP<la::CrsMatrix> M_;
