@@ -191,7 +191,7 @@ int main(int argc, char** argv) {
     long gauss_points = 0;
     std::string cell_types;
     for (const auto& b : mesh.volumes) {
-      const QuadRule q = make_rule(b.type, default_quadrature_degree(b.type));
+      const QuadRule q = make_rule(b.type, stiffness_quadrature_degree(b.type));  // as Assembler::assemble
       gauss_points += static_cast<long>(b.num_cells()) * q.n;
       cell_types += (cell_types.empty() ? "" : ", ") + std::string(cell_name(b.type)) + " x " + std::to_string(q.n) + " pts";
     }

@@ -149,4 +149,13 @@ KOKKOS_INLINE_FUNCTION int default_quadrature_degree(CellType volume_cell) {
   return cell_order(volume_cell) == 2 ? 4 : 2;
 }
 
+// Degree for the internal force, stiffness and stored energy. On linear simplices (tri3,
+// tet4) the deformation gradient is constant per cell, so the integrand (stress times
+// constant shape gradients, W(C), the Gonzalez and viscous stresses) is constant and one
+// point is exact: 4x less work on tet4 than the default rule, same result to round-off.
+// Mass and body forces (products of shape functions) keep default_quadrature_degree.
+KOKKOS_INLINE_FUNCTION int stiffness_quadrature_degree(CellType volume_cell) {
+  return (volume_cell == CellType::Tri3 || volume_cell == CellType::Tet4) ? 1 : default_quadrature_degree(volume_cell);
+}
+
 }  // namespace stentor
