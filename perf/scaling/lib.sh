@@ -92,7 +92,8 @@ plot() {
   local csv=$1 png=$2 title=$3
   command -v gnuplot > /dev/null || { echo "gnuplot not found: $png not drawn"; return 0; }
   gnuplot <<GP
-set terminal pngcairo size 1100,520 font ",10" noenhanced
+set terminal pngcairo size 1200,600 font ",10" noenhanced
+set bmargin 10
 set output "$png"
 set datafile separator ","
 set multiplot layout 1,2 title "$title"
@@ -101,18 +102,18 @@ set style histogram rowstacked
 set style fill solid 0.8 border -1
 set boxwidth 0.7
 set xtics rotate by -35
-set key top left
+set key above
 set ylabel "seconds per Newton iteration"
 set title "time per Newton iteration"
-plot "$csv" every ::1 using 13:xtic(sprintf("%s %dx%d %s", stringcolumn(6), column(2), column(3), stringcolumn(5))) title "assembly", \
+plot "$csv" every ::1 using 13:xtic(sprintf("%s %s %dx%d %s", stringcolumn(6), stringcolumn(7), column(2), column(3), stringcolumn(5))) title "assembly", \
      "" every ::1 using 14 title "preconditioner setup", \
      "" every ::1 using 15 title "linear solve"
 set style histogram clustered
 set yrange [0:*]
 set ylabel "GMRES iterations per Newton iteration"
 set title "iterations"
-set key top left
-plot "$csv" every ::1 using 12:xtic(sprintf("%s %dx%d %s", stringcolumn(6), column(2), column(3), stringcolumn(5))) title "GMRES / Newton"
+set key above
+plot "$csv" every ::1 using 12:xtic(sprintf("%s %s %dx%d %s", stringcolumn(6), stringcolumn(7), column(2), column(3), stringcolumn(5))) title "GMRES / Newton"
 unset multiplot
 GP
   echo "wrote $png"

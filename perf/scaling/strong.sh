@@ -2,7 +2,7 @@
 # Strong scaling: one problem size, ranks x threads varied. Writes
 # perf/results/scaling/strong.csv and strong.png (see docs/performance.md).
 #
-#   perf/scaling/strong.sh                    # H=0.04 (~65k dofs, P1), CONFIGS="1x1 1x2 2x1"
+#   perf/scaling/strong.sh                    # H=0.04 (41k dofs, P1), CONFIGS="1x1 1x2 2x1"
 #   H=0.023 CONFIGS="1x1 1x2 2x1 1x4 4x1 2x2 4x4 16x1 1x16" PRECS="muelu schwarz" perf/scaling/strong.sh
 #
 # Environment: H (Mesh->size), CONFIGS (RxT list), PRECS (preconditioners), ASSEMBLY
