@@ -26,17 +26,7 @@ SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
 log() { echo "[trilinos-openmp] $*"; }
 
 # --- 1. Debian packages: the Stentor build set, compilers, the threaded OpenBLAS -----
-bash ci/setup.sh --packages-only
-EXTRA="dpkg-dev libblas-dev liblapack-dev libopenblas0-openmp"
-missing=""
-for p in $EXTRA; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"
-done
-if [ -n "$missing" ]; then
-  log "installing:$missing"
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends $missing >/dev/null
-fi
+STENTOR_EXTRA_PKGS="dpkg-dev libblas-dev liblapack-dev libopenblas0-openmp" bash ci/setup.sh --packages-only
 # libopenblas0-openmp registers itself as the libblas.so.3/liblapack.so.3 alternative
 # with the highest priority; say which one is live so a run log can be trusted.
 log "BLAS in use: $(readlink -f /usr/lib/x86_64-linux-gnu/libblas.so.3 2>/dev/null || echo unknown)"
