@@ -60,7 +60,6 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
     // Viscosity acts only in dynamics (it needs a time step); statics pays nothing for it.
     block_eta_.push_back(cfg.problem.dynamic() ? m.viscosity : 0.0);
     quad_degree_.push_back(default_quadrature_degree(mesh.volumes[b].type));
-    stiffness_degree_.push_back(stiffness_quadrature_degree(mesh.volumes[b].type));
   }
   if (cfg.problem.assembly == "coloring") color_cells();
   exporter_ = Teuchos::rcp(new la::Export(dist.overlap_map(), dist.owned_map()));
@@ -424,7 +423,7 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
       const std::size_t nc = lb.cell_ids.size();
       if (nc == 0) continue;
       const CiarletGeymonat mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
-      const QuadRule q = make_rule(lb.type, stiffness_degree_[static_cast<std::size_t>(lb.volume_block)]);
+      const QuadRule q = make_rule(lb.type, stiffness_quadrature_degree(lb.type));
       ElementTime et;
       et.eval = in.eval;
       et.dt = in.dt;

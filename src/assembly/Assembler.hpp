@@ -108,7 +108,7 @@ class Assembler {
   std::vector<CiarletGeymonat> block_mat_;  // per mesh volume block
   std::vector<double> block_density_, block_eta_;
   std::vector<int> quad_degree_;            // per mesh volume block: mass, body force, output
-  std::vector<int> stiffness_degree_;       // per mesh volume block: internal force, tangent, energy
+                                            // (the stiffness uses stiffness_quadrature_degree)
 
   // Problem->assembly = coloring: per local block (Distribution::blocks() order), its
   // cells permuted so that colour k is cells(offsets[k] .. offsets[k+1]-1). Empty: atomics.

@@ -25,6 +25,27 @@ std::uint64_t morton_key(const double* x, const double* lo, const double* hi) {
   return key;
 }
 
+// Axis-aligned bounding box of points.
+struct Box {
+  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+  void add(const double* x) {
+    for (int d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], x[d]);
+      hi[d] = std::max(hi[d], x[d]);
+    }
+  }
+};
+
+// Sorts items along the Morton curve of box: xyz(item) gives an item's point.
+template <class T, class Xyz>
+void morton_sort(std::vector<T>& items, const Box& box, Xyz xyz) {
+  std::vector<std::pair<std::uint64_t, T>> key;
+  key.reserve(items.size());
+  for (const T& it : items) key.emplace_back(morton_key(xyz(it), box.lo, box.hi), it);
+  std::sort(key.begin(), key.end());
+  for (std::size_t i = 0; i < items.size(); ++i) items[i] = key[i].second;
+}
+
 }  // namespace
 
 Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm)
@@ -62,22 +83,12 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
   // poor locality; this halved the tangent assembly at 200k dofs (docs/performance.md).
   // Global ids (and so all output) are unchanged.
   {
-    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    auto x = [&mesh](GId g) { return &mesh.x[3 * static_cast<std::size_t>(g)]; };
+    Box box;
     for (const auto* v : {&owned, &ghost})
-      for (GId g : *v)
-        for (int d = 0; d < 3; ++d) {
-          lo[d] = std::min(lo[d], mesh.x[3 * static_cast<std::size_t>(g) + d]);
-          hi[d] = std::max(hi[d], mesh.x[3 * static_cast<std::size_t>(g) + d]);
-        }
-    auto order = [&](std::vector<GId>& v) {
-      std::vector<std::pair<std::uint64_t, GId>> key;
-      key.reserve(v.size());
-      for (GId g : v) key.emplace_back(morton_key(&mesh.x[3 * static_cast<std::size_t>(g)], lo, hi), g);
-      std::sort(key.begin(), key.end());
-      for (std::size_t i = 0; i < v.size(); ++i) v[i] = key[i].second;
-    };
-    order(owned);
-    order(ghost);
+      for (GId g : *v) box.add(x(g));
+    morton_sort(owned, box, x);
+    morton_sort(ghost, box, x);
   }
   num_owned_ = static_cast<la::LO>(owned.size());
   local_nodes_ = owned;
@@ -113,28 +124,23 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
     lb.type = b.type;
     lb.nodes_per_cell = b.nodes_per_cell;
     // This rank's cells, in the Morton order of their centroids (same reason as the nodes).
-    std::vector<std::pair<std::uint64_t, std::size_t>> key;
-    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-    std::vector<std::array<double, 3>> centroid;
     std::vector<std::size_t> mine;
+    std::vector<std::array<double, 3>> centroid(b.num_cells());
+    Box box;
     for (std::size_t c = 0; c < b.num_cells(); ++c)
       if (cell_part[static_cast<std::size_t>(b.cell_id[c])] == rank_) {
-        std::array<double, 3> xc{0.0, 0.0, 0.0};
+        std::array<double, 3>& xc = centroid[c];
+        xc = {0.0, 0.0, 0.0};
         for (int a = 0; a < b.nodes_per_cell; ++a)
           for (int d = 0; d < 3; ++d)
             xc[static_cast<std::size_t>(d)] += mesh.x[3 * static_cast<std::size_t>(b.conn[c * b.nodes_per_cell + a]) + d] / b.nodes_per_cell;
-        for (int d = 0; d < 3; ++d) {
-          lo[d] = std::min(lo[d], xc[static_cast<std::size_t>(d)]);
-          hi[d] = std::max(hi[d], xc[static_cast<std::size_t>(d)]);
-        }
-        centroid.push_back(xc);
+        box.add(xc.data());
         mine.push_back(c);
       }
-    for (std::size_t i = 0; i < mine.size(); ++i) key.emplace_back(morton_key(centroid[i].data(), lo, hi), mine[i]);
-    std::sort(key.begin(), key.end());
-    for (const auto& k : key) {
-      lb.cell_ids.push_back(b.cell_id[k.second]);
-      lb.cell_index.push_back(static_cast<GId>(k.second));
+    morton_sort(mine, box, [&centroid](std::size_t c) { return centroid[c].data(); });
+    for (std::size_t c : mine) {
+      lb.cell_ids.push_back(b.cell_id[c]);
+      lb.cell_index.push_back(static_cast<GId>(c));
     }
     lb.conn = Kokkos::View<int**, Kokkos::LayoutRight, la::ExecSpace>("conn", lb.cell_ids.size(), b.nodes_per_cell);
     auto h = Kokkos::create_mirror_view(lb.conn);
