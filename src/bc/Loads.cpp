@@ -48,6 +48,71 @@ std::array<double, 3> facet_normal(const Mesh& mesh, const CellBlock& b, std::si
 
 }  // namespace
 
+NodeCells::NodeCells() = default;
+
+const std::vector<std::pair<int, std::size_t>>& NodeCells::of(const Mesh& mesh, GId node) {
+  if (cells_.empty()) {
+    cells_.resize(mesh.num_nodes());
+    for (std::size_t bi = 0; bi < mesh.volumes.size(); ++bi) {
+      const auto& b = mesh.volumes[bi];
+      for (std::size_t c = 0; c < b.num_cells(); ++c)
+        for (int a = 0; a < b.nodes_per_cell; ++a)
+          cells_[static_cast<std::size_t>(b.conn[c * b.nodes_per_cell + a])].push_back({static_cast<int>(bi), c});
+    }
+  }
+  return cells_[static_cast<std::size_t>(node)];
+}
+
+// gmsh does not orient physical curves/surfaces consistently with the body they bound:
+// each facet is oriented against the centroid of the volume cell that contains it.
+std::vector<OrientedFacets> oriented_facets(const Mesh& mesh, const std::string& group, const std::string& where, NodeCells& node_cells) {
+  std::vector<OrientedFacets> out;
+  for (const CellBlock* b : boundary_blocks_named(mesh, group, where)) {
+    if (cell_dim(b->type) != mesh.dim - 1)
+      throw InputError(where + ": group '" + group + "' has cells of dimension " + std::to_string(cell_dim(b->type)) +
+                       "; facets of dimension " + std::to_string(mesh.dim - 1) + " are needed");
+    OrientedFacets of;
+    of.type = b->type;
+    of.nodes_per_facet = b->nodes_per_cell;
+    of.conn = b->conn;
+    const int nv = (mesh.dim == 2) ? 2 : (b->type == CellType::Quad4 || b->type == CellType::Quad8 ? 4 : 3);
+    for (std::size_t f = 0; f < b->num_cells(); ++f) {
+      const GId* fn = &b->conn[f * b->nodes_per_cell];
+      // A volume cell containing all vertex nodes of the facet.
+      int cb = -1;
+      std::size_t cc = 0;
+      for (const auto& [bi, c] : node_cells.of(mesh, fn[0])) {
+        const auto& vb = mesh.volumes[static_cast<std::size_t>(bi)];
+        const GId* cn = &vb.conn[c * vb.nodes_per_cell];
+        bool all = true;
+        for (int v = 1; v < nv && all; ++v) all = std::find(cn, cn + vb.nodes_per_cell, fn[v]) != cn + vb.nodes_per_cell;
+        if (all) {
+          cb = bi;
+          cc = c;
+          break;
+        }
+      }
+      if (cb < 0) {
+        std::ostringstream os;
+        os << where << ": facet " << f << " of group '" << group << "' bounds no volume cell of the mesh";
+        throw InputError(os.str());
+      }
+      const auto& vb = mesh.volumes[static_cast<std::size_t>(cb)];
+      double xc[3] = {0, 0, 0}, xf[3] = {0, 0, 0};
+      for (int a = 0; a < vb.nodes_per_cell; ++a)
+        for (int d = 0; d < 3; ++d) xc[d] += mesh.x[3 * static_cast<std::size_t>(vb.conn[cc * vb.nodes_per_cell + a]) + d] / vb.nodes_per_cell;
+      for (int a = 0; a < b->nodes_per_cell; ++a)
+        for (int d = 0; d < 3; ++d) xf[d] += mesh.x[3 * static_cast<std::size_t>(fn[a]) + d] / b->nodes_per_cell;
+      const auto n = facet_normal(mesh, *b, f);
+      const double s = n[0] * (xf[0] - xc[0]) + n[1] * (xf[1] - xc[1]) + n[2] * (xf[2] - xc[2]);
+      of.orientation.push_back(s >= 0 ? 1.0 : -1.0);
+      of.adjacent_cell.push_back(vb.cell_id[cc]);
+    }
+    out.push_back(std::move(of));
+  }
+  return out;
+}
+
 std::vector<int> block_materials(const Config& cfg, const Mesh& mesh) {
   std::vector<int> mat(mesh.volumes.size(), -1);
   for (const auto& body : cfg.bodies) {
@@ -77,20 +142,7 @@ std::vector<int> block_materials(const Config& cfg, const Mesh& mesh) {
 
 Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
   Loads loads;
-  // Node -> volume cells, to orient facets outward (gmsh does not orient physical
-  // curves/surfaces consistently with the body they bound).
-  std::vector<std::vector<std::pair<int, std::size_t>>> node_cells;
-  auto build_adjacency = [&]() {
-    if (!node_cells.empty()) return;
-    node_cells.resize(mesh.num_nodes());
-    for (std::size_t bi = 0; bi < mesh.volumes.size(); ++bi) {
-      const auto& b = mesh.volumes[bi];
-      for (std::size_t c = 0; c < b.num_cells(); ++c)
-        for (int a = 0; a < b.nodes_per_cell; ++a)
-          node_cells[static_cast<std::size_t>(b.conn[c * b.nodes_per_cell + a])].push_back({static_cast<int>(bi), c});
-    }
-  };
-
+  NodeCells node_cells;
   for (const auto& lc : cfg.loads) {
     const std::string where = cfg.deck_path + ": Boundary Conditions->" + lc.name;
     switch (lc.type) {
@@ -113,54 +165,19 @@ Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
       }
       case LoadConfig::Type::Traction:
       case LoadConfig::Type::Pressure: {
-        build_adjacency();
-        for (const CellBlock* b : boundary_blocks_named(mesh, lc.group, where + "->boundary")) {
-          if (cell_dim(b->type) != mesh.dim - 1)
-            throw InputError(where + "->boundary: group '" + lc.group + "' has cells of dimension " + std::to_string(cell_dim(b->type)) +
-                             "; tractions and pressures need facets of dimension " + std::to_string(mesh.dim - 1));
+        for (OrientedFacets& of : oriented_facets(mesh, lc.group, where + "->boundary", node_cells)) {
           FacetLoad fl;
           fl.type = lc.type;
           fl.name = lc.name;
           fl.group = lc.group;
-          fl.facet_type = b->type;
-          fl.nodes_per_facet = b->nodes_per_cell;
-          fl.conn = b->conn;
+          fl.facet_type = of.type;
+          fl.nodes_per_facet = of.nodes_per_facet;
+          fl.conn = std::move(of.conn);
+          fl.orientation = std::move(of.orientation);
+          fl.adjacent_cell = std::move(of.adjacent_cell);
           fl.traction = lc.vector;
           fl.pressure = lc.value;
           fl.ramp = lc.ramp;
-          const int nv = (mesh.dim == 2) ? 2 : (b->type == CellType::Quad4 || b->type == CellType::Quad8 ? 4 : 3);
-          for (std::size_t f = 0; f < b->num_cells(); ++f) {
-            const GId* fn = &b->conn[f * b->nodes_per_cell];
-            // A volume cell containing all vertex nodes of the facet.
-            int cb = -1;
-            std::size_t cc = 0;
-            for (const auto& [bi, c] : node_cells[static_cast<std::size_t>(fn[0])]) {
-              const auto& vb = mesh.volumes[static_cast<std::size_t>(bi)];
-              const GId* cn = &vb.conn[c * vb.nodes_per_cell];
-              bool all = true;
-              for (int v = 1; v < nv && all; ++v) all = std::find(cn, cn + vb.nodes_per_cell, fn[v]) != cn + vb.nodes_per_cell;
-              if (all) {
-                cb = bi;
-                cc = c;
-                break;
-              }
-            }
-            if (cb < 0) {
-              std::ostringstream os;
-              os << where << "->boundary: facet " << f << " of group '" << lc.group << "' bounds no volume cell of the mesh";
-              throw InputError(os.str());
-            }
-            const auto& vb = mesh.volumes[static_cast<std::size_t>(cb)];
-            double xc[3] = {0, 0, 0}, xf[3] = {0, 0, 0};
-            for (int a = 0; a < vb.nodes_per_cell; ++a)
-              for (int d = 0; d < 3; ++d) xc[d] += mesh.x[3 * static_cast<std::size_t>(vb.conn[cc * vb.nodes_per_cell + a]) + d] / vb.nodes_per_cell;
-            for (int a = 0; a < b->nodes_per_cell; ++a)
-              for (int d = 0; d < 3; ++d) xf[d] += mesh.x[3 * static_cast<std::size_t>(fn[a]) + d] / b->nodes_per_cell;
-            const auto n = facet_normal(mesh, *b, f);
-            const double s = n[0] * (xf[0] - xc[0]) + n[1] * (xf[1] - xc[1]) + n[2] * (xf[2] - xc[2]);
-            fl.orientation.push_back(s >= 0 ? 1.0 : -1.0);
-            fl.adjacent_cell.push_back(vb.cell_id[cc]);
-          }
           loads.facet_loads.push_back(std::move(fl));
         }
         break;

@@ -2,6 +2,7 @@
 // Trilinos-free; the assembler turns these into local index arrays.
 #pragma once
 #include <array>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,29 @@ struct Loads {
   std::vector<FacetLoad> facet_loads;
   std::vector<BodyForce> body_forces;
 };
+
+// Volume cells around each node ((block, cell) pairs), built on first use.
+class NodeCells {
+ public:
+  NodeCells();
+  const std::vector<std::pair<int, std::size_t>>& of(const Mesh& mesh, GId node);
+
+ private:
+  std::vector<std::vector<std::pair<int, std::size_t>>> cells_;
+};
+
+// The facets of a boundary group, one entry per cell type, each oriented outward.
+struct OrientedFacets {
+  CellType type = CellType::Invalid;
+  int nodes_per_facet = 0;
+  std::vector<GId> conn;             // facet nodes, gmsh order
+  std::vector<double> orientation;   // +1 if the reference normal (fem/Geometry.hpp) points out of the body, else -1
+  std::vector<GId> adjacent_cell;    // global id of the volume cell the facet bounds
+  std::size_t num_facets() const { return nodes_per_facet ? conn.size() / nodes_per_facet : 0; }
+};
+// Throws InputError (prefixed by `where`) when the group is missing, has cells of the
+// wrong dimension, or a facet bounds no volume cell.
+std::vector<OrientedFacets> oriented_facets(const Mesh& mesh, const std::string& group, const std::string& where, NodeCells& node_cells);
 
 // Throws InputError naming the load and the missing/unsuitable physical group.
 Loads resolve_loads(const Config& cfg, const Mesh& mesh);

@@ -1,14 +1,17 @@
 #include "contact/Contact.hpp"
 
 #include <Teuchos_CommHelpers.hpp>
+#include <TpetraExt_MatrixMatrix.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <limits>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
+#include "contact/MasterSurface.hpp"
+#include "fem/Shape.hpp"
 #include "mesh/MeshQuery.hpp"
 
 namespace stentor {
@@ -18,26 +21,57 @@ const char* kAxes[3] = {"x", "y", "z"};
 
 double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-// Orthonormal tangents of the unit normal n (dim - 1 of them).
-void tangents(int dim, const double* n, double t[2][3]) {
-  if (dim == 2) {
-    t[0][0] = -n[1];
-    t[0][1] = n[0];
-    t[0][2] = 0.0;
-    return;
+// Tributary (lumped) reference area of each node of a boundary group: the row sums of the
+// facet mass matrix scaled diagonally (HRZ), so quadratic facets get positive areas.
+std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group) {
+  std::map<GId, double> area;
+  for (const CellBlock* b : boundary_blocks(mesh, group)) {
+    if (cell_dim(b->type) != mesh.dim - 1) continue;
+    const int nn = b->nodes_per_cell;
+    // 3x3 (or 3-point) Gauss rule on the reference facet.
+    std::vector<std::array<double, 3>> qp;
+    std::vector<double> qw;
+    const double g[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
+    if (mesh.dim == 2) {
+      for (int i = 0; i < 3; ++i) qp.push_back({g[i], 0, 0}), qw.push_back(w[i]);
+    } else if (b->type == CellType::Quad4 || b->type == CellType::Quad8) {
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) qp.push_back({g[i], g[j], 0}), qw.push_back(w[i] * w[j]);
+    } else {  // triangle: degree-4 rule would be overkill; 6-point degree 4 via collapsed Gauss
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          const double a = 0.5 * (1 + g[i]), c = 0.5 * (1 + g[j]);
+          qp.push_back({a * (1 - c), c, 0});
+          qw.push_back(w[i] * w[j] * 0.25 * (1 - c));
+        }
+    }
+    for (std::size_t f = 0; f < b->num_cells(); ++f) {
+      std::vector<double> m2(static_cast<std::size_t>(nn), 0.0);
+      double A = 0.0;
+      for (std::size_t q = 0; q < qp.size(); ++q) {
+        double N[kMaxCellNodes], dN[kMaxCellNodes][3];
+        shape_functions(b->type, qp[q].data(), N, dN);
+        double t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0};
+        for (int a = 0; a < nn; ++a)
+          for (int c = 0; c < 3; ++c) {
+            const double x = mesh.x[3 * static_cast<std::size_t>(b->conn[f * nn + a]) + c];
+            t1[c] += dN[a][0] * x;
+            t2[c] += dN[a][1] * x;
+          }
+        double J = std::sqrt(dot3(t1, t1));
+        if (mesh.dim == 3) {
+          const double cr[3] = {t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]};
+          J = std::sqrt(dot3(cr, cr));
+        }
+        A += qw[q] * J;
+        for (int a = 0; a < nn; ++a) m2[static_cast<std::size_t>(a)] += qw[q] * J * N[a] * N[a];
+      }
+      double s = 0.0;
+      for (double v : m2) s += v;
+      for (int a = 0; a < nn; ++a) area[b->conn[f * nn + a]] += A * m2[static_cast<std::size_t>(a)] / s;
+    }
   }
-  // e: the axis least aligned with n.
-  int k = 0;
-  for (int c = 1; c < 3; ++c)
-    if (std::abs(n[c]) < std::abs(n[k])) k = c;
-  double e[3] = {0, 0, 0};
-  e[k] = 1.0;
-  double a[3] = {n[1] * e[2] - n[2] * e[1], n[2] * e[0] - n[0] * e[2], n[0] * e[1] - n[1] * e[0]};
-  const double an = std::sqrt(dot3(a, a));
-  for (int c = 0; c < 3; ++c) t[0][c] = a[c] / an;
-  t[1][0] = n[1] * t[0][2] - n[2] * t[0][1];
-  t[1][1] = n[2] * t[0][0] - n[0] * t[0][2];
-  t[1][2] = n[0] * t[0][1] - n[1] * t[0][0];
+  return area;
 }
 
 }  // namespace
@@ -47,9 +81,10 @@ std::unique_ptr<Contact> Contact::create(const Config& cfg, const Mesh& mesh, co
   return std::make_unique<Contact>(cfg, mesh, dist, assembler);
 }
 
+Contact::~Contact() = default;
+
 Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, const Assembler& assembler)
     : dim_(mesh.dim), end_time_(cfg.stepping.end_time), dist_(dist) {
-  // Length scale of the mesh, for the leapfrog test tolerance.
   double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
   for (std::size_t n = 0; n < mesh.num_nodes(); ++n)
     for (int c = 0; c < 3; ++c) {
@@ -60,24 +95,48 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
   for (int c = 0; c < 3; ++c) diag += (hi[c] - lo[c]) * (hi[c] - lo[c]);
   gap_tol_ = 1e-12 * std::sqrt(diag);
 
-  const auto& colmap = assembler.matrix()->getColMap();
+  // Master surfaces first: their nodes may not be slaves of any pair.
+  std::vector<char> is_master(mesh.num_nodes(), 0);
   for (const auto& pc : cfg.contact) {
-    const std::string where = "'Contact->" + pc.name + "'";
-    const int want = dim_;
-    if (pc.point_len != want) throw InputError(where + "->point must have " + std::to_string(want) + " values (the mesh is " + std::to_string(want) + "D)");
-    if (pc.obstacle == "plane" && pc.normal_len != want)
-      throw InputError(where + "->normal must have " + std::to_string(want) + " values (the mesh is " + std::to_string(want) + "D)");
-    if (pc.obstacle == "circle" && dim_ != 2) throw InputError(where + "->obstacle = circle is 2D only; use cylinder or sphere in 3D");
-    if ((pc.obstacle == "cylinder" || pc.obstacle == "sphere") && dim_ != 3)
-      throw InputError(where + "->obstacle = " + pc.obstacle + " is 3D only; use circle in 2D");
     Pair p;
     p.cfg = pc;
+    if (!pc.master.empty()) {
+      p.master = std::make_unique<MasterSurface>(mesh, pc.master, "'Contact->" + pc.name + "->master'");
+      for (GId g : p.master->nodes()) is_master[static_cast<std::size_t>(g)] = 1;
+      has_master_ = true;
+    }
+    pairs_.push_back(std::move(p));
+  }
+  const auto& colmap = assembler.matrix()->getColMap();
+  std::vector<int> slave_of(mesh.num_nodes(), -1);
+  for (std::size_t ip = 0; ip < pairs_.size(); ++ip) {
+    Pair& p = pairs_[ip];
+    const ContactPairConfig& pc = p.cfg;
+    const std::string where = "'Contact->" + pc.name + "'";
+    if (p.master == nullptr) {
+      if (pc.point_len != dim_)
+        throw InputError(where + "->point must have " + std::to_string(dim_) + " values (the mesh is " + std::to_string(dim_) + "D)");
+      if (pc.obstacle == "plane" && pc.normal_len != dim_)
+        throw InputError(where + "->normal must have " + std::to_string(dim_) + " values (the mesh is " + std::to_string(dim_) + "D)");
+      if (pc.obstacle == "circle" && dim_ != 2) throw InputError(where + "->obstacle = circle is 2D only; use cylinder or sphere in 3D");
+      if ((pc.obstacle == "cylinder" || pc.obstacle == "sphere") && dim_ != 3)
+        throw InputError(where + "->obstacle = " + pc.obstacle + " is 3D only; use circle in 2D");
+    }
     p.persistence = pc.formulation == "persistence" || (pc.formulation == "auto" && cfg.problem.dynamic());
     if (pc.formulation == "persistence" && !cfg.problem.dynamic())
       throw InputError(where + "->formulation = persistence needs a dynamic analysis ('Problem->analysis' = dynamic); use gap in statics");
     const std::vector<GId> nodes = boundary_nodes(mesh, pc.slave);  // throws InputError naming the group
+    const auto areas = tributary_areas(mesh, pc.slave);
     long excluded = 0;
     for (GId g : nodes) {
+      const auto gi = static_cast<std::size_t>(g);
+      if (is_master[gi])
+        throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave +
+                         "' also lies on a master surface; a node may be a slave or a master node, not both");
+      if (slave_of[gi] >= 0)
+        throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' is also a slave node of 'Contact->" +
+                         pairs_[static_cast<std::size_t>(slave_of[gi])].cfg.name + "'; a node may belong to one contact pair only");
+      slave_of[gi] = static_cast<int>(ip);
       if (!dist.owns_node(g)) continue;
       const la::LO l = dist.local_node(g);
       bool prescribed = false;
@@ -86,15 +145,50 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
         ++excluded;
         continue;
       }
-      Node nd;
+      Slave nd;
       nd.lid = l;
-      for (int c = 0; c < 3; ++c) nd.X[c] = mesh.x[3 * static_cast<std::size_t>(g) + c];
+      nd.gid = g;
+      auto it = areas.find(g);
+      nd.area = it == areas.end() ? 0.0 : it->second;
+      for (int c = 0; c < 3; ++c) nd.X[c] = mesh.x[3 * gi + static_cast<std::size_t>(c)];
       for (int c = 0; c < dim_; ++c) nd.col[static_cast<std::size_t>(c)] = colmap->getLocalElement(static_cast<la::GO>(g) * dim_ + c);
       p.nodes.push_back(nd);
     }
+    p.out.resize(p.nodes.size());
     Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &excluded, &p.excluded);
-    pairs_.push_back(std::move(p));
   }
+  if (!has_master_) return;
+
+  // Replicated master dofs: import of displacements, export (ADD) of reactions.
+  master_pos_.assign(mesh.num_nodes(), -1);
+  for (std::size_t g = 0; g < mesh.num_nodes(); ++g)
+    if (is_master[g]) {
+      master_pos_[g] = static_cast<int>(master_nodes_.size());
+      master_nodes_.push_back(static_cast<GId>(g));
+      for (int c = 0; c < 3; ++c) master_X_.push_back(mesh.x[3 * g + static_cast<std::size_t>(c)]);
+    }
+  for (auto& p : pairs_)
+    if (p.master) p.master->index(master_pos_);
+  std::vector<la::GO> gids;
+  for (GId g : master_nodes_)
+    for (int c = 0; c < dim_; ++c) gids.push_back(static_cast<la::GO>(g) * dim_ + c);
+  master_map_ = Teuchos::rcp(new la::Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(), Teuchos::ArrayView<const la::GO>(gids), 0,
+                                         dist.comm()));
+  master_import_ = Teuchos::rcp(new la::Import(dist.owned_map(), master_map_));
+  master_export_ = Teuchos::rcp(new la::Export(master_map_, dist.owned_map()));
+  master_u_ = Teuchos::rcp(new la::Vector(master_map_));
+  master_r_ = Teuchos::rcp(new la::Vector(master_map_));
+  // Prescribed master dofs keep their identity rows: the reaction goes to the support.
+  master_fixed_.assign(gids.size(), 0);
+  for (const auto& d : assembler.dirichlet_sets())
+    for (GId g : d.nodes) {
+      const int pos = master_pos_[static_cast<std::size_t>(g)];
+      if (pos < 0) continue;
+      for (int c = 0; c < dim_; ++c)
+        if (d.components[static_cast<std::size_t>(c)]) master_fixed_[static_cast<std::size_t>(pos * dim_ + c)] = 1;
+    }
+  master_x_ = master_X_;
+  master_xn_ = master_X_;
 }
 
 std::string Contact::description() const {
@@ -103,8 +197,12 @@ std::string Contact::description() const {
     const auto& p = pairs_[i];
     long loc = static_cast<long>(p.nodes.size()), glob = 0;
     Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &loc, &glob);
-    os << (i ? "\n           " : "") << p.cfg.name << ": " << glob << " nodes of '" << p.cfg.slave << "' vs " << p.cfg.obstacle << ", "
-       << (p.persistence ? "persistence (leapfrog)" : "gap") << ", mu " << p.cfg.friction;
+    os << (i ? "\n           " : "") << p.cfg.name << ": " << glob << " nodes of '" << p.cfg.slave << "' vs ";
+    if (p.master)
+      os << "master surface '" << p.cfg.master << "' (" << p.master->facets().size() << " facets)";
+    else
+      os << p.cfg.obstacle;
+    os << ", " << (p.persistence ? "persistence (leapfrog)" : "gap") << ", mu " << p.cfg.friction;
     if (p.excluded) os << " (" << p.excluded << " slave nodes with a prescribed displacement left out)";
   }
   return os.str();
@@ -115,194 +213,353 @@ std::array<double, 3> Contact::translation(const Pair& p, double t) const {
   return {p.cfg.translation[0] * f, p.cfg.translation[1] * f, p.cfg.translation[2] * f};
 }
 
-double Contact::gap(const Pair& p, const double* x, double t, double* n) const {
-  const auto w = translation(p, t);
+contact::Obstacle Contact::obstacle(const Pair& p, double t) const {
+  contact::Obstacle o;
   const auto& c = p.cfg;
-  double r[3];
-  for (int k = 0; k < 3; ++k) r[k] = x[k] - (c.point[static_cast<std::size_t>(k)] + w[static_cast<std::size_t>(k)]);
-  if (c.obstacle == "plane") {
-    for (int k = 0; k < 3; ++k) n[k] = c.normal[static_cast<std::size_t>(k)];
-    return dot3(n, r);
+  o.kind = c.obstacle == "plane" ? 0 : (c.obstacle == "cylinder" ? 2 : 1);
+  const auto w = translation(p, t), w0 = translation(p, t0_);
+  for (int k = 0; k < 3; ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    o.point[k] = c.point[kk] + w[kk];
+    o.normal[k] = c.normal[kk];
+    o.axis[k] = c.axis[kk];
+    o.dw[k] = w[kk] - w0[kk];
   }
-  if (c.obstacle == "cylinder") {
-    const double a = r[0] * c.axis[0] + r[1] * c.axis[1] + r[2] * c.axis[2];
-    for (int k = 0; k < 3; ++k) r[k] -= a * c.axis[static_cast<std::size_t>(k)];
-  }
-  const double R = c.radius + c.radius_change * c.radius_ramp(t, end_time_);
-  const double rho = std::sqrt(dot3(r, r));
-  if (rho > 0.0) {
-    for (int k = 0; k < 3; ++k) n[k] = r[k] / rho;
-  } else {
-    n[0] = 1.0, n[1] = 0.0, n[2] = 0.0;
-  }
-  if (c.side == "inside") {
-    for (int k = 0; k < 3; ++k) n[k] = -n[k];
-    return R - rho;
-  }
-  return rho - R;
+  o.radius = c.radius + c.radius_change * c.radius_ramp(t, end_time_);
+  o.inside = c.side == "inside";
+  return o;
+}
+
+void Contact::update_master_positions(const la::Vector& u, std::vector<double>& xm) const {
+  master_u_->doImport(u, *master_import_, Tpetra::INSERT);
+  auto mh = master_u_->getLocalViewHost(Tpetra::Access::ReadOnly);
+  xm = master_X_;
+  for (std::size_t i = 0; i < master_nodes_.size(); ++i)
+    for (int c = 0; c < dim_; ++c) xm[3 * i + static_cast<std::size_t>(c)] += mh(i * static_cast<std::size_t>(dim_) + static_cast<std::size_t>(c), 0);
 }
 
 void Contact::initialize(const la::Vector& u0, double end_time) {
   end_time_ = end_time;
+  t0_ = t1_ = 0.0;
+  if (has_master_) {
+    update_master_positions(u0, master_x_);
+    master_xn_ = master_x_;
+  }
   auto uh = u0.getLocalViewHost(Tpetra::Access::ReadOnly);
-  for (auto& p : pairs_)
+  for (auto& p : pairs_) {
+    if (p.master) p.master->build(master_x_);
+    const contact::Obstacle ob = obstacle(p, 0.0);
     for (auto& nd : p.nodes) {
-      double x[3] = {nd.X[0], nd.X[1], nd.X[2]}, n[3];
+      double x[3] = {nd.X[0], nd.X[1], nd.X[2]};
       for (int c = 0; c < dim_; ++c) x[c] += uh(nd.lid * dim_ + c, 0);
-      nd.d_n = nd.d_prev = gap(p, x, 0.0, n);
+      double n[3];
+      if (p.master) {
+        const auto hit = p.master->closest(dim_, x, master_x_);
+        nd.facet = hit.facet, nd.xi[0] = hit.xi[0], nd.xi[1] = hit.xi[1], nd.inside = hit.inside;
+        double rel[3];
+        nd.d_n = facet_gap(p, nd, x, n, rel);
+      } else {
+        nd.d_n = contact::rigid_gap(ob, x, n);
+      }
+      nd.d_prev = nd.d_n;
+      nd.gap = nd.d_n;
     }
+  }
 }
 
 void Contact::begin_step(double t_n, double dt, const la::Vector& u_n) {
   t0_ = t_n;
   t1_ = t_n + dt;
   dt_ = dt;
+  if (has_master_) {
+    update_master_positions(u_n, master_xn_);
+    master_x_ = master_xn_;
+  }
   auto uh = u_n.getLocalViewHost(Tpetra::Access::ReadOnly);
   for (auto& p : pairs_)
     for (auto& nd : p.nodes)
       for (int c = 0; c < 3; ++c) nd.x_n[c] = nd.X[c] + (c < dim_ ? uh(nd.lid * dim_ + c, 0) : 0.0);
 }
 
-void Contact::apply(const la::Vector& u, la::Vector& r, la::CrsMatrix* K) {
-  // One Kokkos kernel per pair over its slave nodes: each node reads and rewrites only its
-  // own dim residual entries and tangent rows, so nodes are independent (no atomics). The
-  // node records and the obstacle description live in host memory, which the execution
-  // spaces Stentor is built for (Serial, OpenMP) can read.
+// Gap, normal and relative displacement of slave node nd at x against its facet (double);
+// the search radius when it has none.
+double Contact::facet_gap(const Pair& p, const Slave& nd, const double* x, double* n, double* rel) const {
+  if (nd.facet < 0) return p.master->search_radius();
+  contact::NodeInput in;
+  node_input(p, nd, x, in);
+  double N[facet::kMaxNodes], a1[3];
+  return contact::geometry(in, nullptr, in.xs, in.xa, n, rel, N, a1);
+}
+
+void Contact::node_input(const Pair& p, const Slave& nd, const double* x, contact::NodeInput& in) const {
+  in.dim = dim_;
+  for (int c = 0; c < 3; ++c) {
+    in.xs[c] = x[c];
+    in.xs_n[c] = nd.x_n[c];
+    in.r[c] = nd.f[c];
+  }
+  in.d_n = nd.d_n;
+  if (!p.master) return;
+  const auto& fc = p.master->facets()[static_cast<std::size_t>(nd.facet)];
+  in.nm = fc.nn;
+  in.facet = fc.type;
+  in.orient = fc.orient;
+  in.xi[0] = nd.xi[0], in.xi[1] = nd.xi[1];
+  in.xi_inside = nd.inside;
+  for (int a = 0; a < fc.nn; ++a)
+    for (int c = 0; c < 3; ++c) {
+      const auto k = 3 * static_cast<std::size_t>(fc.node[a]) + static_cast<std::size_t>(c);
+      in.xa[a][c] = master_x_[k];
+      in.xa_n[a][c] = master_xn_[k];
+    }
+}
+
+// s_p: the largest tangent diagonal entry of the node's dofs (a force/length scale).
+void Contact::read_scales(const la::CrsMatrix& K) {
+  auto Kl = K.getLocalMatrixHost();
+  for (auto& p : pairs_)
+    for (auto& nd : p.nodes) {
+      double s = 0.0;
+      for (int c = 0; c < dim_; ++c) {
+        const la::LO row = nd.lid * dim_ + c;
+        for (auto k = Kl.graph.row_map(row); k < Kl.graph.row_map(row + 1); ++k)
+          if (Kl.graph.entries(k) == nd.col[static_cast<std::size_t>(c)]) s = std::max(s, std::abs(Kl.values(k)));
+      }
+      if (s > 0.0) nd.scale = s;
+    }
+}
+
+// Per slave node (one Kokkos kernel per pair): leapfrog test, closest facet, the node's
+// conditions and their derivatives; active nodes' residual rows are replaced in place.
+void Contact::evaluate_nodes(const la::Vector& u, la::Vector& r) {
   static_assert(Kokkos::SpaceAccessibility<la::ExecSpace, Kokkos::HostSpace>::accessible,
                 "contact kernels read host-side node records");
   const int dim = dim_;
   auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
   auto rh = r.getLocalViewHost(Tpetra::Access::ReadWrite);
-  // fillComplete is collective: every rank reopens and closes the tangent, whether or not
-  // it has candidate nodes this time.
-  if (K) K->resumeFill();
-  using LocalMatrix = la::CrsMatrix::local_matrix_device_type;
-  LocalMatrix Kl;
-  if (K) Kl = K->getLocalMatrixDevice();
-  Kokkos::View<int, la::ExecSpace> bad_pattern("contact_bad_pattern");
+  if (has_master_) update_master_positions(u, master_x_);
   for (auto& p : pairs_) {
-    const double mu = p.cfg.friction;
-    const auto w0 = translation(p, t0_), w1 = translation(p, t1_);
+    if (p.master) p.master->build(master_x_);
+    const contact::Obstacle ob = obstacle(p, t1_);
+    contact::LawParams lp;
+    lp.persistence = p.persistence;
+    lp.dt = dt_;
+    lp.mu = p.cfg.friction;
     const double lf = dt_last_ > 0.0 ? 0.5 * dt_ / dt_last_ : 0.5;
-    Node* nodes = p.nodes.data();
+    Slave* nodes = p.nodes.data();
+    contact::NodeOutput* outs = p.out.data();
     const Pair* pp = &p;
-    const bool with_k = K != nullptr;
-    const double t1 = t1_, dt = dt_, gap_tol = gap_tol_;
+    const contact::Obstacle* obp = &ob;
+    const double gap_tol = gap_tol_;
     Kokkos::parallel_for(
         "stentor::contact_nodes", Kokkos::RangePolicy<la::ExecSpace>(0, p.nodes.size()), [=](const std::size_t i) {
-          Node& nd = nodes[i];
-          const Pair& pr = *pp;
-          double x[3] = {nd.X[0], nd.X[1], nd.X[2]}, n[3], t[2][3], rp[3] = {0, 0, 0};
+          Slave& nd = nodes[i];
+          contact::NodeOutput& o = outs[i];
+          double x[3] = {nd.X[0], nd.X[1], nd.X[2]};
           for (int c = 0; c < dim; ++c) {
             x[c] += uh(nd.lid * dim + c, 0);
-            rp[c] = rh(nd.lid * dim + c, 0);
+            nd.f[c] = rh(nd.lid * dim + c, 0);
           }
-          for (int c = 0; c < 3; ++c) nd.f[c] = rp[c];
-          nd.state = 0;
+          nd.state = o.state = contact::Free;
           // Leapfrog: free this step, unless the node ended the last step in contact (then
           // the persistence condition itself decides whether it separates).
-          if (pr.persistence && !nd.was_active && nd.d_n + lf * (nd.d_n - nd.d_prev) > gap_tol) return;
-          const double d = gap(pr, x, t1, n);
-          tangents(dim, n, t);
-          // The node's dim rows of the tangent share one column pattern: row c is
-          // values(b[c] .. b[c] + len - 1) with the columns of row 0.
-          std::size_t b[3] = {0, 0, 0}, len = 0;
-          if (with_k) {
-            const la::LO row0 = nd.lid * dim;
-            len = static_cast<std::size_t>(Kl.graph.row_map(row0 + 1) - Kl.graph.row_map(row0));
-            for (int c = 0; c < dim; ++c) {
-              b[c] = static_cast<std::size_t>(Kl.graph.row_map(row0 + c));
-              const auto lc = static_cast<std::size_t>(Kl.graph.row_map(row0 + c + 1)) - b[c];
-              bool same = lc == len;
-              for (std::size_t k = 0; same && k < len; ++k) same = Kl.graph.entries(b[c] + k) == Kl.graph.entries(b[0] + k);
-              if (!same) {
-                Kokkos::atomic_increment(&bad_pattern());
-                return;
-              }
+          if (pp->persistence && !nd.was_active && nd.d_n + lf * (nd.d_n - nd.d_prev) > gap_tol) return;
+          if (pp->master) {
+            const auto hit = pp->master->closest(dim, x, master_x_);
+            nd.facet = hit.facet;
+            if (hit.facet < 0) return;
+            nd.xi[0] = hit.xi[0], nd.xi[1] = hit.xi[1], nd.inside = hit.inside;
+          }
+          contact::NodeInput in;
+          node_input(*pp, nd, x, in);
+          contact::LawParams q = lp;
+          q.sp = nd.scale;
+          q.cn = pp->cfg.c_normal > 0.0 ? pp->cfg.c_normal : nd.scale * (pp->persistence ? lp.dt : 1.0);
+          q.ct = pp->cfg.c_tangent > 0.0 ? pp->cfg.c_tangent : nd.scale * lp.dt;
+          contact::evaluate(in, q, obp, o);
+          nd.state = o.state;
+          nd.gap = o.gap;
+          for (int c = 0; c < 3; ++c) nd.normal[c] = o.normal[c], nd.rel[c] = o.rel[c];
+          if (o.state >= contact::Stick)
+            for (int c = 0; c < dim; ++c) rh(nd.lid * dim + c, 0) = o.res[c];
+        });
+    Kokkos::fence();
+  }
+}
+
+// Master rows: r_a += N_a r_p for every active node touching a facet (prescribed master
+// dofs excepted), summed across ranks.
+void Contact::send_reactions(la::Vector& r) {
+  if (!has_master_) return;
+  master_r_->putScalar(0.0);
+  {
+    auto mh = master_r_->getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (const auto& p : pairs_) {
+      if (!p.master) continue;
+      for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+        const Slave& nd = p.nodes[i];
+        if (nd.state < contact::Stick) continue;
+        const auto& fc = p.master->facets()[static_cast<std::size_t>(nd.facet)];
+        for (int a = 0; a < fc.nn; ++a)
+          for (int c = 0; c < dim_; ++c) {
+            const auto k = static_cast<std::size_t>(fc.node[a] * dim_ + c);
+            if (!master_fixed_[k]) mh(k, 0) += p.out[i].add[a][c];
+          }
+      }
+    }
+  }
+  r.doExport(*master_r_, *master_export_, Tpetra::ADD_ASSIGN);  // ADD would replace owned entries
+}
+
+// Rigid obstacles: the node's new rows are combinations of its own bulk rows plus terms
+// on its own columns, all inside the static graph: rewritten in place, one node per
+// kernel iteration.
+void Contact::rewrite_rigid_rows(la::CrsMatrix& K) {
+  using LocalMatrix = la::CrsMatrix::local_matrix_device_type;
+  LocalMatrix Kl = K.getLocalMatrixDevice();
+  Kokkos::View<int, la::ExecSpace> bad_pattern("contact_bad_pattern");
+  const int dim = dim_;
+  for (auto& p : pairs_) {
+    if (p.master) continue;
+    Slave* nodes = p.nodes.data();
+    const contact::NodeOutput* outs = p.out.data();
+    Kokkos::parallel_for(
+        "stentor::contact_rigid_rows", Kokkos::RangePolicy<la::ExecSpace>(0, p.nodes.size()), KOKKOS_LAMBDA(const std::size_t i) {
+          const Slave& nd = nodes[i];
+          if (nd.state < contact::Stick) return;
+          const contact::NodeOutput& o = outs[i];
+          // The node's dim rows share one column pattern: row c is values(b[c] .. b[c] + len - 1).
+          const la::LO row0 = nd.lid * dim;
+          const auto len = static_cast<std::size_t>(Kl.graph.row_map(row0 + 1) - Kl.graph.row_map(row0));
+          std::size_t b[3] = {0, 0, 0};
+          for (int c = 0; c < dim; ++c) {
+            b[c] = static_cast<std::size_t>(Kl.graph.row_map(row0 + c));
+            bool same = static_cast<std::size_t>(Kl.graph.row_map(row0 + c + 1)) - b[c] == len;
+            for (std::size_t k = 0; same && k < len; ++k) same = Kl.graph.entries(b[c] + k) == Kl.graph.entries(b[0] + k);
+            if (!same) {
+              Kokkos::atomic_increment(&bad_pattern());
+              return;
             }
-            double s = 0.0;
-            for (int c = 0; c < dim; ++c)
-              for (std::size_t k = 0; k < len; ++k)
-                if (Kl.graph.entries(b[0] + k) == nd.col[static_cast<std::size_t>(c)]) s = std::max(s, std::abs(Kl.values(b[c] + k)));
-            if (s > 0.0) nd.scale = s;
           }
-          const double sp = nd.scale;
-          const double rn = dot3(n, rp);
-          const double lam_n = -rn;
-          double lam_t[3];
-          for (int c = 0; c < 3; ++c) lam_t[c] = -(rp[c] - rn * n[c]);
-          const double cn = pr.cfg.c_normal > 0.0 ? pr.cfg.c_normal : sp * (pr.persistence ? dt : 1.0);
-          const double g = pr.persistence ? (d - nd.d_n) / dt : d;
-          if (lam_n + cn * g > 0.0) {
-            // Inactive: lambda = 0, bulk rows unchanged. (A node touching with zero force,
-            // lambda + c g = 0, counts as active: it keeps a body that only rests on the
-            // obstacle from being a free rigid body at the first iteration.)
-            nd.state = 1;
-            return;
-          }
-          // Active. Relative tangential motion over the step (obstacle translation removed).
-          double du[3], dtau[3];
-          for (int c = 0; c < 3; ++c) du[c] = x[c] - nd.x_n[c] - (w1[static_cast<std::size_t>(c)] - w0[static_cast<std::size_t>(c)]);
-          const double dun = dot3(du, n);
-          for (int c = 0; c < 3; ++c) dtau[c] = du[c] - dun * n[c];
-          bool stick = false;
-          double sdir[3] = {0, 0, 0};
-          if (mu > 0.0) {
-            const double ct = pr.cfg.c_tangent > 0.0 ? pr.cfg.c_tangent : sp * dt;
-            double q[3];
-            for (int c = 0; c < 3; ++c) q[c] = lam_t[c] + ct * dtau[c] / dt;
-            const double qn = std::sqrt(dot3(q, q));
-            if (qn + mu * lam_n >= 0.0 && qn > 0.0) {
-              for (int c = 0; c < 3; ++c) sdir[c] = q[c] / qn;
-            } else {
-              stick = true;
-            }
-          }
-          nd.state = stick ? 2 : 3;
-          // Row slots: the normal row goes to the component most aligned with n.
-          int slot_n = 0;
-          for (int c = 1; c < dim; ++c)
-            if (std::abs(n[c]) > std::abs(n[slot_n])) slot_n = c;
-          int slot_t[2] = {0, 0}, nt = 0;
-          for (int c = 0; c < dim; ++c)
-            if (c != slot_n) slot_t[nt++] = c;
-          double res[3];
-          res[slot_n] = sp * (d - (pr.persistence ? nd.d_n : 0.0));
-          double comb[2][3];  // slip/frictionless: row combination of the bulk rows
-          for (int k = 0; k < dim - 1; ++k) {
-            const double st = dot3(sdir, t[k]);
-            for (int c = 0; c < 3; ++c) comb[k][c] = t[k][c] + mu * st * n[c];
-            res[slot_t[k]] = stick ? sp * dot3(t[k], dtau) : dot3(comb[k], rp);
-          }
-          for (int c = 0; c < dim; ++c) rh(nd.lid * dim + c, 0) = res[c];
-          if (!with_k) return;
-          // Rewrite the rows column by column (each new entry needs the old entries of the
-          // same column only): normal row = sp n on the node's own dofs; stick rows = sp t;
-          // slip rows = comb . (bulk rows).
-          for (std::size_t k = 0; k < len; ++k) {
-            const la::LO col = Kl.graph.entries(b[0] + k);
+          // new row k = sum_j dPhi_k/dr_j (bulk row j) + dPhi_k/dx on the node's own columns.
+          for (std::size_t e = 0; e < len; ++e) {
+            const la::LO col = Kl.graph.entries(b[0] + e);
             double old[3] = {0, 0, 0}, out[3] = {0, 0, 0};
-            for (int c = 0; c < dim; ++c) old[c] = Kl.values(b[c] + k);
-            for (int c = 0; c < dim; ++c)
-              if (col == nd.col[static_cast<std::size_t>(c)]) {
-                out[slot_n] = sp * n[c];
-                if (stick)
-                  for (int j = 0; j < dim - 1; ++j) out[slot_t[j]] = sp * t[j][c];
-              }
-            if (!stick)
-              for (int j = 0; j < dim - 1; ++j) {
-                double v = 0.0;
-                for (int c = 0; c < dim; ++c) v += comb[j][c] * old[c];
-                out[slot_t[j]] = v;
-              }
-            for (int c = 0; c < dim; ++c) Kl.values(b[c] + k) = out[c];
+            for (int c = 0; c < dim; ++c) old[c] = Kl.values(b[c] + e);
+            for (int k = 0; k < dim; ++k) {
+              double v = 0.0;
+              for (int j = 0; j < dim; ++j) v += o.dres[k][dim + j] * old[j];
+              for (int c = 0; c < dim; ++c)
+                if (col == nd.col[static_cast<std::size_t>(c)]) v += o.dres[k][c];
+              out[k] = v;
+            }
+            for (int c = 0; c < dim; ++c) Kl.values(b[c] + e) = out[c];
           }
         });
   }
   Kokkos::fence();
   auto bad = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), bad_pattern);
   if (bad() > 0) throw std::logic_error("stentor contact: the rows of a node do not share one column pattern");
-  if (K) K->fillComplete(dist_.owned_map(), dist_.owned_map());
+}
+
+// Master surfaces: K' = Q K + G, with Q = I except the active slaves' rows (dPhi/dr_p) and
+// the master rows' columns of the slave (dPsi/dr_p = N_a), and G the derivatives at fixed r.
+// Entries of rows owned elsewhere (master nodes) are sent at fillComplete.
+la::RCP<la::CrsMatrix> Contact::coupled_tangent(const la::RCP<la::CrsMatrix>& K) {
+  using Row = std::vector<std::pair<la::GO, double>>;
+  const auto& map = dist_.owned_map();
+  const std::size_t nown = map->getNodeNumElements();
+  std::vector<Row> q(nown), g(nown);
+  std::map<la::GO, Row> q_far, g_far;
+  std::vector<char> replaced(nown, 0);
+  auto row_of = [&](la::GO gid, std::vector<Row>& loc, std::map<la::GO, Row>& far) -> Row& {
+    const la::LO l = map->getLocalElement(gid);
+    return l >= 0 ? loc[static_cast<std::size_t>(l)] : far[gid];
+  };
+  long active = 0;
+  for (const auto& p : pairs_) {
+    if (!p.master) continue;
+    for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+      const Slave& nd = p.nodes[i];
+      if (nd.state < contact::Stick) continue;
+      ++active;
+      const contact::NodeOutput& o = p.out[i];
+      const auto& fc = p.master->facets()[static_cast<std::size_t>(nd.facet)];
+      const int off_r = dim_ * (1 + fc.nn);
+      auto ydof = [&](int l) -> la::GO {
+        const GId node = l < dim_ ? nd.gid : fc.gid[l / dim_ - 1];
+        return static_cast<la::GO>(node) * dim_ + l % dim_;
+      };
+      for (int k = 0; k < dim_; ++k) {
+        replaced[static_cast<std::size_t>(nd.lid * dim_ + k)] = 1;
+        Row& qr = q[static_cast<std::size_t>(nd.lid * dim_ + k)];
+        Row& gr = g[static_cast<std::size_t>(nd.lid * dim_ + k)];
+        for (int j = 0; j < dim_; ++j) qr.push_back({static_cast<la::GO>(nd.gid) * dim_ + j, o.dres[k][off_r + j]});
+        for (int l = 0; l < off_r; ++l) gr.push_back({ydof(l), o.dres[k][l]});
+      }
+      for (int a = 0; a < fc.nn; ++a)
+        for (int c = 0; c < dim_; ++c) {
+          if (master_fixed_[static_cast<std::size_t>(fc.node[a] * dim_ + c)]) continue;
+          const la::GO row = static_cast<la::GO>(fc.gid[a]) * dim_ + c;
+          Row& qr = row_of(row, q, q_far);
+          Row& gr = row_of(row, g, g_far);
+          for (int j = 0; j < dim_; ++j) qr.push_back({static_cast<la::GO>(nd.gid) * dim_ + j, o.dadd[a][c][off_r + j]});
+          for (int l = 0; l < off_r; ++l) gr.push_back({ydof(l), o.dadd[a][c][l]});
+        }
+    }
+  }
+  long active_glob = 0;
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &active, &active_glob);
+  if (active_glob == 0) return K;
+  for (std::size_t i = 0; i < nown; ++i)
+    if (!replaced[i]) q[i].push_back({map->getGlobalElement(static_cast<la::LO>(i)), 1.0});
+  auto build = [&](std::vector<Row>& loc, std::map<la::GO, Row>& far) {
+    std::vector<std::size_t> counts(nown);
+    for (std::size_t i = 0; i < nown; ++i) counts[i] = loc[i].size();
+    auto M = Teuchos::rcp(new la::CrsMatrix(map, Teuchos::ArrayView<const std::size_t>(counts)));
+    std::vector<la::GO> cols;
+    std::vector<double> vals;
+    auto insert = [&](la::GO row, const Row& entries) {
+      if (entries.empty()) return;
+      cols.clear(), vals.clear();
+      for (const auto& [c, v] : entries) cols.push_back(c), vals.push_back(v);
+      M->insertGlobalValues(row, Teuchos::ArrayView<const la::GO>(cols), Teuchos::ArrayView<const double>(vals));
+    };
+    for (std::size_t i = 0; i < nown; ++i) insert(map->getGlobalElement(static_cast<la::LO>(i)), loc[i]);
+    for (const auto& [row, entries] : far) insert(row, entries);
+    M->fillComplete(map, map);
+    return M;
+  };
+  auto Q = build(q, q_far);
+  auto G = build(g, g_far);
+  auto QK = Teuchos::rcp(new la::CrsMatrix(map, 0));
+  Tpetra::MatrixMatrix::Multiply(*Q, false, *K, false, *QK);
+  return Tpetra::MatrixMatrix::add(1.0, false, *QK, 1.0, false, *G, map, map);
+}
+
+void Contact::update_changed() {
+  long loc = 0, glob = 0;
+  for (auto& p : pairs_)
+    for (auto& nd : p.nodes) {
+      loc += nd.state != nd.prev_state;
+      nd.prev_state = nd.state;
+    }
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &loc, &glob);
+  changed_ = glob > 0;
+}
+
+la::RCP<la::CrsMatrix> Contact::apply(const la::Vector& u, la::Vector& r, const la::RCP<la::CrsMatrix>& K) {
+  if (K) read_scales(*K);
+  evaluate_nodes(u, r);
+  send_reactions(r);
+  update_changed();
+  if (!K) return K;
+  // fillComplete is collective: every rank reopens and closes the tangent.
+  K->resumeFill();
+  rewrite_rigid_rows(*K);
+  K->fillComplete(dist_.owned_map(), dist_.owned_map());
+  if (!has_master_) return K;
+  return coupled_tangent(K);
 }
 
 std::string Contact::iteration_summary() const {
@@ -310,9 +567,9 @@ std::string Contact::iteration_summary() const {
   for (const auto& p : pairs_) {
     long a = 0, st = 0, sl = 0;
     for (const auto& nd : p.nodes) {
-      a += nd.state >= 2;
-      st += nd.state == 2;
-      sl += nd.state == 3;
+      a += nd.state >= contact::Stick;
+      st += nd.state == contact::Stick;
+      sl += nd.state == contact::Slip;
     }
     loc.insert(loc.end(), {a, st, sl});
   }
@@ -321,49 +578,62 @@ std::string Contact::iteration_summary() const {
   std::ostringstream os;
   os << "      contact";
   for (std::size_t i = 0; i < pairs_.size(); ++i)
-    os << "  " << pairs_[i].cfg.name << ": active " << glob[3 * i] << " (stick " << glob[3 * i + 1] << ", slip " << glob[3 * i + 2] << ")";
+    os << "  " << pairs_[i].cfg.name << ": active " << glob[3 * i] << " (stick " << glob[3 * i + 1] << ", slip " << glob[3 * i + 2] << ")"
+       << (changed_ ? "" : ", settled");
   return os.str();
 }
 
 Contact::StepStats Contact::accept(const la::Vector& u_np1) {
   auto uh = u_np1.getLocalViewHost(Tpetra::Access::ReadOnly);
+  if (has_master_) update_master_positions(u_np1, master_x_);
   const std::size_t np = pairs_.size();
   std::vector<double> loc(np * 6 + 2, 0.0), glob(loc.size(), 0.0), mloc(np, 1e300), mglob(np, 0.0);
   for (std::size_t i = 0; i < np; ++i) {
     auto& p = pairs_[i];
-    const auto w0 = translation(p, t0_), w1 = translation(p, t1_);
+    if (p.master) p.master->build(master_x_);
+    const contact::Obstacle ob = obstacle(p, t1_);
     for (auto& nd : p.nodes) {
-      double x[3] = {nd.X[0], nd.X[1], nd.X[2]}, n[3];
+      double x[3] = {nd.X[0], nd.X[1], nd.X[2]}, n[3] = {0, 0, 0};
       for (int c = 0; c < dim_; ++c) x[c] += uh(nd.lid * dim_ + c, 0);
-      const double d = gap(p, x, t1_, n);
+      double d = 0.0, rel[3] = {0, 0, 0};
+      if (p.master) {
+        // Active nodes keep the facet of their last evaluation; others look again.
+        if (nd.state < contact::Stick) {
+          const auto hit = p.master->closest(dim_, x, master_x_);
+          nd.facet = hit.facet;
+          nd.xi[0] = hit.xi[0], nd.xi[1] = hit.xi[1], nd.inside = hit.inside;
+        }
+        d = facet_gap(p, nd, x, n, rel);
+      } else {
+        d = contact::rigid_gap(ob, x, n);
+        for (int c = 0; c < 3; ++c) rel[c] = x[c] - nd.x_n[c] - ob.dw[c];
+      }
+      nd.gap = d;
+      for (int c = 0; c < 3; ++c) nd.normal[c] = n[c], nd.rel[c] = rel[c];
       mloc[i] = std::min(mloc[i], d);
-      if (nd.state >= 2) {
+      if (nd.state >= contact::Stick) {
         loc[6 * i] += 1;
-        loc[6 * i + 1] += nd.state == 2;
-        loc[6 * i + 2] += nd.state == 3;
+        loc[6 * i + 1] += nd.state == contact::Stick;
+        loc[6 * i + 2] += nd.state == contact::Slip;
         for (int c = 0; c < 3; ++c) loc[6 * i + 3 + static_cast<std::size_t>(c)] += nd.f[c];
-        // f = r_bulk,p is the contact force on the body; split into normal and tangential parts.
+        // F = r_p on the slave (and -F at the master's contact point): its work over the
+        // step is F . rel (+ F . dw for a moving rigid obstacle, work done by the obstacle's
+        // motion). Normal part: contact work; tangential part: -(frictional dissipation).
         const double fn = dot3(nd.f, n);
-        double ft[3], du[3], dw[3];
+        double ft[3], relt[3], dwt[3];
+        const double reln = dot3(rel, n), dwn = dot3(ob.dw, n);
         for (int c = 0; c < 3; ++c) {
           ft[c] = nd.f[c] - fn * n[c];
-          du[c] = x[c] - nd.x_n[c];
-          dw[c] = w1[static_cast<std::size_t>(c)] - w0[static_cast<std::size_t>(c)];
-        }
-        double rel[3];
-        for (int c = 0; c < 3; ++c) rel[c] = du[c] - dw[c];
-        const double reln = dot3(rel, n), dwn = dot3(dw, n);
-        double relt[3], dwt[3];
-        for (int c = 0; c < 3; ++c) {
           relt[c] = rel[c] - reln * n[c];
-          dwt[c] = dw[c] - dwn * n[c];
+          dwt[c] = p.master ? 0.0 : ob.dw[c] - dwn * n[c];
         }
-        loc[6 * np] += fn * dot3(du, n) + dot3(ft, dwt);
+        const double dun = p.master ? reln : reln + dwn;
+        loc[6 * np] += fn * dun + dot3(ft, dwt);
         loc[6 * np + 1] += -dot3(ft, relt);
       }
       nd.d_prev = nd.d_n;
       nd.d_n = d;
-      nd.was_active = nd.state >= 2;
+      nd.was_active = nd.state >= contact::Stick;
     }
   }
   Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), glob.data());
@@ -384,23 +654,20 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
   return s;
 }
 
-Contact::NodalFields Contact::nodal_fields(const la::Vector& u) const {
+Contact::NodalFields Contact::nodal_fields() const {
   NodalFields out;
-  auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
   for (const Pair& p : pairs_)
-    for (const Node& nd : p.nodes) {
-      double x[3] = {nd.X[0], nd.X[1], nd.X[2]}, n[3] = {0, 0, 0};
-      for (int c = 0; c < dim_; ++c) x[c] += uh(nd.lid * dim_ + c, 0);
-      const double d = gap(p, x, t1_, n);
-      const bool active = nd.state >= 2;
-      // Condensed multipliers (talk's signs): lambda_nu = -n . f, lambda_tau = -(I - n n) f.
-      double fn = 0.0;
-      for (int c = 0; c < 3; ++c) fn += n[c] * nd.f[c];
-      out.nodes.push_back(static_cast<long long>(dist_.global_node(nd.lid)));
+    for (const Slave& nd : p.nodes) {
+      const bool active = nd.state >= contact::Stick;
+      const double fn = dot3(nd.normal, nd.f);
+      out.nodes.push_back(static_cast<long long>(nd.gid));
       out.values.push_back(static_cast<double>(nd.state));
-      out.values.push_back(d);
+      out.values.push_back(nd.gap);
       out.values.push_back(active ? -fn : 0.0);
-      for (int c = 0; c < 3; ++c) out.values.push_back(active ? -(nd.f[c] - fn * n[c]) : 0.0);
+      out.values.push_back(active && nd.area > 0.0 ? fn / nd.area : 0.0);
+      for (int c = 0; c < 3; ++c) out.values.push_back(active ? -(nd.f[c] - fn * nd.normal[c]) : 0.0);
+      const double reln = dot3(nd.rel, nd.normal);
+      for (int c = 0; c < 3; ++c) out.values.push_back(active ? nd.rel[c] - reln * nd.normal[c] : 0.0);
     }
   return out;
 }

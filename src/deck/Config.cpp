@@ -191,6 +191,7 @@ class DeckReader {
   void read_output(const ParameterList& pl);
   Ramp read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls, const std::string& key = "ramp") const;
   void read_contact(const ParameterList& pl);
+  void read_contact_obstacle(const ParameterList& sub, const std::string& path, const ListSpec& ls, ContactPairConfig& c);
   void check_dim_length(const std::vector<double>& v, const std::string& path) const;
 };
 
@@ -601,6 +602,12 @@ void DeckReader::read_bodies(const ParameterList& pl) {
     b.group = sub.isParameter("physical group") ? get_string(sub, ls, "physical group") : name;
     if (b.group.empty()) fail(quoted(path + "->physical group") + " must not be empty");
     b.material = get_string(sub, ls, "material");
+    if (sub.isParameter("initial velocity")) {
+      const auto v = get_array(sub, ls, "initial velocity");
+      check_dim_length(v, path + "->initial velocity");
+      b.has_velocity = true;
+      for (std::size_t k = 0; k < v.size() && k < 3; ++k) b.velocity[k] = v[k];
+    }
     if (std::find(defined.begin(), defined.end(), b.material) == defined.end()) {
       std::string msg = quoted(path + "->material") + " names undefined material '" + b.material +
                         "'; defined materials: " + join(defined);
@@ -643,6 +650,63 @@ Ramp DeckReader::read_ramp(const ParameterList& pl, const std::string& path, con
   return r;
 }
 
+void DeckReader::read_contact_obstacle(const ParameterList& sub, const std::string& path, const ListSpec& ls, ContactPairConfig& c) {
+  c.obstacle = get_string(sub, ls, "obstacle");
+  if (c.obstacle != "plane" && c.obstacle != "circle" && c.obstacle != "cylinder" && c.obstacle != "sphere")
+    fail(quoted(path + "->obstacle") + " must be one of 'plane', 'circle', 'cylinder', 'sphere', got '" + c.obstacle + "'");
+  const bool curved = c.obstacle != "plane";
+  auto vec = [&](const std::string& key, std::array<double, 3>& out, int& len) {
+    const auto v = get_array(sub, ls, key);
+    check_dim_length(v, path + "->" + key);
+    len = static_cast<int>(v.size());
+    for (std::size_t k = 0; k < v.size(); ++k) out[k] = v[k];
+  };
+  if (!sub.isParameter("point")) fail("missing required parameter " + quoted(path + "->point") + " (Array(double)) for an obstacle");
+  vec("point", c.point, c.point_len);
+  const int dim = cfg_.mesh.dimension;
+  if (c.obstacle == "plane") {
+    if (!sub.isParameter("normal")) fail("missing required parameter " + quoted(path + "->normal") + " (Array(double)) for a plane obstacle");
+    vec("normal", c.normal, c.normal_len);
+    const double nn = std::sqrt(c.normal[0] * c.normal[0] + c.normal[1] * c.normal[1] + c.normal[2] * c.normal[2]);
+    if (!(nn > 0.0)) fail(quoted(path + "->normal") + " must not be the zero vector");
+    for (auto& x : c.normal) x /= nn;
+    if (c.normal_len != c.point_len)
+      fail(quoted(path + "->normal") + " must have as many values as 'point' (" + std::to_string(c.point_len) + ")");
+    for (const char* k : {"radius", "radius change", "axis", "side"})
+      if (sub.isParameter(k)) fail(quoted(path + "->" + k) + " is not used by a plane obstacle");
+  } else {
+    if (!sub.isParameter("radius"))
+      fail("missing required parameter " + quoted(path + "->radius") + " (double, > 0) for a " + c.obstacle + " obstacle");
+    c.radius = get_double(sub, ls, "radius");
+    c.side = get_string(sub, ls, "side");
+    if (sub.isParameter("normal")) fail(quoted(path + "->normal") + " is only used by a plane obstacle");
+    if (c.obstacle == "circle" && (dim == 3 || c.point_len == 3))
+      fail(quoted(path + "->obstacle") + " = circle is 2D only; use cylinder or sphere in 3D");
+    if ((c.obstacle == "cylinder" || c.obstacle == "sphere") && (dim == 2 || c.point_len == 2))
+      fail(quoted(path + "->obstacle") + " = " + c.obstacle + " is 3D only; use circle in 2D");
+    if (c.obstacle == "cylinder") {
+      if (!sub.isParameter("axis")) fail("missing required parameter " + quoted(path + "->axis") + " (Array(double), 3 values) for a cylinder obstacle");
+      const auto a = get_array(sub, ls, "axis");
+      c.axis_len = static_cast<int>(a.size());
+      const double an = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+      if (!(an > 0.0)) fail(quoted(path + "->axis") + " must not be the zero vector");
+      for (std::size_t k = 0; k < 3; ++k) c.axis[k] = a[k] / an;
+    } else if (sub.isParameter("axis")) {
+      fail(quoted(path + "->axis") + " is only used by a cylinder obstacle");
+    }
+  }
+  int tl = 0;
+  if (sub.isParameter("translation")) {
+    vec("translation", c.translation, tl);
+    if (tl != c.point_len) fail(quoted(path + "->translation") + " must have as many values as 'point' (" + std::to_string(c.point_len) + ")");
+  }
+  c.translation_ramp = read_ramp(sub, path, ls, "translation ramp");
+  c.radius_change = get_double(sub, ls, "radius change");
+  c.radius_ramp = read_ramp(sub, path, ls, "radius ramp");
+  if (!curved && (sub.isParameter("radius ramp") || sub.isParameter("radius ramp times")))
+    fail(quoted(path + "->radius ramp") + " is not used by a plane obstacle");
+}
+
 void DeckReader::read_contact(const ParameterList& pl) {
   const ListSpec& top = deck_list_spec("Contact");
   const ListSpec& ls = deck_list_spec("Contact/*");
@@ -657,57 +721,20 @@ void DeckReader::read_contact(const ParameterList& pl) {
     c.name = name;
     c.slave = get_string(sub, ls, "slave");
     if (c.slave.empty()) fail(quoted(path + "->slave") + " must name a boundary physical group");
-    c.obstacle = get_string(sub, ls, "obstacle");
-    const bool curved = c.obstacle != "plane";
-    auto vec = [&](const std::string& key, std::array<double, 3>& out, int& len) {
-      const auto v = get_array(sub, ls, key);
-      check_dim_length(v, path + "->" + key);
-      len = static_cast<int>(v.size());
-      for (std::size_t k = 0; k < v.size(); ++k) out[k] = v[k];
-    };
-    vec("point", c.point, c.point_len);
-    const int dim = cfg_.mesh.dimension;
-    if (c.obstacle == "plane") {
-      if (!sub.isParameter("normal")) fail("missing required parameter " + quoted(path + "->normal") + " (Array(double)) for a plane obstacle");
-      vec("normal", c.normal, c.normal_len);
-      const double nn = std::sqrt(c.normal[0] * c.normal[0] + c.normal[1] * c.normal[1] + c.normal[2] * c.normal[2]);
-      if (!(nn > 0.0)) fail(quoted(path + "->normal") + " must not be the zero vector");
-      for (auto& x : c.normal) x /= nn;
-      if (c.normal_len != c.point_len)
-        fail(quoted(path + "->normal") + " must have as many values as 'point' (" + std::to_string(c.point_len) + ")");
-      for (const char* k : {"radius", "radius change", "axis", "side"})
-        if (sub.isParameter(k)) fail(quoted(path + "->" + k) + " is not used by a plane obstacle");
+    const bool has_obstacle = sub.isParameter("obstacle"), has_master = sub.isParameter("master");
+    if (has_obstacle == has_master)
+      fail(quoted(path) + " needs exactly one of 'obstacle' (a rigid analytic surface) and 'master' (a boundary group of a "
+           "deformable body)" + (has_obstacle ? std::string(", not both") : std::string("")));
+    if (has_master) {
+      c.master = get_string(sub, ls, "master");
+      if (c.master.empty()) fail(quoted(path + "->master") + " must name a boundary physical group");
+      if (c.master == c.slave) fail(quoted(path + "->master") + " names the slave group '" + c.slave + "'; self-contact is not supported");
+      for (const char* k : {"point", "normal", "axis", "radius", "side", "translation", "translation ramp", "translation ramp times",
+                            "translation ramp factors", "radius change", "radius ramp", "radius ramp times", "radius ramp factors"})
+        if (sub.isParameter(k)) fail(quoted(path + "->" + k) + " describes a rigid obstacle; a pair with 'master' has none");
     } else {
-      if (!sub.isParameter("radius"))
-        fail("missing required parameter " + quoted(path + "->radius") + " (double, > 0) for a " + c.obstacle + " obstacle");
-      c.radius = get_double(sub, ls, "radius");
-      c.side = get_string(sub, ls, "side");
-      if (sub.isParameter("normal")) fail(quoted(path + "->normal") + " is only used by a plane obstacle");
-      if (c.obstacle == "circle" && (dim == 3 || c.point_len == 3))
-        fail(quoted(path + "->obstacle") + " = circle is 2D only; use cylinder or sphere in 3D");
-      if ((c.obstacle == "cylinder" || c.obstacle == "sphere") && (dim == 2 || c.point_len == 2))
-        fail(quoted(path + "->obstacle") + " = " + c.obstacle + " is 3D only; use circle in 2D");
-      if (c.obstacle == "cylinder") {
-        if (!sub.isParameter("axis")) fail("missing required parameter " + quoted(path + "->axis") + " (Array(double), 3 values) for a cylinder obstacle");
-        const auto a = get_array(sub, ls, "axis");
-        c.axis_len = static_cast<int>(a.size());
-        const double an = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-        if (!(an > 0.0)) fail(quoted(path + "->axis") + " must not be the zero vector");
-        for (std::size_t k = 0; k < 3; ++k) c.axis[k] = a[k] / an;
-      } else if (sub.isParameter("axis")) {
-        fail(quoted(path + "->axis") + " is only used by a cylinder obstacle");
-      }
+      read_contact_obstacle(sub, path, ls, c);
     }
-    int tl = 0;
-    if (sub.isParameter("translation")) {
-      vec("translation", c.translation, tl);
-      if (tl != c.point_len) fail(quoted(path + "->translation") + " must have as many values as 'point' (" + std::to_string(c.point_len) + ")");
-    }
-    c.translation_ramp = read_ramp(sub, path, ls, "translation ramp");
-    c.radius_change = get_double(sub, ls, "radius change");
-    c.radius_ramp = read_ramp(sub, path, ls, "radius ramp");
-    if (!curved && (sub.isParameter("radius ramp") || sub.isParameter("radius ramp times")))
-      fail(quoted(path + "->radius ramp") + " is not used by a plane obstacle");
     c.friction = get_double(sub, ls, "friction");
     c.c_normal = get_double(sub, ls, "c normal");
     c.c_tangent = get_double(sub, ls, "c tangent");

@@ -51,6 +51,8 @@ struct BodyConfig {
   std::string name;      // sublist name under "Bodies"
   std::string group;     // "physical group" (default: the sublist name)
   std::string material;  // "material": name of a sublist of "Materials"
+  bool has_velocity = false;            // "initial velocity" given: replaces Initial Conditions' velocity
+  std::array<double, 3> velocity{};     //   (and angular velocity) on this body's nodes
 };
 
 // One entry of "Boundary Conditions" (sublist name = name).
@@ -129,7 +131,8 @@ struct OutputConfig {
 struct ContactPairConfig {
   std::string name;
   std::string slave;                      // "slave": boundary physical group whose nodes are the slave nodes
-  std::string obstacle;                   // "obstacle": plane | circle (2D) | cylinder (3D) | sphere (3D)
+  std::string obstacle;                   // "obstacle": plane | circle (2D) | cylinder (3D) | sphere (3D); empty with a master
+  std::string master;                     // "master": boundary group of a deformable body (node-to-segment); empty with an obstacle
   std::array<double, 3> point{};          // "point": plane point / circle, sphere centre / cylinder axis point
   std::array<double, 3> normal{};         // "normal": plane outward normal (normalized here; the body lies on its side)
   std::array<double, 3> axis{};           // "axis": cylinder axis direction (normalized here)

@@ -133,7 +133,13 @@ std::vector<ListSpec> build_schema() {
   s.push_back(list("Bodies/*", "Bodies-><body>", "One body; the sublist name is the body's name.",
                    {str("physical group", "", "Mesh physical group of the body's elements.").allowed("physical group name")
                         .dflt_doc("the sublist name"),
-                    str("material", "", "Name of a sublist of `Materials`.").req().allowed("a defined material")}));
+                    str("material", "", "Name of a sublist of `Materials`.").req().allowed("a defined material"),
+                    arr("initial velocity",
+                        "This body's uniform initial velocity [m/s] (dynamic analysis), one value per dimension; it "
+                        "replaces `Initial Conditions` velocity and angular velocity on the body's nodes (a node "
+                        "shared with another body takes the value of the body listed last).")
+                        .len(2, 3)
+                        .dflt_doc("`Initial Conditions`")}));
 
   {
     auto l = list("Boundary Conditions", "Boundary Conditions",
@@ -261,22 +267,30 @@ std::vector<ListSpec> build_schema() {
                    {arr("point", "Reference coordinates [m] (2 or 3 values).").req().len(2, 3)}));
   {
     auto l = list("Contact", "Contact",
-                  "Node-to-rigid-obstacle frictional contact (docs/contact.md), solved by the primal-dual active set "
+                  "Frictional contact of slave nodes against rigid analytic obstacles or the boundary of another "
+                  "deformable body (docs/contact.md), solved by the primal-dual active set "
                   "(semi-smooth Newton) method inside the Newton loop. Without this sublist no contact work is done.");
     l.named_sublists = "contact pair";
     s.push_back(l);
   }
   s.push_back(list(
       "Contact/*", "Contact-><pair>",
-      "One contact pair: the nodes of a boundary group against an analytic rigid obstacle, which may translate "
-      "(translation x ramp) and change radius (radius change x radius ramp). Signed gap d >= 0 on the body's side.",
+      "One contact pair: the nodes of a boundary group against either an analytic rigid obstacle (`obstacle`), which "
+      "may translate (translation x ramp) and change radius (radius change x radius ramp), or the boundary facets of "
+      "another deformable body (`master`, node-to-segment: the reaction acts on the master facet's nodes). Signed gap "
+      "d >= 0 on the body's side.",
       {str("slave", "", "Mesh physical group (boundary) whose nodes may touch the obstacle.").req().allowed("physical group name"),
-       str("obstacle", "", "Obstacle shape: `circle` (2D), `cylinder` (3D, infinite), `sphere` (3D), `plane`.")
-           .req()
-           .one_of({"plane", "circle", "cylinder", "sphere"}),
+       str("obstacle", "", "Rigid obstacle shape: `circle` (2D), `cylinder` (3D, infinite), `sphere` (3D), `plane`.")
+           .allowed("`plane`, `circle`, `cylinder`, `sphere`")
+           .dflt_doc("one of `obstacle`, `master` is required"),
+       str("master", "",
+           "Boundary physical group (line2/line3 facets in 2D, tri3/tri6/quad4 in 3D) of another deformable body: the "
+           "master surface. The slave nodes' contact forces act on it, distributed by the facet shape functions.")
+           .allowed("physical group name")
+           .dflt_doc("one of `obstacle`, `master` is required"),
        arr("point", "A point of the plane; the centre of a circle/sphere; a point of the cylinder axis [m].")
-           .req()
-           .len(2, 3),
+           .len(2, 3)
+           .dflt_doc("required for `obstacle`"),
        arr("normal", "Plane: normal pointing to the body's side (normalized).").len(2, 3).dflt_doc("required for `plane`"),
        arr("axis", "Cylinder: axis direction (normalized).").len(3, 3).dflt_doc("required for `cylinder`"),
        dbl("radius", 1.0, "Radius of circle, cylinder, sphere [m].").gt(0.0).dflt_doc("required for curved obstacles"),

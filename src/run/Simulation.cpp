@@ -92,7 +92,8 @@ class StepSystem : public NewtonSystem {
     last = a_.assemble(u, input, r, tangent);
     if (contact) {
       Timers::Scope sc{timers_, "contact"};
-      contact->apply(u, r, tangent ? a_.matrix().get() : nullptr);
+      auto K = contact->apply(u, r, tangent ? a_.matrix() : la::RCP<la::CrsMatrix>());
+      if (tangent) K_ = K;
       if (contact_log) {
         const std::string line = contact->iteration_summary();
         *contact_log << line << "\n";
@@ -100,16 +101,45 @@ class StepSystem : public NewtonSystem {
     }
     return last.inverted == 0;
   }
-  la::RCP<la::CrsMatrix> matrix() override { return a_.matrix(); }
+  // The assembler's tangent, or with contact on master surfaces the coupled one.
+  la::RCP<la::CrsMatrix> matrix() override { return K_.is_null() ? a_.matrix() : K_; }
+  // Newton may stop only once the contact active set did not change in the last evaluation.
+  bool settled() const override { return contact == nullptr || !contact->active_set_changed(); }
   // |f_ext| and |f_int - f_ext| over all rows (reactions included): the forces in play.
   double force_scale() const override { return std::max(a_.external_force().norm2(), a_.static_residual().norm2()); }
 
  private:
   Assembler& a_;
   Timers& timers_;
+  la::RCP<la::CrsMatrix> K_;
 };
 
 const char* kAxes[3] = {"x", "y", "z"};
+
+// Contact fields on all nodes: status -1 marks nodes that are no slave node (then the
+// other fields are 0); 0 free, 1 inactive, 2 stick, 3 slip.
+void write_contact_fields(XdmfWriter& xdmf, std::size_t nn, const Gathered& slaves) {
+  constexpr int kv = Contact::kNodalValues;
+  std::vector<double> status(nn, -1.0), gap(nn, 0.0), lambda_n(nn, 0.0), pressure(nn, 0.0), lambda_t(3 * nn, 0.0), slip(3 * nn, 0.0);
+  for (std::size_t i = 0; i < slaves.ids.size(); ++i) {
+    const auto g = static_cast<std::size_t>(slaves.ids[i]);
+    const double* v = &slaves.values[kv * i];
+    status[g] = v[0];
+    gap[g] = v[1];
+    lambda_n[g] = v[2];
+    pressure[g] = v[3];
+    for (int k = 0; k < 3; ++k) {
+      lambda_t[3 * g + k] = v[4 + k];
+      slip[3 * g + k] = v[7 + k];
+    }
+  }
+  xdmf.node_field("contact_status", 1, status);
+  xdmf.node_field("contact_gap", 1, gap);
+  xdmf.node_field("contact_lambda_normal", 1, lambda_n);
+  xdmf.node_field("contact_pressure", 1, pressure);
+  xdmf.node_field("contact_lambda_tangent", 3, lambda_t);
+  xdmf.node_field("contact_slip", 3, slip);
+}
 
 std::string fmt(double v, int prec = 4) {
   std::ostringstream os;
@@ -279,11 +309,11 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
       packed.push_back(cf.J[c]);
     }
     const Gathered cells = gather_on_root(std::vector<long long>(cf.cell_ids.begin(), cf.cell_ids.end()), packed, 8, nranks);
-    // Contact fields at slave nodes (zero elsewhere).
+    // Contact fields at slave nodes.
     Gathered slaves;
     if (contact) {
-      const Contact::NodalFields nf = contact->nodal_fields(u);
-      slaves = gather_on_root(nf.nodes, nf.values, 6, nranks);
+      const Contact::NodalFields nf = contact->nodal_fields();
+      slaves = gather_on_root(nf.nodes, nf.values, Contact::kNodalValues, nranks);
     }
     if (rank != 0 || !xdmf) return;
     const std::size_t nc = mesh.num_volume_cells(), nn = mesh.num_nodes();
@@ -304,21 +334,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     xdmf->cell_field("von_mises", 1, vm);
     xdmf->cell_field("J", 1, J);
     xdmf->cell_field("mpi_rank", 1, owner);
-    if (contact) {
-      std::vector<double> status(nn, 0.0), gap(nn, 0.0), lambda_n(nn, 0.0), lambda_t(3 * nn, 0.0);
-      for (std::size_t i = 0; i < slaves.ids.size(); ++i) {
-        const auto g = static_cast<std::size_t>(slaves.ids[i]);
-        const double* v = &slaves.values[6 * i];
-        status[g] = v[0];
-        gap[g] = v[1];
-        lambda_n[g] = v[2];
-        for (int k = 0; k < 3; ++k) lambda_t[3 * g + k] = v[3 + k];
-      }
-      xdmf->node_field("contact_status", 1, status);
-      xdmf->node_field("contact_gap", 1, gap);
-      xdmf->node_field("contact_lambda_normal", 1, lambda_n);
-      xdmf->node_field("contact_lambda_tangent", 3, lambda_t);
-    }
+    if (contact) write_contact_fields(*xdmf, nn, slaves);
     xdmf->end_step();
   };
 

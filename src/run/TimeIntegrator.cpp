@@ -34,14 +34,26 @@ EnergyAudit TimeIntegrator::initialize(la::Vector& u0, double end_time) {
     for (la::LO i = 0; i < static_cast<la::LO>(u0.getLocalLength()); ++i)
       if (!assembler_.is_dirichlet(i)) uh(i, 0) = ic.displacement[static_cast<std::size_t>(i % dim)];
   }
+  // Bodies with their own "initial velocity" (the last listed wins on shared nodes).
+  std::vector<int> body_of(mesh_.num_nodes(), -1);
+  for (std::size_t b = 0; b < cfg_.bodies.size(); ++b) {
+    if (!cfg_.bodies[b].has_velocity) continue;
+    for (const auto& vb : mesh_.volumes)
+      if (vb.name == cfg_.bodies[b].group)
+        for (GId g : vb.conn) body_of[static_cast<std::size_t>(g)] = static_cast<int>(b);
+  }
   {
     auto vh = v_->getLocalViewHost(Tpetra::Access::OverwriteAll);
     for (la::LO n = 0; n < dist_.num_owned_nodes(); ++n) {
-      const double* X = &mesh_.x[3 * static_cast<std::size_t>(dist_.global_node(n))];
+      const GId g = dist_.global_node(n);
+      const double* X = &mesh_.x[3 * static_cast<std::size_t>(g)];
       const double r[3] = {X[0] - ic.center[0], X[1] - ic.center[1], X[2] - ic.center[2]};
       const auto& w = ic.angular_velocity;
-      const double v[3] = {ic.velocity[0] + w[1] * r[2] - w[2] * r[1], ic.velocity[1] + w[2] * r[0] - w[0] * r[2],
-                           ic.velocity[2] + w[0] * r[1] - w[1] * r[0]};
+      double v[3] = {ic.velocity[0] + w[1] * r[2] - w[2] * r[1], ic.velocity[1] + w[2] * r[0] - w[0] * r[2],
+                     ic.velocity[2] + w[0] * r[1] - w[1] * r[0]};
+      const int b = body_of[static_cast<std::size_t>(g)];
+      if (b >= 0)
+        for (int c = 0; c < 3; ++c) v[c] = cfg_.bodies[static_cast<std::size_t>(b)].velocity[static_cast<std::size_t>(c)];
       for (int c = 0; c < dim; ++c) {
         const la::LO i = n * dim + c;
         vh(i, 0) = assembler_.is_dirichlet(i) ? 0.0 : v[c];

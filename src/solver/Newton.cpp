@@ -18,7 +18,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
   res.residual = rn;
   const double ref = std::max(rn, sys.force_scale());
   const double target = std::max(cfg.residual_tolerance * ref, cfg.absolute_tolerance);
-  if (rn <= target) {
+  if (rn <= target && sys.settled()) {
     res.converged = true;
     return res;
   }
@@ -79,7 +79,8 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
       res.failure = "residual is not finite";
       return res;
     }
-    if (rn <= target || (step <= cfg.increment_tolerance * std::max(un, 1e-300) && rn <= std::sqrt(cfg.residual_tolerance) * ref)) {
+    const bool small = rn <= target || (step <= cfg.increment_tolerance * std::max(un, 1e-300) && rn <= std::sqrt(cfg.residual_tolerance) * ref);
+    if (small && sys.settled()) {
       res.converged = true;
       return res;
     }

@@ -28,6 +28,9 @@ class NewtonSystem {
   // the reference of the relative residual test: an initial guess that is already
   // nearly exact makes |r_0| alone a useless (round-off sized) reference.
   virtual double force_scale() const { return 0.0; }
+  // False while a discrete part of the residual (e.g. a contact active set) still changed
+  // at the last evaluate(): Newton does not stop then, however small the residual.
+  virtual bool settled() const { return true; }
 };
 
 struct NewtonResult {

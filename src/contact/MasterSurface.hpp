@@ -1,0 +1,62 @@
+// The master side of a deformable contact pair: the oriented boundary facets of a group
+// (replicated on every rank, like the mesh), and a bin search for the facet closest to a
+// slave point in the current configuration.
+//
+// Search: facets are binned by their centroid on a uniform grid of spacing 3h (h: the
+// largest facet extent at the current positions); a query visits the 3^dim bins around
+// the point, so every facet whose closest point lies within the search radius 2h is
+// seen. Bins are rebuilt at every evaluation from the current positions (linear in the
+// number of master facets, small beside the assembly), so no margin can be outrun.
+#pragma once
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "contact/FacetGeometry.hpp"
+#include "mesh/Mesh.hpp"
+
+namespace stentor {
+
+class MasterSurface {
+ public:
+  // Throws InputError naming `where` for groups that are missing, not facets, or of an
+  // unsupported facet type.
+  MasterSurface(const Mesh& mesh, const std::string& group, const std::string& where);
+  // `node_pos` maps a mesh node to its index among the master nodes (positions are passed
+  // as 3 values per master node).
+  void index(const std::vector<int>& node_pos);
+
+  struct Facet {
+    CellType type = CellType::Invalid;
+    int nn = 0;
+    int node[facet::kMaxNodes] = {};  // indices of master nodes
+    GId gid[facet::kMaxNodes] = {};   // mesh node ids
+    double orient = 1.0;
+  };
+  const std::vector<Facet>& facets() const { return facets_; }
+  // Mesh nodes of the group's facets (sorted, unique).
+  const std::vector<GId>& nodes() const { return nodes_; }
+
+  // Rebuilds the bins from the current master positions (3 per master node).
+  void build(const std::vector<double>& x);
+  double search_radius() const { return 2.0 * h_; }
+
+  struct Hit {
+    int facet = -1;
+    double xi[2] = {0, 0};
+    bool inside = false;
+    double dist = 0.0;
+  };
+  // Closest facet to xs within the search radius (facet -1: none). Thread-safe after build().
+  Hit closest(int dim, const double xs[3], const std::vector<double>& x) const;
+
+ private:
+  void cell_of(const double* p, long long* i) const;
+  static long long key(const long long* i);
+  std::vector<Facet> facets_;
+  std::vector<GId> nodes_;
+  double h_ = 0.0, cell_ = 1.0;
+  std::unordered_map<long long, std::vector<int>> bins_;
+};
+
+}  // namespace stentor

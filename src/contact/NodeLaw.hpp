@@ -1,0 +1,286 @@
+// The contact conditions of one slave node p, as a local function of its unknowns, written
+// once and templated on the scalar so that Dual numbers give the exact linearisation.
+//
+// Local unknowns y (in this order): the slave position x_p (dim values), the positions of
+// the master facet's nodes x_a (dim each; none for a rigid obstacle), and the slave's bulk
+// residual r_p (dim values; the condensed multiplier: the contact force on the slave is
+// F = r_p, talk's lambda_nu = -n . r_p <= 0 in compression, lambda_tau = -(I - n n) r_p).
+//
+// Geometry: a rigid obstacle gives d(x_p) and n = grad d; a master facet gives the closest
+// point x_m = sum_a N_a(xi) x_a, its unit outward normal n and d = n . (x_p - x_m). The
+// relative displacement over the step at the contact point is
+//   rel = (x_p - x_p,n) - sum_a N_a(xi) (x_a - x_a,n)     (rigid: minus the obstacle's translation).
+// Normal measure g: "gap" g = d; "persistence" g = n . rel for a master facet (the normal
+// relative velocity times dt: the contact force F = -lambda_nu n does work lambda_nu g on the
+// pair, so g = 0 makes frictionless contact exactly work-free) and g = d - d_n for a rigid
+// obstacle (the same for a plane; d_n is the gap at the start of the step).
+//
+// Sets (PDAS, from the current values): active iff lambda_nu + c_nu g / dt' <= 0 (dt' = dt for
+// persistence, 1 for gap); in the active set, with q = lambda_tau + c_tau (I - n n) rel / dt,
+// slip iff |q| + mu lambda_nu >= 0 (direction s = q / |q|), stick otherwise.
+// Rows (the slave's dim rows, replaced; the normal condition goes to the component most
+// aligned with n):
+//   normal                   s_p g
+//   stick tangent k          s_p t_k . rel
+//   slip / frictionless k    (t_k + mu (s . t_k) n) . r_p
+// and the master nodes' rows receive the reaction: r_a += N_a(xi) r_p (all components).
+// s_p is the slave's largest tangent diagonal (a force/length scale). Inactive nodes keep
+// their bulk rows (lambda = 0) and send nothing to the master.
+#pragma once
+#include <Kokkos_Macros.hpp>
+#include <cmath>
+
+#include "contact/Dual.hpp"
+#include "contact/FacetGeometry.hpp"
+
+namespace stentor::contact {
+
+constexpr int kMaxLocal = 3 * (1 + facet::kMaxNodes) + 3;
+using AD = Dual<kMaxLocal>;
+
+enum State : int { NotSlave = -1, Free = 0, Inactive = 1, Stick = 2, Slip = 3 };
+
+// A rigid analytic obstacle at the end of the step (translation and radius applied).
+struct Obstacle {
+  int kind = 0;  // 0 plane, 1 circle / sphere, 2 cylinder
+  double point[3] = {0, 0, 0}, normal[3] = {0, 0, 0}, axis[3] = {0, 0, 0};
+  double radius = 0.0;
+  bool inside = false;    // body inside the curved obstacle
+  double dw[3] = {0, 0, 0};  // translation over the step
+};
+
+template <class T>
+KOKKOS_INLINE_FUNCTION T rigid_gap(const Obstacle& o, const T x[3], T n[3]) {
+  using std::sqrt;
+  T r[3];
+  for (int k = 0; k < 3; ++k) r[k] = x[k] - o.point[k];
+  if (o.kind == 0) {
+    for (int k = 0; k < 3; ++k) n[k] = T(o.normal[k]);
+    return n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
+  }
+  if (o.kind == 2) {
+    const T a = r[0] * o.axis[0] + r[1] * o.axis[1] + r[2] * o.axis[2];
+    for (int k = 0; k < 3; ++k) r[k] = r[k] - a * o.axis[k];
+  }
+  const T rho = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+  if (value(rho) > 0.0) {
+    for (int k = 0; k < 3; ++k) n[k] = r[k] / rho;
+  } else {
+    n[0] = T(1.0), n[1] = T(0.0), n[2] = T(0.0);
+  }
+  if (o.inside) {
+    for (int k = 0; k < 3; ++k) n[k] = -n[k];
+    return o.radius - rho;
+  }
+  return rho - o.radius;
+}
+
+// Everything one evaluation needs about a slave node (host-side record, double).
+struct NodeInput {
+  int dim = 2;
+  int nm = 0;                         // master facet nodes (0: rigid obstacle)
+  CellType facet = CellType::Invalid;
+  double orient = 1.0;
+  double xi[2] = {0, 0};              // closest-point parameters (master facet)
+  bool xi_inside = true;              // projection inside the facet (else clamped, xi fixed)
+  double xs[3] = {0, 0, 0}, xs_n[3] = {0, 0, 0};
+  double xa[facet::kMaxNodes][3] = {}, xa_n[facet::kMaxNodes][3] = {};
+  double r[3] = {0, 0, 0};
+  double d_n = 0.0;
+};
+
+struct LawParams {
+  bool persistence = true;
+  double dt = 1.0, cn = 1.0, ct = 1.0, mu = 0.0, sp = 1.0;
+};
+
+// Results of one evaluation (double): values and derivatives with respect to y.
+struct NodeOutput {
+  int state = Free;
+  int nvar = 0;                       // dim (2 + nm) unknowns
+  double gap = 0.0, normal[3] = {0, 0, 0}, rel[3] = {0, 0, 0};
+  double res[3] = {0, 0, 0};          // replaced slave rows
+  double dres[3][kMaxLocal] = {};
+  double add[facet::kMaxNodes][3] = {};  // additions to the master rows
+  double dadd[facet::kMaxNodes][3][kMaxLocal] = {};
+};
+
+// Orthonormal tangents: from the facet's first covariant tangent (master facets, smooth
+// in the unknowns) or from the least aligned axis (rigid obstacles).
+template <class T>
+KOKKOS_INLINE_FUNCTION void tangents(int dim, const T n[3], const T* a1, T t[2][3]) {
+  using std::sqrt;
+  if (dim == 2) {
+    t[0][0] = -n[1], t[0][1] = n[0], t[0][2] = T(0.0);
+    return;
+  }
+  T e[3];
+  if (a1) {
+    // t1 = (a1 - (a1.n) n) / |.|
+    const T an = a1[0] * n[0] + a1[1] * n[1] + a1[2] * n[2];
+    for (int c = 0; c < 3; ++c) e[c] = a1[c] - an * n[c];
+    const T len = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    for (int c = 0; c < 3; ++c) t[0][c] = e[c] / len;
+  } else {
+    int k = 0;
+    for (int c = 1; c < 3; ++c)
+      if (std::abs(value(n[c])) < std::abs(value(n[k]))) k = c;
+    for (int c = 0; c < 3; ++c) e[c] = T(c == k ? 1.0 : 0.0);
+    T a[3] = {n[1] * e[2] - n[2] * e[1], n[2] * e[0] - n[0] * e[2], n[0] * e[1] - n[1] * e[0]};
+    const T len = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    for (int c = 0; c < 3; ++c) t[0][c] = a[c] / len;
+  }
+  t[1][0] = n[1] * t[0][2] - n[2] * t[0][1];
+  t[1][1] = n[2] * t[0][0] - n[0] * t[0][2];
+  t[1][2] = n[0] * t[0][1] - n[1] * t[0][0];
+}
+
+// Exact d g_k / d xi_l of the projection equations g_k = a_k . (x_s - x_m) at xi (double).
+KOKKOS_INLINE_FUNCTION void projection_jacobian(const NodeInput& in, double J[2][2]) {
+  using D2 = Dual<2>;
+  D2 xi[2] = {D2::seed(in.xi[0], 0), D2::seed(in.xi[1], 1)};
+  D2 x[facet::kMaxNodes][3];
+  for (int a = 0; a < in.nm; ++a)
+    for (int c = 0; c < 3; ++c) x[a][c] = D2(in.xa[a][c]);
+  facet::Frame<D2> f;
+  facet::frame(in.facet, in.nm, in.dim, 1.0, x, xi, f);
+  for (int k = 0; k < in.dim - 1; ++k) {
+    D2 g(0.0);
+    for (int c = 0; c < 3; ++c) g += f.a[k][c] * (in.xs[c] - f.xm[c]);
+    for (int l = 0; l < 2; ++l) J[k][l] = g.d[l];
+  }
+}
+
+// The closest-point parameters as functions of the unknowns: xi* - J^-1 g(xi*, y) (exact
+// first derivatives, since g(xi*) = 0 and J = dg/dxi at xi*).
+template <class T>
+KOKKOS_INLINE_FUNCTION void projection_parameters(const NodeInput& in, const T xs[3], const T (*xa)[3], T xi[2]) {
+  xi[0] = T(in.xi[0]);
+  xi[1] = T(in.xi[1]);
+  if (!in.xi_inside) return;
+  double J[2][2] = {{1.0, 0.0}, {0.0, 1.0}};
+  projection_jacobian(in, J);
+  facet::Frame<T> f;
+  facet::frame(in.facet, in.nm, in.dim, 1.0, xa, xi, f);
+  T g[2] = {T(0.0), T(0.0)};
+  for (int k = 0; k < in.dim - 1; ++k)
+    for (int c = 0; c < 3; ++c) g[k] += f.a[k][c] * (xs[c] - f.xm[c]);
+  if (in.dim == 2) {
+    xi[0] = xi[0] - g[0] / J[0][0];
+  } else {
+    const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    const T d0 = (J[1][1] * g[0] - J[0][1] * g[1]) / det, d1 = (J[0][0] * g[1] - J[1][0] * g[0]) / det;
+    xi[0] = xi[0] - d0;
+    xi[1] = xi[1] - d1;
+  }
+}
+
+// Gap, normal, relative displacement and (facets) the shape-function values at the
+// contact point.
+template <class T>
+KOKKOS_INLINE_FUNCTION T geometry(const NodeInput& in, const Obstacle* ob, const T xs[3], const T (*xa)[3], T n[3], T rel[3], T* N,
+                                  T a1[3]) {
+  if (in.nm == 0) {
+    const T d = rigid_gap(*ob, xs, n);
+    for (int c = 0; c < 3; ++c) rel[c] = xs[c] - in.xs_n[c] - ob->dw[c];
+    return d;
+  }
+  T xi[2];
+  projection_parameters(in, xs, xa, xi);
+  facet::Frame<T> f;
+  facet::frame(in.facet, in.nm, in.dim, in.orient, xa, xi, f);
+  for (int c = 0; c < 3; ++c) {
+    n[c] = f.n[c];
+    a1[c] = f.a[0][c];
+    rel[c] = xs[c] - in.xs_n[c];
+    for (int a = 0; a < in.nm; ++a) rel[c] = rel[c] - f.N[a] * (xa[a][c] - in.xa_n[a][c]);
+  }
+  for (int a = 0; a < in.nm; ++a) N[a] = f.N[a];
+  return n[0] * (xs[0] - f.xm[0]) + n[1] * (xs[1] - f.xm[1]) + n[2] * (xs[2] - f.xm[2]);
+}
+
+template <class T>
+KOKKOS_INLINE_FUNCTION T dot3(const T* a, const T* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// The conditions of one node in scalar T. res: the slave's rows; add: master rows' additions.
+// Returns the state. Branches use the values only.
+template <class T>
+KOKKOS_INLINE_FUNCTION int conditions(const NodeInput& in, const LawParams& p, const Obstacle* ob, const T xs[3], const T (*xa)[3],
+                                      const T r[3], T res[3], T (*add)[3], double* gap, double* normal, double* relv) {
+  using std::sqrt;
+  const int dim = in.dim;
+  T n[3], rel[3], N[facet::kMaxNodes], a1[3];
+  const T d = geometry(in, ob, xs, xa, n, rel, N, a1);
+  *gap = value(d);
+  for (int c = 0; c < 3; ++c) normal[c] = value(n[c]), relv[c] = value(rel[c]);
+  T g = d;
+  if (p.persistence) g = in.nm == 0 ? d - in.d_n : dot3(n, rel);
+  const T rn = dot3(n, r);
+  const T lam_n = -rn;
+  if (value(lam_n) + p.cn * value(g) / (p.persistence ? p.dt : 1.0) > 0.0) return Inactive;
+  T t[2][3];
+  tangents(dim, n, in.nm ? a1 : static_cast<const T*>(nullptr), t);
+  const T reln = dot3(n, rel);
+  T lam_t[3], q[3];
+  for (int c = 0; c < 3; ++c) {
+    lam_t[c] = -(r[c] - rn * n[c]);
+    q[c] = lam_t[c] + p.ct * (rel[c] - reln * n[c]) / p.dt;
+  }
+  bool stick = false;
+  T s[3] = {T(0.0), T(0.0), T(0.0)};
+  if (p.mu > 0.0) {
+    const T qn = sqrt(dot3(q, q));
+    if (value(qn) + p.mu * value(lam_n) >= 0.0 && value(qn) > 0.0) {
+      for (int c = 0; c < 3; ++c) s[c] = q[c] / qn;
+    } else {
+      stick = true;
+    }
+  }
+  int slot_n = 0;
+  for (int c = 1; c < dim; ++c)
+    if (std::abs(normal[c]) > std::abs(normal[slot_n])) slot_n = c;
+  int slot_t[2] = {0, 0}, nt = 0;
+  for (int c = 0; c < dim; ++c)
+    if (c != slot_n) slot_t[nt++] = c;
+  res[slot_n] = p.sp * g;
+  for (int k = 0; k < dim - 1; ++k) {
+    if (stick) {
+      res[slot_t[k]] = p.sp * dot3(t[k], rel);
+    } else {
+      const T st = p.mu * dot3(s, t[k]);
+      T comb[3];
+      for (int c = 0; c < 3; ++c) comb[c] = t[k][c] + st * n[c];
+      res[slot_t[k]] = dot3(comb, r);
+    }
+  }
+  for (int a = 0; a < in.nm; ++a)
+    for (int c = 0; c < dim; ++c) add[a][c] = N[a] * r[c];
+  return stick ? Stick : Slip;
+}
+
+// Evaluates the conditions with Dual numbers seeded on y and unpacks values and
+// derivatives into out.
+KOKKOS_INLINE_FUNCTION void evaluate(const NodeInput& in, const LawParams& p, const Obstacle* ob, NodeOutput& out) {
+  const int dim = in.dim;
+  int v = 0;
+  AD xs[3], xa[facet::kMaxNodes][3], r[3];
+  for (int c = 0; c < 3; ++c) xs[c] = c < dim ? AD::seed(in.xs[c], v++) : AD(in.xs[c]);
+  for (int a = 0; a < in.nm; ++a)
+    for (int c = 0; c < 3; ++c) xa[a][c] = c < dim ? AD::seed(in.xa[a][c], v++) : AD(in.xa[a][c]);
+  for (int c = 0; c < 3; ++c) r[c] = c < dim ? AD::seed(in.r[c], v++) : AD(0.0);
+  out.nvar = v;
+  AD res[3], add[facet::kMaxNodes][3];
+  out.state = conditions(in, p, ob, xs, xa, r, res, add, &out.gap, out.normal, out.rel);
+  if (out.state == Inactive) return;
+  for (int k = 0; k < dim; ++k) {
+    out.res[k] = res[k].v;
+    for (int j = 0; j < v; ++j) out.dres[k][j] = res[k].d[j];
+  }
+  for (int a = 0; a < in.nm; ++a)
+    for (int c = 0; c < dim; ++c) {
+      out.add[a][c] = add[a][c].v;
+      for (int j = 0; j < v; ++j) out.dadd[a][c][j] = add[a][c].d[j];
+    }
+}
+
+}  // namespace stentor::contact
