@@ -450,3 +450,111 @@ TEST(Plasticity, UniaxialTensionPlateau) {
   }
   std::printf("[ measured ] uniaxial: max|tau_11 - (Y + H alpha)|/Y = %.2e, plateau drift %.2e\n", e_tau, e_drift);
 }
+
+// ---------------------------------------------------------------------------
+// Dissipation and the one-step energy identity
+// ---------------------------------------------------------------------------
+
+namespace {
+struct EnergyStats {
+  double identity = 0.0;   // |dPsi - (1/2 Sigma:dC - Dp)| / scale, Sigma = Gonzalez
+  double bound = 0.0;      // min over plastic steps of Dp / (dg Y + 1/2 H dg^2) (>= 1)
+  double trapezoid = 0.0;  // |dPsi - (1/2 Savg:dC - dg |M|_H)| / scale
+  int plastic = 0;
+};
+
+// Random walk F_{k+1} = F_k + delta * (uniform in [-1, 1])^{3x3} from the virgin state,
+// 40 steps, 20 walks per material; scale = |Psi_n| + |Psi_{n+1}| + Dp.
+EnergyStats energy_walk(double delta, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  EnergyStats es;
+  es.bound = 1e300;
+  for (const auto& m : kPlast)
+    for (int w = 0; w < 20; ++w) {
+      PlasticState s = virgin();
+      Mat3 F = Mat3::identity(), S0 = Mat3::zero();
+      double psi0 = 0.0;
+      for (int k = 0; k < 40; ++k) {
+        Mat3 F1 = F;
+        do {
+          F1 = F;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) F1(i, j) += delta * u(rng);
+        } while (stentor::det(F1) < 0.5);
+        const Mat3 C0 = stentor::right_cauchy_green(F), C1 = stentor::right_cauchy_green(F1);
+        Step st;
+        const PointResponse r = m.update_state(C1, s, st);
+        const FrozenPlasticPotential fz{m.elastic, stentor::inverse(s.Ftr)};
+        const Mat3 dC = C1 - C0, Sig = stentor::gonzalez_stress(fz, C0, C1);
+        const double dpsi = r.energy - psi0, scale = std::fabs(psi0) + std::fabs(r.energy) + r.dissipation;
+        EXPECT_GE(r.dissipation, 0.0);
+        es.identity = std::fmax(es.identity, std::fabs(dpsi - (0.5 * ddot(Sig, dC) - r.dissipation)) / scale);
+        es.trapezoid = std::fmax(es.trapezoid, std::fabs(dpsi - (0.25 * ddot(S0 + r.S, dC) - st.dgamma * st.mandel_hill)) / scale);
+        if (st.dgamma > 0.0) {
+          ++es.plastic;
+          es.bound = std::fmin(es.bound, r.dissipation / (st.dgamma * m.Y + 0.5 * m.H * st.dgamma * st.dgamma));
+        } else {
+          EXPECT_EQ(r.dissipation, 0.0);
+        }
+        F = F1, s = st.state, S0 = r.S, psi0 = r.energy;
+      }
+    }
+  return es;
+}
+}  // namespace
+
+// Exact (by construction, Plasticity.hpp): Psi_{n+1} - Psi_n = 1/2 Sigma:(C_{n+1} - C_n) - Dp
+// with Sigma the Gonzalez discrete gradient of the frozen-state potential; measured
+// 7.1e-13 relative. Dp >= dg Y + 1/2 H dg^2 > 0 (convexity of W in log strains): measured
+// min ratio 1.00002 (equality to first order in dg). For comparison the trapezoid form
+// 1/2 (S_n + S_{n+1})/2 : dC - dg |M|_H is only consistent, worst at steps that cross the
+// yield surface: measured max relative mismatch 0.26 at delta = 0.02, 0.080 at 0.01.
+TEST(Plasticity, DissipationNonNegativeAndEnergyIdentity) {
+  const EnergyStats a = energy_walk(0.02, 23), b = energy_walk(0.01, 29);
+  std::printf("[ measured ] energy identity %.2e / %.2e, Dp/(dg Y + H dg^2/2) >= %.6f / %.6f, "
+              "trapezoid mismatch %.2e / %.2e (delta 0.02 / 0.01), plastic steps %d / %d\n",
+              a.identity, b.identity, a.bound, b.bound, a.trapezoid, b.trapezoid, a.plastic, b.plastic);
+  EXPECT_GT(a.plastic, 500);
+  EXPECT_LE(std::fmax(a.identity, b.identity), 1e-11);
+  EXPECT_GE(std::fmin(a.bound, b.bound), 1.0 - 1e-10);
+}
+
+// ---------------------------------------------------------------------------
+// Gauss-point history interface
+// ---------------------------------------------------------------------------
+
+// The flat-row update (what the element kernel calls on View rows) equals update_state,
+// writes every entry of h_{n+1}, leaves h_n untouched, accumulates the dissipation; the
+// stateless adapter returns CiarletGeymonat's response.
+TEST(Plasticity, HistoryRowInterface) {
+  using P = CiarletGeymonatPlasticity;
+  static_assert(P::kNumHist == 13, "Ftr (9), alpha, |M|_H, yielding, dissipation");
+  EXPECT_EQ(stentor::history_index<P>("equivalent_plastic_strain"), P::kAlpha);
+  EXPECT_EQ(stentor::history_index<P>("plastic_dissipation"), P::kDissipation);
+  EXPECT_EQ(stentor::history_index<P>("nope"), -1);
+  std::mt19937 rng(31);
+  const P& m = kPlast[1];
+  double h0[P::kNumHist], h1[P::kNumHist], h2[P::kNumHist];
+  double* r0 = h0;
+  stentor::init_history<P>(r0);
+  for (double& v : h1) v = std::nan("");
+  const Mat3 C1 = stentor::right_cauchy_green(random_F(rng)), C2 = stentor::right_cauchy_green(random_F(rng));
+  const PointResponse a = m.update(C1, h0, static_cast<double*>(h1));
+  const PointResponse b = m.update(C2, h1, static_cast<double*>(h2));
+  Step s1, s2;
+  const PointResponse a2 = m.update_state(C1, virgin(), s1);
+  m.update_state(C2, s1.state, s2);
+  for (int i = 0; i < P::kNumHist; ++i) EXPECT_FALSE(std::isnan(h1[i]));
+  EXPECT_EQ(h0[P::kFtr], 1.0);
+  EXPECT_EQ(h0[P::kAlpha], 0.0);
+  EXPECT_EQ(max_abs(a.S - a2.S), 0.0);
+  EXPECT_EQ(h2[P::kAlpha], s2.state.alpha);
+  EXPECT_EQ(h2[P::kFtr + 5], s2.state.Ftr(1, 2));
+  EXPECT_EQ(h1[P::kYielding], s1.dgamma > 0.0 ? 1.0 : 0.0);
+  EXPECT_DOUBLE_EQ(h2[P::kDissipation], a.dissipation + b.dissipation);
+  const stentor::HyperelasticPoint<CiarletGeymonat> el{kMats[0]};
+  const PointResponse e = el.update(C1, r0, r0);
+  EXPECT_EQ(e.energy, kMats[0].energy(C1));
+  EXPECT_EQ(max_abs(e.S - kMats[0].stress(C1)), 0.0);
+}
