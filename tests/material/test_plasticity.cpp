@@ -278,6 +278,13 @@ TEST(Plasticity, ConsistentTangentMatchesFiniteDifferences) {
         const double f_tr = m.mandel_hill_norm(elastic_C(C, s0.Ftr)) - m.Y - m.H * s0.alpha;
         if (std::fabs(f_tr) < 1e-3 * m.Y) continue;  // FD stencil would straddle the kink
         const double e = rel_tangent_error(m, C, s0);
+        const PointResponse r = m.update_state(C, s0, st);
+        double asym = 0.0;  // major symmetry (associative flow, symmetric moduli a)
+        for (int I = 0; I < 3; ++I)
+          for (int J = 0; J < 3; ++J)
+            for (int K = 0; K < 3; ++K)
+              for (int L = 0; L < 3; ++L) asym = std::fmax(asym, std::fabs(r.CC(I, J, K, L) - r.CC(K, L, I, J)));
+        EXPECT_LE(asym, 1e-12 * max_abs(r.CC));
         if (st.dgamma > 0.0) worst_pl = std::fmax(worst_pl, e), ++n_pl;
         else worst_el = std::fmax(worst_el, e), ++n_el;
       }
