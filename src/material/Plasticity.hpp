@@ -1,0 +1,481 @@
+// Finite-strain multiplicative plasticity on the Ciarlet–Geymonat law (mission.md,
+// model item 6; issue 11; docs/plasticity.md). A stateless value type with a Gauss-point
+// history (MaterialState.hpp): update(C_{n+1}, h_n, h_{n+1}) -> S, CC = 2 dS/dC, Psi, D.
+//
+// Model. F = Fe Ftr, det Ftr = 1, Ce = Fe^T Fe = Ftr^-T C Ftr^-1, stored energy
+//   Psi = W(Ce) + 1/2 H alpha^2       (W: CiarletGeymonat.hpp; H >= 0 linear hardening),
+// Mandel stress M = 2 Ce dW/dCe (= Ce Sbar, Sbar = 2 dW/dCe; Ce and Sbar commute for the
+// isotropic W, so M is symmetric and coaxial with Ce), yield function
+//   f = |M|_H - (Y + H alpha),  |M|_H = sqrt(3/2 dev M : dev M),   Y > 0 [Pa],
+// associative flow L^tr = dFtr/dt Ftr^-1 = gdot n, n = df/dM = 3/2 dev M / |M|_H
+// (symmetric, trace-free, n:n = 3/2), alpha_dot = gdot (alpha is the accumulated
+// Delta-gamma = equivalent plastic strain, since sqrt(2/3 n:n) = 1).
+//
+// Update (backward Euler + exponential map, Weber–Anand 1990, Simo 1992):
+//   Ftr_{n+1} = exp(dg n_{n+1}) Ftr_n.
+// This integrates L^tr = gdot n exactly for constant n. (The talk's slide writes
+// Ftr_n exp(dg n), which integrates Ftr^-1 dFtr/dt = gdot n instead, i.e. n in the
+// reference configuration; both coincide when Ftr_n and n commute: first yield, and
+// proportional loading in a fixed principal frame.) With G = Ftr_n^-1 and the trial
+// (elastic predictor) Ce^tr = G^T C G:
+//   Ce_{n+1} = exp(-dg n) Ce^tr exp(-dg n).
+// Because n(M(Ce_{n+1})) commutes with Ce_{n+1}, all three are coaxial with Ce^tr:
+// with Ce^tr = sum_A ct_A N_A (x) N_A and log strains et_A = 1/2 ln ct_A,
+//   e_A = et_A - dg n_A       (principal elastic log strains at t_{n+1}),
+// and in principal space M_A = tau_A(e) = dW/de_A (e_A = 1/2 ln c_A => d/de = 2c d/dc):
+//   tau_A = 2[C1 c_A + C2 c_A (c_B + c_C) + D I3 - K],
+//   dtau_A/de_A = 4 c_A [C1 + C2 (c_B + c_C)] + 4 D I3,  dtau_A/de_B = 4 C2 c_A c_B + 4 D I3.
+// KKT (f <= 0, dg >= 0, f dg = 0) by the elastic predictor: f(Ce^tr) <= 0 => dg = 0
+// (elastic, Ftr unchanged); otherwise a local Newton on x = (e_1, e_2, e_3, dg),
+//   R_A = e_A - et_A + dg n_A(e) = 0,   R_4 = |tau(e)|_H - Y - H (alpha_n + dg) = 0,
+//   J = [ I + dg (dn/dtau) G_e ,  n ;  n^T G_e ,  -H ],  dn/dtau = (3/2 P - n n^T)/|tau|_H,
+// G_e = dtau/de, P = I - 1/3 1 (x) 1. (For the Hencky energy n is fixed and this is the
+// radial return, one step; CG needs a few.) Sum n_A = 0, so sum e_A = sum et_A and
+// det Ce_{n+1} = det Ce^tr: the flow is isochoric.
+// Talk's complementarity form: with Mq = M + c H^-1 : dD (dD = dg n, c = c^tr > 0),
+// |Mq|_H = |M|_H + c dg, and C^tr = max(Y, |Mq|_H) M - Y Mq = 0 reduces on the deviatoric
+// direction to max(Y, |M|_H + c dg) |M|_H = Y (|M|_H + c dg), i.e. either dg = 0 and
+// |M|_H <= Y, or |M|_H = Y and dg > 0: the same KKT set for every c > 0. The active set
+// {|Mq|_H > Y} of the talk's PDAS at a converged point is {dg > 0}, which the return map
+// finds by the trial test (f^tr > 0 <=> dg > 0 for this convex-in-log-strain W).
+//
+// Exponential: spectral, exp(dg n) = sum_A exp(dg n_A) N_A (x) N_A in the eigenbasis of
+// Ce^tr (Jacobi rotations, orthonormal to round-off), then Ftr_{n+1} is scaled by
+// det^(-1/3) so det Ftr = 1 to round-off after any number of steps (measured 1.3e-15
+// after chains of large random steps, test_plasticity).
+//
+// Stress. S = Ftr_{n+1}^-1 Sbar_{n+1} Ftr_{n+1}^-T = G Z G^T with
+//   Z = exp(-dg n) Sbar exp(-dg n) = sum_A z_A N_A (x) N_A,  z_A = tau_A / ct_A,
+// i.e. S = sum_A z_A v_A (x) v_A with v_A = G N_A: an isotropic function of Ce^tr whose
+// principal values depend on et through the return map (Simo 1992).
+// Consistent tangent CC = 2 dS/dC (Ftr_n, alpha_n fixed). dCe^tr = G^T dC G gives
+// N_A.dCe^tr.N_B = v_A.dC.v_B; differentiating the converged R(x; et) = 0 gives
+// de/det = [J^-1]_{3x3} (R_A has -et_A), a = dtau/det = G_e [J^-1]_{3x3} (symmetric:
+// associative flow), and with dz_A/dct_B = a_AB / (2 ct_A ct_B) - delta_AB tau_A / ct_A^2,
+//   CC = 2 sum_AB dz_A/dct_B v_A v_A v_B v_B
+//      + sum_{A != B} th_AB v_A (x) v_B (x) (v_A (x) v_B + v_B (x) v_A),
+//   th_AB = (z_A - z_B)/(ct_A - ct_B), or for |ct_A - ct_B| <= 1e-8 (ct_A + ct_B) its
+//   limit 1/2 (dz_A/dct_A - dz_A/dct_B + dz_B/dct_B - dz_B/dct_A) (z is symmetric in ct).
+// Elastic points: S = G Sbar(Ce^tr) G^T, CC = G G G G : CCbar(Ce^tr) with the tensor
+// formulas of CiarletGeymonat.hpp (identical to it, bitwise, while Ftr = I).
+//
+// Energy. Psi_{n+1} = W(Ce_{n+1}) + 1/2 H alpha_{n+1}^2, and the step dissipation
+//   Dp = [W(Ce^tr) - W(Ce_{n+1})] - H dg (alpha_n + dg/2)
+// (W(Ce^tr) - W(Ce_{n+1}) evaluated with expm1 on the log-strain differences, free of
+// cancellation). W is convex in principal log strains (sums of exp of linear forms and
+// -2K sum e), so W(et) - W(e) >= tau(e).(et - e) = dg n.tau = dg |M|_H = dg (Y + H alpha_{n+1})
+// and Dp >= dg Y + 1/2 H dg^2 >= 0. Exact one-step identity (by construction):
+//   Psi_{n+1} - Psi_n = [W(Ce^tr) - W(Ce_n)] - Dp,
+// where the elastic-predictor work W(Ce^tr) - W(Ce_n) = 1/2 Sigma : (C_{n+1} - C_n) exactly
+// with Sigma the Gonzalez discrete gradient (DiscreteGradient.hpp) of the frozen-state
+// potential C -> W(G^T C G) (FrozenPlasticPotential below) — the building block of an
+// Armero (2006)-type energy-dissipative dynamic update.
+#pragma once
+#include <cmath>
+
+#include "material/CiarletGeymonat.hpp"
+#include "material/MaterialState.hpp"
+#include "stentor/tensor.hpp"
+
+namespace stentor {
+namespace plasticity_detail {
+
+// Symmetric eigen-decomposition A = V diag(lam) V^T by cyclic Jacobi rotations
+// (columns of V are the eigenvectors; robust for repeated eigenvalues).
+KOKKOS_INLINE_FUNCTION void sym_eig3(const Mat3& Ain, double lam[3], Mat3& V) {
+  Mat3 A = Ain;
+  V = Mat3::identity();
+  for (int sweep = 0; sweep < 32; ++sweep) {
+    const double off = A(0, 1) * A(0, 1) + A(0, 2) * A(0, 2) + A(1, 2) * A(1, 2);
+    const double dia = A(0, 0) * A(0, 0) + A(1, 1) * A(1, 1) + A(2, 2) * A(2, 2);
+    if (off <= 1e-34 * dia || off == 0.0) break;
+    for (int p = 0; p < 2; ++p)
+      for (int q = p + 1; q < 3; ++q) {
+        if (A(p, q) == 0.0) continue;
+        const double th = (A(q, q) - A(p, p)) / (2.0 * A(p, q));
+        const double t = (th >= 0.0 ? 1.0 : -1.0) / (std::fabs(th) + std::sqrt(th * th + 1.0));
+        const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
+        for (int k = 0; k < 3; ++k) {  // A <- A P, V <- V P
+          const double akp = A(k, p), akq = A(k, q);
+          A(k, p) = c * akp - s * akq, A(k, q) = s * akp + c * akq;
+          const double vkp = V(k, p), vkq = V(k, q);
+          V(k, p) = c * vkp - s * vkq, V(k, q) = s * vkp + c * vkq;
+        }
+        for (int k = 0; k < 3; ++k) {  // A <- P^T A
+          const double apk = A(p, k), aqk = A(q, k);
+          A(p, k) = c * apk - s * aqk, A(q, k) = s * apk + c * aqk;
+        }
+        A(p, q) = A(q, p) = 0.0;
+      }
+  }
+  for (int i = 0; i < 3; ++i) lam[i] = A(i, i);
+}
+
+// Principal Mandel stresses tau_A = dW/de_A (split as shape part s_A + common p) and
+// the Hessian Ge_AB = dtau_A/de_B, for principal values c_A of Ce.
+KOKKOS_INLINE_FUNCTION void cg_principal(const CiarletGeymonat& m, const double c[3], double s[3],
+                                         double& p, double Ge[3][3]) {
+  const double I3 = c[0] * c[1] * c[2];
+  p = 2.0 * (m.D * I3 - m.K());
+  for (int A = 0; A < 3; ++A) {
+    const int B = (A + 1) % 3, Cc = (A + 2) % 3;
+    s[A] = 2.0 * c[A] * (m.C1 + m.C2 * (c[B] + c[Cc]));
+    for (int Bb = 0; Bb < 3; ++Bb)
+      Ge[A][Bb] = (A == Bb) ? 4.0 * c[A] * (m.C1 + m.C2 * (c[B] + c[Cc])) + 4.0 * m.D * I3
+                            : 4.0 * m.C2 * c[A] * c[Bb] + 4.0 * m.D * I3;
+  }
+}
+
+// Hill norm q = |tau|_H and flow direction n = 3/2 dev tau / q (from the shape part s,
+// which has the deviator of tau).
+KOKKOS_INLINE_FUNCTION double hill(const double s[3], double n[3]) {
+  const double mean = (s[0] + s[1] + s[2]) / 3.0;
+  const double d[3] = {s[0] - mean, s[1] - mean, s[2] - mean};
+  const double q = std::sqrt(1.5 * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+  for (int A = 0; A < 3; ++A) n[A] = q > 0.0 ? 1.5 * d[A] / q : 0.0;
+  return q;
+}
+
+// W(c) from principal values of Ce.
+KOKKOS_INLINE_FUNCTION double cg_energy_principal(const CiarletGeymonat& m, const double c[3]) {
+  const double I1 = c[0] + c[1] + c[2], I2 = c[0] * c[1] + c[1] * c[2] + c[2] * c[0];
+  const double I3 = c[0] * c[1] * c[2];
+  return m.C1 * (I1 - 3.0) + m.C2 * (I2 - 3.0) + m.D * (I3 - 1.0) - m.K() * std::log(I3);
+}
+
+// W(c exp(2 d)) - W(c) without cancellation (d: log-strain differences).
+KOKKOS_INLINE_FUNCTION double cg_energy_jump(const CiarletGeymonat& m, const double c[3],
+                                             const double d[3]) {
+  const double sd = d[0] + d[1] + d[2];
+  double r = m.D * c[0] * c[1] * c[2] * std::expm1(2.0 * sd) - 2.0 * m.K() * sd;
+  for (int A = 0; A < 3; ++A) {
+    const int B = (A + 1) % 3;
+    r += m.C1 * c[A] * std::expm1(2.0 * d[A]) + m.C2 * c[A] * c[B] * std::expm1(2.0 * (d[A] + d[B]));
+  }
+  return r;
+}
+
+// Solves J x = b (4x4, partial pivoting); J and b are overwritten. False if singular.
+KOKKOS_INLINE_FUNCTION bool solve4(double J[4][4], double b[4]) {
+  for (int k = 0; k < 4; ++k) {
+    int piv = k;
+    for (int i = k + 1; i < 4; ++i)
+      if (std::fabs(J[i][k]) > std::fabs(J[piv][k])) piv = i;
+    if (J[piv][k] == 0.0) return false;
+    if (piv != k) {
+      for (int j = 0; j < 4; ++j) {
+        const double t = J[k][j];
+        J[k][j] = J[piv][j], J[piv][j] = t;
+      }
+      const double t = b[k];
+      b[k] = b[piv], b[piv] = t;
+    }
+    for (int i = k + 1; i < 4; ++i) {
+      const double f = J[i][k] / J[k][k];
+      for (int j = k; j < 4; ++j) J[i][j] -= f * J[k][j];
+      b[i] -= f * b[k];
+    }
+  }
+  for (int k = 3; k >= 0; --k) {
+    double s = b[k];
+    for (int j = k + 1; j < 4; ++j) s -= J[k][j] * b[j];
+    b[k] = s / J[k][k];
+  }
+  return true;
+}
+
+// CC = G G G G : CCbar, CC_ijkl = G_ia G_jb G_kc G_ld CCbar_abcd (4 one-index passes).
+KOKKOS_INLINE_FUNCTION void push_tangent(const Mat3& G, const Ten4& CCbar, Ten4& CC) {
+  Ten4 T;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      for (int c = 0; c < 3; ++c)
+        for (int l = 0; l < 3; ++l)
+          T(a, b, c, l) = G(l, 0) * CCbar(a, b, c, 0) + G(l, 1) * CCbar(a, b, c, 1) + G(l, 2) * CCbar(a, b, c, 2);
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l)
+          CC(a, b, k, l) = G(k, 0) * T(a, b, 0, l) + G(k, 1) * T(a, b, 1, l) + G(k, 2) * T(a, b, 2, l);
+  for (int a = 0; a < 3; ++a)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l)
+          T(a, j, k, l) = G(j, 0) * CC(a, 0, k, l) + G(j, 1) * CC(a, 1, k, l) + G(j, 2) * CC(a, 2, k, l);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l)
+          CC(i, j, k, l) = G(i, 0) * T(0, j, k, l) + G(i, 1) * T(1, j, k, l) + G(i, 2) * T(2, j, k, l);
+}
+
+// Converged local return map in principal log strains.
+struct ReturnMap {
+  double e[3];      // elastic log strains at t_{n+1}
+  double tau[3];    // principal Mandel stresses
+  double n[3];      // flow direction
+  double dgamma;    // plastic multiplier of the step
+  double q;         // |M_{n+1}|_H
+  double a[3][3];   // algorithmic moduli d tau / d et
+  int iterations;
+  bool converged;
+};
+
+}  // namespace plasticity_detail
+
+// Plastic Gauss-point state (the part that evolves; see kHistory for its flat layout).
+struct PlasticState {
+  Mat3 Ftr;      // plastic (inelastic) deformation, det = 1
+  double alpha;  // accumulated dg = equivalent plastic strain
+};
+
+// Elastic potential at a frozen plastic state, C -> W(G^T C G), G = Ftr_n^-1: the
+// elastic predictor of a step, with the energy/stress/stress_and_tangent interface of
+// CiarletGeymonat so DiscreteGradient.hpp (Gonzalez) applies to it directly.
+struct FrozenPlasticPotential {
+  CiarletGeymonat law;
+  Mat3 G;
+  KOKKOS_INLINE_FUNCTION Mat3 elastic_C(const Mat3& C) const { return tmul(G, matmul(C, G)); }
+  KOKKOS_INLINE_FUNCTION double energy(const Mat3& C) const { return law.energy(elastic_C(C)); }
+  KOKKOS_INLINE_FUNCTION Mat3 stress(const Mat3& C) const {
+    return matmul(G, matmul(law.stress(elastic_C(C)), transpose(G)));
+  }
+  KOKKOS_INLINE_FUNCTION void stress_and_tangent(const Mat3& C, Mat3& S, Ten4& CC) const {
+    Mat3 Sb;
+    Ten4 CCb;
+    law.stress_and_tangent(elastic_C(C), Sb, CCb);
+    S = matmul(G, matmul(Sb, transpose(G)));
+    plasticity_detail::push_tangent(G, CCb, CC);
+  }
+};
+
+// Ciarlet–Geymonat elasticity with von Mises (Hill-norm) multiplicative plasticity and
+// linear isotropic hardening. Y, H and the moduli in the same stress unit (Pa).
+struct CiarletGeymonatPlasticity {
+  CiarletGeymonat elastic;
+  double Y;        // initial yield stress, > 0 [Pa]
+  double H = 0.0;  // linear isotropic hardening modulus, >= 0 [Pa]; 0: perfect plasticity
+
+  // History layout: Ftr row-major (9), alpha, then output-only values of the last update.
+  enum : int { kFtr = 0, kAlpha = 9, kMandelHill = 10, kYielding = 11, kDissipation = 12 };
+  static constexpr int kNumHist = 13;
+  static constexpr HistoryVar kHistory[kNumHist] = {
+      {"Ftr_11", 1.0, false}, {"Ftr_12", 0.0, false}, {"Ftr_13", 0.0, false},
+      {"Ftr_21", 0.0, false}, {"Ftr_22", 1.0, false}, {"Ftr_23", 0.0, false},
+      {"Ftr_31", 0.0, false}, {"Ftr_32", 0.0, false}, {"Ftr_33", 1.0, false},
+      {"equivalent_plastic_strain", 0.0, true},   // alpha = sum of dg
+      {"mandel_hill_norm", 0.0, true},            // |M_{n+1}|_H [Pa]
+      {"yielding", 0.0, true},                    // 1 if dg > 0 in the last step
+      {"plastic_dissipation", 0.0, true}};        // accumulated Dp [Pa = J/m^3]
+
+  static constexpr int kMaxLocalIterations = 50;
+
+  // Full result of one update in structured form (what update() flattens).
+  struct Step {
+    PlasticState state;  // at t_{n+1}
+    double dgamma;       // plastic multiplier of the step (0: elastic)
+    double mandel_hill;  // |M_{n+1}|_H
+  };
+
+  template <class HIn, class HOut>
+  KOKKOS_INLINE_FUNCTION PointResponse update(const Mat3& C, const HIn& hn, const HOut& h1) const {
+    PlasticState s0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) s0.Ftr(i, j) = hn[kFtr + 3 * i + j];
+    s0.alpha = hn[kAlpha];
+    Step st;
+    const PointResponse r = update_state(C, s0, st);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) h1[kFtr + 3 * i + j] = st.state.Ftr(i, j);
+    h1[kAlpha] = st.state.alpha;
+    h1[kMandelHill] = st.mandel_hill;
+    h1[kYielding] = st.dgamma > 0.0 ? 1.0 : 0.0;
+    h1[kDissipation] = hn[kDissipation] + r.dissipation;
+    return r;
+  }
+
+  // Same on structured state (C = F^T F at t_{n+1}; s0 at t_n is not modified).
+  KOKKOS_INLINE_FUNCTION PointResponse update_state(const Mat3& C, const PlasticState& s0,
+                                                    Step& out) const {
+    const Mat3 G = inverse(s0.Ftr);
+    const Mat3 Ct = tmul(G, matmul(C, G));  // Ce^tr = Ftr_n^-T C Ftr_n^-1
+    const double Yn = Y + H * s0.alpha;
+    const double q_tr = mandel_hill_norm(Ct);
+    if (q_tr - Yn <= 0.0) return elastic_branch(Ct, G, s0, q_tr, out);
+    return plastic_branch(Ct, G, s0, out);
+  }
+
+  // |M|_H for M = Ce Sbar(Ce) by the tensor route (independent of the spectral one).
+  KOKKOS_INLINE_FUNCTION double mandel_hill_norm(const Mat3& Ce) const {
+    const Mat3 M = matmul(Ce, elastic.stress(Ce));
+    const Mat3 d = deviator(0.5 * (M + transpose(M)));
+    return std::sqrt(1.5 * ddot(d, d));
+  }
+
+ private:
+  KOKKOS_INLINE_FUNCTION PointResponse elastic_branch(const Mat3& Ct, const Mat3& G,
+                                                      const PlasticState& s0, double q,
+                                                      Step& out) const {
+    PointResponse r;
+    Mat3 Sb;
+    Ten4 CCb;
+    elastic.stress_and_tangent(Ct, Sb, CCb);
+    r.S = matmul(G, matmul(Sb, transpose(G)));
+    plasticity_detail::push_tangent(G, CCb, r.CC);
+    r.energy = elastic.energy(Ct) + 0.5 * H * s0.alpha * s0.alpha;
+    r.dissipation = 0.0;
+    r.iterations = 0;
+    r.converged = true;
+    out.state = s0;
+    out.dgamma = 0.0;
+    out.mandel_hill = q;
+    return r;
+  }
+
+  KOKKOS_INLINE_FUNCTION PointResponse plastic_branch(const Mat3& Ct, const Mat3& G,
+                                                      const PlasticState& s0, Step& out) const {
+    using namespace plasticity_detail;
+    double ct[3], et[3];
+    Mat3 N;
+    sym_eig3(Ct, ct, N);
+    for (int A = 0; A < 3; ++A) et[A] = 0.5 * std::log(ct[A]);
+    ReturnMap rm;
+    return_map(et, Y + H * s0.alpha, rm);
+    PointResponse r;
+    r.converged = rm.converged;
+    r.iterations = rm.iterations;
+    spectral_stress_tangent(ct, matmul(G, N), rm, r.S, r.CC);
+    // Ftr_{n+1} = exp(dg n) Ftr_n, spectral exponential, then det normalisation.
+    const double dg = rm.dgamma;
+    Mat3 E = Mat3::zero();
+    for (int A = 0; A < 3; ++A) {
+      const double ex = std::exp(dg * rm.n[A]);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) E(i, j) += ex * N(i, A) * N(j, A);
+    }
+    const Mat3 F1 = matmul(E, s0.Ftr);
+    out.state.Ftr = std::cbrt(1.0 / det(F1)) * F1;
+    out.state.alpha = s0.alpha + dg;
+    out.dgamma = dg;
+    out.mandel_hill = rm.q;
+    double c[3], d[3];
+    for (int A = 0; A < 3; ++A) c[A] = std::exp(2.0 * rm.e[A]), d[A] = et[A] - rm.e[A];
+    r.energy = cg_energy_principal(elastic, c) + 0.5 * H * out.state.alpha * out.state.alpha;
+    r.dissipation = cg_energy_jump(elastic, c, d) - H * dg * (s0.alpha + 0.5 * dg);
+    return r;
+  }
+
+  // Residual R(x) and Jacobian J of the local problem at x = (e, dg); fills rm.tau,
+  // rm.n, rm.q and the elastic Hessian Ge = dtau/de. Returns max |s_A| (tolerance scale).
+  KOKKOS_INLINE_FUNCTION double local_system(const double x[4], const double et[3], double Yn,
+                                             double R[4], double J[4][4], double Ge[3][3],
+                                             plasticity_detail::ReturnMap& rm) const {
+    double c[3], s[3], p;
+    for (int A = 0; A < 3; ++A) c[A] = std::exp(2.0 * x[A]);
+    plasticity_detail::cg_principal(elastic, c, s, p, Ge);
+    const double q = plasticity_detail::hill(s, rm.n);
+    rm.q = q;
+    const double dg = x[3];
+    double Nn[3][3], smax = 0.0;  // dn/dtau = (3/2 P - n n^T) / q
+    for (int A = 0; A < 3; ++A) {
+      rm.tau[A] = s[A] + p;
+      smax = std::fmax(smax, std::fabs(s[A]));
+      for (int B = 0; B < 3; ++B)
+        Nn[A][B] = (1.5 * ((A == B ? 1.0 : 0.0) - 1.0 / 3.0) - rm.n[A] * rm.n[B]) / q;
+    }
+    for (int A = 0; A < 3; ++A) {
+      R[A] = x[A] - et[A] + dg * rm.n[A];
+      J[A][3] = rm.n[A];
+      J[3][A] = rm.n[0] * Ge[0][A] + rm.n[1] * Ge[1][A] + rm.n[2] * Ge[2][A];
+      for (int B = 0; B < 3; ++B)
+        J[A][B] = (A == B ? 1.0 : 0.0) +
+                  dg * (Nn[A][0] * Ge[0][B] + Nn[A][1] * Ge[1][B] + Nn[A][2] * Ge[2][B]);
+    }
+    R[3] = q - Yn - H * dg;
+    J[3][3] = -H;
+    return smax;
+  }
+
+  // Local Newton on x = (e_1, e_2, e_3, dg) from the trial point (e = et, dg = 0);
+  // converged when |R_4| <= 1e-12 (Yn + max|s|) and |R_A| <= 1e-14 (1 + max|et|).
+  // A step that would make dg negative is shortened to halve dg instead.
+  KOKKOS_INLINE_FUNCTION void return_map(const double et[3], double Yn,
+                                         plasticity_detail::ReturnMap& rm) const {
+    double x[4] = {et[0], et[1], et[2], 0.0}, R[4], J[4][4], Ge[3][3];
+    const double emax = std::fmax(std::fabs(et[0]), std::fmax(std::fabs(et[1]), std::fabs(et[2])));
+    rm.converged = false;
+    for (int k = 0;; ++k) {
+      const double smax = local_system(x, et, Yn, R, J, Ge, rm);
+      const double rA = std::fmax(std::fabs(R[0]), std::fmax(std::fabs(R[1]), std::fabs(R[2])));
+      rm.iterations = k;
+      if (!(rm.q > 0.0)) break;
+      if (std::fabs(R[3]) <= 1e-12 * (Yn + smax) && rA <= 1e-14 * (1.0 + emax)) {
+        rm.converged = true;
+        break;
+      }
+      if (k == kMaxLocalIterations) break;
+      double Jc[4][4], dx[4] = {-R[0], -R[1], -R[2], -R[3]};
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) Jc[i][j] = J[i][j];
+      if (!plasticity_detail::solve4(Jc, dx)) break;
+      const double t = (x[3] + dx[3] < 0.0) ? -0.5 * x[3] / dx[3] : 1.0;
+      for (int i = 0; i < 4; ++i) x[i] += t * dx[i];
+    }
+    for (int A = 0; A < 3; ++A) rm.e[A] = x[A];
+    rm.dgamma = x[3];
+    algorithmic_moduli(J, Ge, rm);
+  }
+
+  // a = dtau/det = Ge [J^-1]_{3x3} (J dx = (det, 0)), symmetrised (exact a is symmetric).
+  KOKKOS_INLINE_FUNCTION static void algorithmic_moduli(const double J[4][4], const double Ge[3][3],
+                                                        plasticity_detail::ReturnMap& rm) {
+    double X[3][3];
+    for (int B = 0; B < 3; ++B) {
+      double Jc[4][4], b[4] = {0.0, 0.0, 0.0, 0.0};
+      for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) Jc[i][j] = J[i][j];
+      b[B] = 1.0;
+      plasticity_detail::solve4(Jc, b);
+      for (int A = 0; A < 3; ++A) X[A][B] = b[A];
+    }
+    double a[3][3];
+    for (int A = 0; A < 3; ++A)
+      for (int B = 0; B < 3; ++B) a[A][B] = Ge[A][0] * X[0][B] + Ge[A][1] * X[1][B] + Ge[A][2] * X[2][B];
+    for (int A = 0; A < 3; ++A)
+      for (int B = 0; B < 3; ++B) rm.a[A][B] = 0.5 * (a[A][B] + a[B][A]);
+  }
+
+  // S = sum z_A v_A v_A^T and CC = 2 dS/dC (header comment), v_A = columns of V = G N.
+  KOKKOS_INLINE_FUNCTION static void spectral_stress_tangent(const double ct[3], const Mat3& V,
+                                                             const plasticity_detail::ReturnMap& rm,
+                                                             Mat3& S, Ten4& CC) {
+    double z[3], dz[3][3], th[3][3];
+    for (int A = 0; A < 3; ++A) z[A] = rm.tau[A] / ct[A];
+    for (int A = 0; A < 3; ++A)
+      for (int B = 0; B < 3; ++B)
+        dz[A][B] = rm.a[A][B] / (2.0 * ct[A] * ct[B]) - (A == B ? rm.tau[A] / (ct[A] * ct[A]) : 0.0);
+    for (int A = 0; A < 3; ++A)
+      for (int B = 0; B < 3; ++B) {
+        if (A == B) continue;
+        th[A][B] = std::fabs(ct[A] - ct[B]) > 1e-8 * (ct[A] + ct[B])
+                       ? (z[A] - z[B]) / (ct[A] - ct[B])
+                       : 0.5 * (dz[A][A] - dz[A][B] + dz[B][B] - dz[B][A]);
+      }
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) S(i, j) = z[0] * V(i, 0) * V(j, 0) + z[1] * V(i, 1) * V(j, 1) + z[2] * V(i, 2) * V(j, 2);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k)
+          for (int l = 0; l < 3; ++l) {
+            double v = 0.0;
+            for (int A = 0; A < 3; ++A)
+              for (int B = 0; B < 3; ++B) {
+                v += 2.0 * dz[A][B] * V(i, A) * V(j, A) * V(k, B) * V(l, B);
+                if (A != B) v += th[A][B] * V(i, A) * V(j, B) * (V(k, A) * V(l, B) + V(k, B) * V(l, A));
+              }
+            CC(i, j, k, l) = v;
+          }
+  }
+};
+
+}  // namespace stentor
