@@ -192,6 +192,7 @@ class DeckReader {
   Ramp read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls, const std::string& key = "ramp") const;
   void read_contact(const ParameterList& pl);
   void check_dim_length(const std::vector<double>& v, const std::string& path) const;
+  void check_safe_name(const std::string& text, const std::string& path, const std::string& what) const;
 };
 
 // ------------------------------------------------------------------------------------
@@ -524,6 +525,24 @@ void DeckReader::check_dim_length(const std::vector<double>& v, const std::strin
          "), got " + std::to_string(v.size()));
 }
 
+// Names that end up in output file names, CSV column headers and plot labels (loads,
+// probes, contact pairs, the basename) are restricted to a character set that no shell,
+// gnuplot or file system interprets: letters, digits, space and _ . + -
+void DeckReader::check_safe_name(const std::string& text, const std::string& path, const std::string& what) const {
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (std::isalnum(u) && u < 128) continue;
+    if (c == ' ' || c == '_' || c == '.' || c == '+' || c == '-') continue;
+    std::ostringstream bad;
+    if (std::isprint(u) && u < 128)
+      bad << "'" << c << "'";
+    else
+      bad << "byte 0x" << std::hex << static_cast<int>(u);
+    fail(quoted(path) + ": " + what + " '" + text + "' contains " + bad.str() +
+         "; it may contain only letters, digits, spaces and _ . + - (it names output files, CSV columns and plot labels)");
+  }
+}
+
 // ------------------------------------------------------------------------------------
 // Sections.
 
@@ -650,6 +669,7 @@ void DeckReader::read_contact(const ParameterList& pl) {
   for (auto it = pl.begin(); it != pl.end(); ++it) {
     const std::string& name = pl.name(it);
     const std::string path = "Contact->" + name;
+    check_safe_name(name, path, "the contact pair name");
     const ParameterList& sub = pl.sublist(name);
     check_list(sub, path, {&ls});
     require(sub, path, {&ls});
@@ -729,6 +749,7 @@ void DeckReader::read_loads(const ParameterList& pl) {
   for (auto it = pl.begin(); it != pl.end(); ++it) {
     const std::string& name = pl.name(it);
     const std::string path = "Boundary Conditions->" + name;
+    check_safe_name(name, path, "the load name");
     const ParameterList& sub = pl.sublist(name);
     if (!sub.isParameter("type"))
       fail("missing required parameter " + quoted(path + "->type") + " (string, one of " + join(types) + ")");
@@ -950,6 +971,7 @@ void DeckReader::read_output(const ParameterList& pl) {
   if (o.basename.empty()) fail("'Output->basename' must not be empty");
   if (o.basename.find('/') != std::string::npos)
     fail("'Output->basename' must be a file name stem without '/', got '" + o.basename + "'");
+  check_safe_name(o.basename, "Output->basename", "the file name stem");
   if (pl.isSublist("Probes")) {
     const ParameterList& probes = pl.sublist("Probes");
     const ListSpec& pls = deck_list_spec("Output/Probes/*");
@@ -957,6 +979,7 @@ void DeckReader::read_output(const ParameterList& pl) {
     for (auto it = probes.begin(); it != probes.end(); ++it) {
       const std::string& name = probes.name(it);
       const std::string path = "Output->Probes->" + name;
+      check_safe_name(name, path, "the probe name");
       const ParameterList& sub = probes.sublist(name);
       check_list(sub, path, {&pls});
       require(sub, path, {&pls});

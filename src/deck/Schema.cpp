@@ -138,7 +138,8 @@ std::vector<ListSpec> build_schema() {
   {
     auto l = list("Boundary Conditions", "Boundary Conditions",
                   "Loads and prescribed displacements. Parameters common to all types are in the "
-                  "next table, type-specific ones in the tables after it.");
+                  "next table, type-specific ones in the tables after it. A load's name (its sublist name) heads CSV "
+                  "columns and plot labels: letters, digits, spaces and `_ . + -` only.");
     l.named_sublists = "load";
     s.push_back(l);
   }
@@ -246,14 +247,15 @@ std::vector<ListSpec> build_schema() {
   {
     auto l = list("Output", "Output", "Result files.",
                   {str("directory", "results", "Output folder (relative to the working directory); `--output` overrides."),
-                   str("basename", "stentor", "File name stem."),
+                   str("basename", "stentor", "File name stem.").allowed("letters, digits, spaces, `_ . + -`"),
                    integer("every", 1, "Write fields every N converged steps (and the last).").ge(1),
                    boolean("fields", true, "HDF5/XDMF field output on/off.")});
     l.sublists = {"Probes"};
     s.push_back(l);
   }
   {
-    auto l = list("Output/Probes", "Output->Probes", "Points whose displacement history is recorded.");
+    auto l = list("Output/Probes", "Output->Probes", "Points whose displacement history is recorded. Probe names "
+                  "head CSV columns: letters, digits, spaces and `_ . + -` only.");
     l.named_sublists = "probe";
     s.push_back(l);
   }
@@ -262,7 +264,8 @@ std::vector<ListSpec> build_schema() {
   {
     auto l = list("Contact", "Contact",
                   "Node-to-rigid-obstacle frictional contact (docs/contact.md), solved by the primal-dual active set "
-                  "(semi-smooth Newton) method inside the Newton loop. Without this sublist no contact work is done.");
+                  "(semi-smooth Newton) method inside the Newton loop. Without this sublist no contact work is done. "
+                  "Pair names head CSV columns: letters, digits, spaces and `_ . + -` only.");
     l.named_sublists = "contact pair";
     s.push_back(l);
   }
