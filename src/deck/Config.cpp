@@ -575,6 +575,7 @@ void DeckReader::read_mesh(const ParameterList& pl) {
   m.order = get_int(pl, ls, "order");
   m.recombine = get_bool(pl, ls, "recombine");
   m.dimension = get_int(pl, ls, "dimension");
+  m.max_cells = get_double(pl, ls, "max cells");
   if (m.recombine && m.order == 2)
     fail("'Mesh->recombine' = true needs 'Mesh->order' = 1 (quad8/hex20 bodies are not supported)");
 }

@@ -107,7 +107,11 @@ std::vector<ListSpec> build_schema() {
        integer("order", 1, "Element order when meshing a `.geo`: 1 (P1/Q1) or 2 (P2).").one_of({"1", "2"}),
        boolean("recombine", false, "Quadrilaterals (2D) / hexahedra (3D) when meshing a `.geo`."),
        integer("dimension", 0, "Spatial dimension; 0: the highest dimension found in the mesh.")
-           .one_of({"0", "2", "3"})}));
+           .one_of({"0", "2", "3"}),
+       dbl("max cells", 5e6,
+           "Meshing a `.geo` is refused when the estimated number of cells (bounding box measure / size^dim, "
+           "times the cells per size^dim) is above this; raise it to mesh finer on purpose.")
+           .gt(0.0)}));
 
   {
     auto l = list("Materials", "Materials", "Material definitions, referred to by `Bodies-><body>->material`.");
