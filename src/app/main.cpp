@@ -1,8 +1,14 @@
 // stentor: command-line entry point.
 #include <Tpetra_Core.hpp>
+#include <mpi.h>
 
+#include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <stdexcept>
+#include <string>
+#include <thread>
 
 #include "deck/Config.hpp"
 #include "run/Simulation.hpp"
@@ -21,13 +27,59 @@ const char* kUsage =
     "  --verbose      print every Newton iteration\n"
     "  --help         this text\n"
     "\n"
-    "exit status: 0 success, 1 internal error, 2 invalid input, 3 the solve failed\n";
+    "exit status: 0 success, 1 internal error, 2 invalid input, 3 the solve failed;\n"
+    "under MPI an error on any one rank ends every rank with that status\n";
+
+// A communicator of its own for agreeing on failures (duplicated at start-up, so that
+// it never mixes with the collectives of the run).
+MPI_Comm g_fail_comm = MPI_COMM_NULL;
+
+// Ends the run after an error caught on this rank; rank 0 explains. On one rank:
+// returns `code`. On several, the other ranks may not have seen the error and would wait
+// for this one in their next collective forever: the failing ranks meet in a barrier on
+// g_fail_comm for up to 3 s; when every rank arrives (a deck error that every rank sees)
+// each returns `code`, else this rank explains and ends every rank with
+// MPI_Abort(code) (mpirun then exits with `code`).
+int fail_all_ranks(int rank, int size, int code, const std::string& msg) {
+  if (rank == 0) std::cerr << msg << std::flush;
+  if (size == 1 || g_fail_comm == MPI_COMM_NULL) return code;
+  MPI_Request req;
+  int done = 0;
+  if (MPI_Ibarrier(g_fail_comm, &req) == MPI_SUCCESS) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+    while (!done && std::chrono::steady_clock::now() < deadline) {
+      MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+      if (!done) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+  }
+  if (done) return code;
+  if (rank != 0) std::cerr << "[rank " << rank << "] " << msg << std::flush;
+  std::cerr << "stentor: the error above happened on rank " << rank << " only; ending all " << size
+            << " ranks (exit status " << code << ")\n" << std::flush;
+  MPI_Abort(MPI_COMM_WORLD, code);
+  return code;
+}
+
+// Test hook (documented in tests/cli/CMakeLists.txt): STENTOR_TEST_FAIL_RANK=R[:input]
+// makes rank R alone throw after reading the deck, an internal error (exit 1) or, with
+// ":input", an input error (exit 2), to check that one rank's failure ends every rank.
+void test_failure_hook(int rank) {
+  const char* v = std::getenv("STENTOR_TEST_FAIL_RANK");
+  if (!v || !*v) return;
+  const std::string s = v;
+  const bool input = s.size() > 6 && s.compare(s.size() - 6, 6, ":input") == 0;
+  if (std::atoi(s.c_str()) != rank) return;
+  const std::string what = "failure injected on rank " + std::to_string(rank) + " (STENTOR_TEST_FAIL_RANK)";
+  if (input) throw stentor::InputError(what);
+  throw std::runtime_error(what);
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
   Tpetra::ScopeGuard guard(&argc, &argv);
   const int rank = Tpetra::getDefaultComm()->getRank();
+  MPI_Comm_dup(MPI_COMM_WORLD, &g_fail_comm);
   stentor::RunOptions opts;
   std::string deck;
   for (int i = 1; i < argc; ++i) {
@@ -59,14 +111,18 @@ int main(int argc, char** argv) {
     if (rank == 0) std::cerr << "stentor: error: no input deck given\n" << kUsage;
     return 2;
   }
+  const int size = Tpetra::getDefaultComm()->getSize();
   try {
     const stentor::Config cfg = stentor::read_deck(deck);
+    test_failure_hook(rank);
     return stentor::run_simulation(cfg, opts);
   } catch (const stentor::InputError& e) {
-    if (rank == 0) std::cerr << "stentor: error: " << e.what() << "\n";
-    return 2;
+    return fail_all_ranks(rank, size, 2, std::string("stentor: error: ") + e.what() + "\n");
+  } catch (const std::bad_alloc&) {
+    return fail_all_ranks(rank, size, 1, "stentor: out of memory on rank " + std::to_string(rank) + "\n");
   } catch (const std::exception& e) {
-    std::cerr << "stentor: internal error on rank " << rank << ": " << e.what() << "\n";
-    return 1;
+    return fail_all_ranks(rank, size, 1, "stentor: internal error on rank " + std::to_string(rank) + ": " + e.what() + "\n");
+  } catch (...) {
+    return fail_all_ranks(rank, size, 1, "stentor: internal error on rank " + std::to_string(rank) + ": unknown exception\n");
   }
 }

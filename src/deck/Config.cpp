@@ -97,12 +97,32 @@ bool parse_ll(const std::string& s0, long long& out) {
   out = std::strtoll(s.c_str(), &end, 10);
   return errno == 0 && end == s.c_str() + s.size();
 }
+// The one reader of every real number in a deck (scalars and array entries, pass-through
+// lists included): a finite decimal number, [+-]digits[.digits][(e|E)[+-]digits] (".5"
+// and "5." too). No nan, inf, hex floats (0x1p-2) or overflow (1e999): strtod takes them
+// all and Teuchos turned some into 0. The value parsed here is the value used
+// (apply_numbers overwrites Teuchos' own conversion).
 bool parse_dbl(const std::string& s0, double& out) {
   const std::string s = trim(s0);
-  if (s.empty()) return false;
-  char* end = nullptr;
-  out = std::strtod(s.c_str(), &end);
-  return end == s.c_str() + s.size();
+  std::size_t i = 0, digits = 0;
+  auto is_digit = [&](std::size_t k) { return k < s.size() && std::isdigit(static_cast<unsigned char>(s[k])); };
+  if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+  while (is_digit(i)) ++i, ++digits;
+  if (i < s.size() && s[i] == '.') {
+    ++i;
+    while (is_digit(i)) ++i, ++digits;
+  }
+  if (digits == 0) return false;
+  if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    ++i;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+    if (!is_digit(i)) return false;
+    while (is_digit(i)) ++i;
+  }
+  if (i != s.size()) return false;
+  errno = 0;
+  out = std::strtod(s.c_str(), nullptr);
+  return std::isfinite(out) && !(errno == ERANGE && std::abs(out) > 1.0);
 }
 
 // Teuchos types a deck may use outside the pass-through sublists.
@@ -122,7 +142,10 @@ std::string check_xml_value(const std::string& type, const std::string& value) {
     if (type == "short" && (ll < SHRT_MIN || ll > SHRT_MAX)) return "an integer that fits a short";
     return "";
   }
-  if (type == "double" || type == "float") return parse_dbl(value, d) ? "" : "a number";
+  if (type == "double" || type == "float")
+    return parse_dbl(value, d) && (type == "double" || std::isfinite(static_cast<float>(d)))
+               ? ""
+               : "a number (finite and decimal, like 2.5 or -1e-3; no nan, inf, hex or overflow)";
   if (type == "bool") {
     const std::string u = upper(trim(value));
     return (u == "TRUE" || u == "FALSE" || u == "YES" || u == "NO" || u == "1" || u == "0") ? ""
@@ -193,6 +216,8 @@ class DeckReader {
   void read_contact(const ParameterList& pl);
   void read_contact_obstacle(const ParameterList& sub, const std::string& path, const ListSpec& ls, ContactPairConfig& c);
   void check_dim_length(const std::vector<double>& v, const std::string& path) const;
+  void check_safe_name(const std::string& text, const std::string& path, const std::string& what) const;
+  void unit_direction(std::array<double, 3>& v, const std::string& path) const;
 };
 
 // ------------------------------------------------------------------------------------
@@ -233,6 +258,38 @@ void DeckReader::check_xml(const XMLObject& x, const std::string& path, bool pas
       const std::string bad = check_xml_value(type, value);
       if (!bad.empty())
         fail("wrong value for " + quoted(p) + ": type=\"" + type + "\" needs " + bad + ", got '" + value + "'");
+    }
+  }
+}
+
+// Replaces Teuchos' conversion of every real number (scalar or array, after check_xml
+// accepted it) by parse_dbl's, so that one reader decides every value.
+void apply_numbers(const XMLObject& x, ParameterList& pl) {
+  for (int i = 0; i < x.numChildren(); ++i) {
+    const XMLObject& c = x.getChild(i);
+    const std::string& name = c.getAttribute("name");
+    if (c.getTag() == "ParameterList") {
+      if (pl.isSublist(name)) apply_numbers(c, pl.sublist(name));
+      continue;
+    }
+    const std::string& type = c.getAttribute("type");
+    const std::string& value = c.getAttribute("value");
+    double d = 0.0;
+    if (type == "double" && parse_dbl(value, d)) pl.set(name, d);
+    if (type == "float" && parse_dbl(value, d)) pl.set(name, static_cast<float>(d));
+    if (type != "Array(double)" && type != "Array(float)") continue;
+    const std::string v = trim(value);
+    std::stringstream ss(v.size() >= 2 ? v.substr(1, v.size() - 2) : std::string());
+    std::string item;
+    Teuchos::Array<double> ad;
+    while (std::getline(ss, item, ','))
+      if (!trim(item).empty() && parse_dbl(item, d)) ad.push_back(d);
+    if (type == "Array(double)") {
+      pl.set(name, ad);
+    } else {
+      Teuchos::Array<float> af;
+      for (double e : ad) af.push_back(static_cast<float>(e));
+      pl.set(name, af);
     }
   }
 }
@@ -525,6 +582,35 @@ void DeckReader::check_dim_length(const std::vector<double>& v, const std::strin
          "), got " + std::to_string(v.size()));
 }
 
+// Names that end up in output file names, CSV column headers and plot labels (loads,
+// probes, contact pairs, the basename) are restricted to a character set that no shell,
+// gnuplot or file system interprets: letters, digits, space and _ . + -
+void DeckReader::check_safe_name(const std::string& text, const std::string& path, const std::string& what) const {
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (std::isalnum(u) && u < 128) continue;
+    if (c == ' ' || c == '_' || c == '.' || c == '+' || c == '-') continue;
+    std::ostringstream bad;
+    if (std::isprint(u) && u < 128)
+      bad << "'" << c << "'";
+    else
+      bad << "byte 0x" << std::hex << static_cast<int>(u);
+    fail(quoted(path) + ": " + what + " '" + text + "' contains " + bad.str() +
+         "; it may contain only letters, digits, spaces and _ . + - (it names output files, CSV columns and plot labels)");
+  }
+}
+
+// Normalises a direction in place; its length must be a positive finite number (a zero
+// vector, or one whose squared length underflows to 0 or overflows, is refused).
+void DeckReader::unit_direction(std::array<double, 3>& v, const std::string& path) const {
+  const double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(n > 0.0) || !std::isfinite(n))
+    fail(quoted(path) + " must be a direction of nonzero, finite length (its squared length " +
+         (n > 0.0 ? std::string("overflows") : std::string("is 0")) + "); got (" + num(v[0]) + ", " + num(v[1]) +
+         ", " + num(v[2]) + ")");
+  for (auto& x : v) x /= n;
+}
+
 // ------------------------------------------------------------------------------------
 // Sections.
 
@@ -557,6 +643,7 @@ void DeckReader::read_mesh(const ParameterList& pl) {
   m.order = get_int(pl, ls, "order");
   m.recombine = get_bool(pl, ls, "recombine");
   m.dimension = get_int(pl, ls, "dimension");
+  m.max_cells = get_double(pl, ls, "max cells");
   if (m.recombine && m.order == 2)
     fail("'Mesh->recombine' = true needs 'Mesh->order' = 1 (quad8/hex20 bodies are not supported)");
 }
@@ -667,9 +754,7 @@ void DeckReader::read_contact_obstacle(const ParameterList& sub, const std::stri
   if (c.obstacle == "plane") {
     if (!sub.isParameter("normal")) fail("missing required parameter " + quoted(path + "->normal") + " (Array(double)) for a plane obstacle");
     vec("normal", c.normal, c.normal_len);
-    const double nn = std::sqrt(c.normal[0] * c.normal[0] + c.normal[1] * c.normal[1] + c.normal[2] * c.normal[2]);
-    if (!(nn > 0.0)) fail(quoted(path + "->normal") + " must not be the zero vector");
-    for (auto& x : c.normal) x /= nn;
+    unit_direction(c.normal, path + "->normal");
     if (c.normal_len != c.point_len)
       fail(quoted(path + "->normal") + " must have as many values as 'point' (" + std::to_string(c.point_len) + ")");
     for (const char* k : {"radius", "radius change", "axis", "side"})
@@ -688,9 +773,8 @@ void DeckReader::read_contact_obstacle(const ParameterList& sub, const std::stri
       if (!sub.isParameter("axis")) fail("missing required parameter " + quoted(path + "->axis") + " (Array(double), 3 values) for a cylinder obstacle");
       const auto a = get_array(sub, ls, "axis");
       c.axis_len = static_cast<int>(a.size());
-      const double an = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-      if (!(an > 0.0)) fail(quoted(path + "->axis") + " must not be the zero vector");
-      for (std::size_t k = 0; k < 3; ++k) c.axis[k] = a[k] / an;
+      for (std::size_t k = 0; k < 3; ++k) c.axis[k] = a[k];
+      unit_direction(c.axis, path + "->axis");
     } else if (sub.isParameter("axis")) {
       fail(quoted(path + "->axis") + " is only used by a cylinder obstacle");
     }
@@ -714,6 +798,7 @@ void DeckReader::read_contact(const ParameterList& pl) {
   for (auto it = pl.begin(); it != pl.end(); ++it) {
     const std::string& name = pl.name(it);
     const std::string path = "Contact->" + name;
+    check_safe_name(name, path, "the contact pair name");
     const ParameterList& sub = pl.sublist(name);
     check_list(sub, path, {&ls});
     require(sub, path, {&ls});
@@ -756,6 +841,7 @@ void DeckReader::read_loads(const ParameterList& pl) {
   for (auto it = pl.begin(); it != pl.end(); ++it) {
     const std::string& name = pl.name(it);
     const std::string path = "Boundary Conditions->" + name;
+    check_safe_name(name, path, "the load name");
     const ParameterList& sub = pl.sublist(name);
     if (!sub.isParameter("type"))
       fail("missing required parameter " + quoted(path + "->type") + " (string, one of " + join(types) + ")");
@@ -977,6 +1063,7 @@ void DeckReader::read_output(const ParameterList& pl) {
   if (o.basename.empty()) fail("'Output->basename' must not be empty");
   if (o.basename.find('/') != std::string::npos)
     fail("'Output->basename' must be a file name stem without '/', got '" + o.basename + "'");
+  check_safe_name(o.basename, "Output->basename", "the file name stem");
   if (pl.isSublist("Probes")) {
     const ParameterList& probes = pl.sublist("Probes");
     const ListSpec& pls = deck_list_spec("Output/Probes/*");
@@ -984,6 +1071,7 @@ void DeckReader::read_output(const ParameterList& pl) {
     for (auto it = probes.begin(); it != probes.end(); ++it) {
       const std::string& name = probes.name(it);
       const std::string path = "Output->Probes->" + name;
+      check_safe_name(name, path, "the probe name");
       const ParameterList& sub = probes.sublist(name);
       check_list(sub, path, {&pls});
       require(sub, path, {&pls});
@@ -1023,6 +1111,7 @@ Config DeckReader::read() {
     fail("invalid parameter list: " + clean_teuchos_message(e.what()));
   }
 
+  apply_numbers(xml, root);
   const std::vector<const ListSpec*> root_spec = {&deck_list_spec("")};
   check_list(root, "", root_spec);
   require(root, "", root_spec);

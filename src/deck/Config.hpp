@@ -37,6 +37,7 @@ struct MeshConfig {
   int order = 1;           // "Mesh"->"order": 1 (P1/Q1) or 2 (P2), for .geo meshing
   bool recombine = false;  // "Mesh"->"recombine": quads (2D) / hexes (3D) from a .geo
   int dimension = 0;       // "Mesh"->"dimension": 2 or 3; 0 = highest dimension found in the mesh
+  double max_cells = 5e6;  // "Mesh"->"max cells": refuse to mesh a .geo when the estimate is above
 };
 
 struct MaterialConfig {

@@ -107,7 +107,11 @@ std::vector<ListSpec> build_schema() {
        integer("order", 1, "Element order when meshing a `.geo`: 1 (P1/Q1) or 2 (P2).").one_of({"1", "2"}),
        boolean("recombine", false, "Quadrilaterals (2D) / hexahedra (3D) when meshing a `.geo`."),
        integer("dimension", 0, "Spatial dimension; 0: the highest dimension found in the mesh.")
-           .one_of({"0", "2", "3"})}));
+           .one_of({"0", "2", "3"}),
+       dbl("max cells", 5e6,
+           "Meshing a `.geo` is refused when the estimated number of cells (bounding box measure / size^dim, "
+           "times the cells per size^dim) is above this; raise it to mesh finer on purpose.")
+           .gt(0.0)}));
 
   {
     auto l = list("Materials", "Materials", "Material definitions, referred to by `Bodies-><body>->material`.");
@@ -144,7 +148,8 @@ std::vector<ListSpec> build_schema() {
   {
     auto l = list("Boundary Conditions", "Boundary Conditions",
                   "Loads and prescribed displacements. Parameters common to all types are in the "
-                  "next table, type-specific ones in the tables after it.");
+                  "next table, type-specific ones in the tables after it. A load's name (its sublist name) heads CSV "
+                  "columns and plot labels: letters, digits, spaces and `_ . + -` only.");
     l.named_sublists = "load";
     s.push_back(l);
   }
@@ -252,14 +257,15 @@ std::vector<ListSpec> build_schema() {
   {
     auto l = list("Output", "Output", "Result files.",
                   {str("directory", "results", "Output folder (relative to the working directory); `--output` overrides."),
-                   str("basename", "stentor", "File name stem."),
+                   str("basename", "stentor", "File name stem.").allowed("letters, digits, spaces, `_ . + -`"),
                    integer("every", 1, "Write fields every N converged steps (and the last).").ge(1),
                    boolean("fields", true, "HDF5/XDMF field output on/off.")});
     l.sublists = {"Probes"};
     s.push_back(l);
   }
   {
-    auto l = list("Output/Probes", "Output->Probes", "Points whose displacement history is recorded.");
+    auto l = list("Output/Probes", "Output->Probes", "Points whose displacement history is recorded. Probe names "
+                  "head CSV columns: letters, digits, spaces and `_ . + -` only.");
     l.named_sublists = "probe";
     s.push_back(l);
   }
@@ -269,7 +275,8 @@ std::vector<ListSpec> build_schema() {
     auto l = list("Contact", "Contact",
                   "Frictional contact of slave nodes against rigid analytic obstacles or the boundary of another "
                   "deformable body (docs/contact.md), solved by the primal-dual active set "
-                  "(semi-smooth Newton) method inside the Newton loop. Without this sublist no contact work is done.");
+                  "(semi-smooth Newton) method inside the Newton loop. Without this sublist no contact work is done. "
+                  "Pair names head CSV columns: letters, digits, spaces and `_ . + -` only.");
     l.named_sublists = "contact pair";
     s.push_back(l);
   }

@@ -6,7 +6,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <cerrno>
+#include <chrono>
+#include <thread>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +23,9 @@ namespace stentor {
 namespace {
 
 namespace fs = std::filesystem;
+
+// gnuplot gets this long per plot; a plot is an extra, never a reason to hang or fail a run.
+constexpr std::chrono::seconds kPlotTimeLimit{60};
 
 // Splits one CSV line (RFC 4180 quoting) into fields.
 std::vector<std::string> split_csv_line(const std::string& line) {
@@ -50,15 +56,36 @@ std::vector<std::string> split_csv_line(const std::string& line) {
   return out;
 }
 
-// A gnuplot double-quoted string literal.
+// A gnuplot single-quoted string literal. gnuplot expands backquotes (`cmd` runs cmd)
+// and backslash escapes inside double quotes, but nothing inside single quotes, where the
+// only special character is the quote itself, written twice. Deck text (load names, the
+// basename) must never be interpreted, so every label and file name goes through here.
 std::string gp_string(const std::string& s) {
-  std::string r = "\"";
+  std::string r = "'";
   for (char c : s) {
-    if (c == '\\' || c == '"') r += '\\';
-    if (c == '\n' || c == '\r') c = ' ';
+    if (c == '\'') r += '\'';
+    if (c == '\n' || c == '\r' || c == '\0') c = ' ';
     r += c;
   }
-  return r + '"';
+  return r + "'";
+}
+
+// Waits for `pid` at most `limit`: 1 when it exited (status set), 0 when it ran past the
+// limit (then it is killed and reaped), -1 when waitpid failed.
+int wait_limited(pid_t pid, std::chrono::seconds limit, int& status) {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  for (;;) {
+    const pid_t w = ::waitpid(pid, &status, WNOHANG);
+    if (w == pid) return 1;
+    if (w < 0 && errno != EINTR) return -1;
+    if (std::chrono::steady_clock::now() >= deadline) {
+      ::kill(pid, SIGKILL);
+      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      return 0;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 bool warn(const std::string& msg) {
@@ -180,10 +207,9 @@ bool plot_csv_png(const std::string& csv, const std::string& png, const std::str
     posix_spawn_file_actions_destroy(&fa);
     if (rc != 0) return warn("cannot run gnuplot");
     int status = 0;
-    pid_t w;
-    do {
-      w = ::waitpid(pid, &status, 0);
-    } while (w < 0 && errno == EINTR);
+    const int w = wait_limited(pid, kPlotTimeLimit, status);
+    if (w == 0) return warn("gnuplot took longer than " + std::to_string(kPlotTimeLimit.count()) + " s on " +
+                            script.string() + " and was stopped");
     if (w < 0) return warn("waitpid on gnuplot failed");
     const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
     if (fs::exists(log, ec) && fs::file_size(log, ec) == 0) fs::remove(log, ec);

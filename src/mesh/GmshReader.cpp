@@ -7,10 +7,14 @@
 #include <cmath>
 #include <exception>
 #include <fstream>
+#include <iomanip>
 #include <map>
+#include <new>
 #include <sstream>
 #include <unordered_map>
 #include <utility>
+
+#include "mesh/GeoScreen.hpp"
 
 namespace stentor {
 namespace {
@@ -75,6 +79,10 @@ void gmsh_call(GmshSession& s, const std::string& file, const char* what, F&& f)
   bool failed = false;
   try {
     f();
+  } catch (const std::bad_alloc&) {
+    s.errors();
+    throw InputError(file + ": gmsh ran out of memory trying to " + what +
+                     "; the mesh is too fine for this machine (use a larger 'Mesh->size')");
   } catch (const std::string& e) {
     failed = true;
     msg = e;
@@ -145,6 +153,80 @@ void set_size_max(double size) {
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
 }
 
+// Mean length of the 1D elements of the current mesh (0 when there are none).
+double mean_edge_length() {
+  std::vector<int> types;
+  std::vector<std::vector<std::size_t>> etags, ntags;
+  gmsh::model::mesh::getElements(types, etags, ntags, 1, -1);
+  std::vector<std::size_t> tags;
+  std::vector<double> xyz, param;
+  gmsh::model::mesh::getNodes(tags, xyz, param, -1, -1, true, false);
+  std::unordered_map<std::size_t, std::size_t> at;
+  for (std::size_t i = 0; i < tags.size(); ++i) at.emplace(tags[i], i);
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < types.size(); ++k) {
+    const std::size_t per = etags[k].empty() ? 0 : ntags[k].size() / etags[k].size();
+    for (std::size_t e = 0; per >= 2 && e < etags[k].size(); ++e) {
+      const auto a = at.find(ntags[k][per * e]), b = at.find(ntags[k][per * e + 1]);
+      if (a == at.end() || b == at.end()) continue;
+      double d2 = 0.0;
+      for (int c = 0; c < 3; ++c) d2 += std::pow(xyz[3 * a->second + c] - xyz[3 * b->second + c], 2);
+      sum += std::sqrt(d2);
+      ++n;
+    }
+  }
+  return n ? sum / static_cast<double>(n) : 0.0;
+}
+
+// Refuses to mesh when the number of cells of size h filling the bounding box of the
+// geometry (simplices per h^dim: 2.3 in 2D, 8.5 in 3D, x4 for subdivided hexes) is
+// above cfg.max_cells. Cheap and coarse (it over-estimates thin shapes): it stops
+// a tiny size from meshing for hours or exhausting memory.
+void check_cell_estimate(const MeshConfig& cfg, const std::string& file, int dim, double h, const char* source) {
+  double lo[3], hi[3];
+  gmsh::model::getBoundingBox(-1, -1, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
+  std::vector<double> ext;
+  for (int c = 0; c < 3; ++c) ext.push_back(std::max(hi[c] - lo[c], 0.0));
+  std::sort(ext.rbegin(), ext.rend());
+  double est = dim == 3 ? 8.5 : 2.3;
+  if (dim == 3 && cfg.recombine) est *= 4.0;
+  for (int c = 0; c < dim; ++c) est *= std::max(ext[static_cast<std::size_t>(c)], h) / h;
+  if (est <= cfg.max_cells) return;
+  std::ostringstream os;
+  os << file << ": meshing with element size " << h << " (" << source << ") would make about " << std::setprecision(3)
+     << est << " cells, more than 'Mesh->max cells' = " << cfg.max_cells
+     << "; use a larger 'Mesh->size', or raise 'Mesh->max cells' in the deck to mesh this fine on purpose";
+  throw InputError(os.str());
+}
+
+// Meshes the .geo model already opened: bounded by check_cell_estimate, with the
+// deck's size (or the .geo's own, estimated from the curve mesh), order and recombination.
+void mesh_geo(GmshSession& session, const MeshConfig& cfg, const std::string& file, int dim) {
+  if (cfg.size > 0) {
+    check_cell_estimate(cfg, file, dim, cfg.size, "'Mesh->size'");
+    gmsh_call(session, file, "mesh the geometry", [&] { set_size_max(cfg.size); });
+  } else {
+    gmsh_call(session, file, "mesh the curves", [&] { gmsh::model::mesh::generate(1); });
+    const double h = mean_edge_length();
+    if (h > 0) check_cell_estimate(cfg, file, dim, h, "mean curve element length of the .geo's own sizes");
+  }
+  gmsh_call(session, file, "mesh the geometry", [&] {
+    gmsh::option::setNumber("Mesh.ElementOrder", cfg.order);
+    gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 1);
+    if (cfg.recombine) {
+      if (dim == 2) {
+        // Blossom recombination of the default (Frontal-Delaunay) triangulation.
+        // (Mesh.Algorithm = 8, "Frontal-Delaunay for quads", crashes gmsh 4.8.4.)
+        gmsh::option::setNumber("Mesh.RecombineAll", 1);
+      } else {
+        gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 2);  // tets -> hexes
+      }
+    }
+    gmsh::model::mesh::generate(dim);
+  });
+}
+
 struct RawBlock {
   std::string name;
   int tag = -1;
@@ -173,6 +255,7 @@ Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
     if (cfg.size < 0) throw InputError(file + ": mesh size must be >= 0");
   }
 
+  if (!is_msh) screen_geo_file(file);  // before gmsh runs any of it
   GmshSession session(verbose);
   gmsh_call(session, file, "read the file", [&] { gmsh::open(file); });
 
@@ -189,23 +272,7 @@ Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
     throw InputError(file + ": mesh has no physical group of dimension " + std::to_string(dim) +
                      ": bodies must be physical " + (dim == 2 ? "surfaces" : "volumes"));
 
-  if (!is_msh) {
-    gmsh_call(session, file, "mesh the geometry", [&] {
-      if (cfg.size > 0) set_size_max(cfg.size);
-      gmsh::option::setNumber("Mesh.ElementOrder", cfg.order);
-      gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 1);
-      if (cfg.recombine) {
-        if (dim == 2) {
-          // Blossom recombination of the default (Frontal-Delaunay) triangulation.
-          // (Mesh.Algorithm = 8, "Frontal-Delaunay for quads", crashes gmsh 4.8.4.)
-          gmsh::option::setNumber("Mesh.RecombineAll", 1);
-        } else {
-          gmsh::option::setNumber("Mesh.SubdivisionAlgorithm", 2);  // tets -> hexes
-        }
-      }
-      gmsh::model::mesh::generate(dim);
-    });
-  }
+  if (!is_msh) mesh_geo(session, cfg, file, dim);
 
   // Gather the cells of every physical group of dimension <= dim.
   std::vector<RawBlock> vol_raw, bnd_raw;

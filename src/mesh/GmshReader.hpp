@@ -30,6 +30,11 @@ namespace stentor {
 //    node tag order (deterministic).
 //  * Volume cell ids: 0..Nc-1 over Mesh::volumes in block order; boundary cell
 //    ids: 0..Nf-1 over Mesh::boundaries in block order (a separate numbering).
+//  * A .geo is first screened (mesh/GeoScreen.hpp: no command that runs a program,
+//    writes a file, ends the process or meshes by itself), and meshing is refused when
+//    the cell estimate (bounding box measure / size^dim; size = cfg.size, or the mean
+//    curve element length of the .geo's own sizes) is above cfg.max_cells; gmsh running
+//    out of memory is an InputError too.
 // Throws InputError (message starting with the file path) when the file is
 // missing or unreadable, gmsh fails to parse/mesh it (gmsh's message is
 // quoted), there is no physical group of the mesh dimension, a cell type is not

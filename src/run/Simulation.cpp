@@ -290,7 +290,37 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     if (contact) row.insert(row.end(), {cum_contact, cum_friction});
     energy_csv->row(row);
   };
-  if (dynamic) energy_row(0, 0.0, integrator->initialize(u, cfg.stepping.end_time));
+  // Non-finite values never reach the CSV or HDF5 files: the name of the first
+  // non-finite quantity, or "". Every input is global (reduced), so all ranks agree.
+  auto nonfinite = [&](const EnergyAudit* au) -> std::string {
+    if (!std::isfinite(u.norm1())) return "displacement";
+    if (!std::isfinite(system.last.energy)) return "stored energy";
+    for (const auto& rf : assembler->reactions())
+      for (double v : rf)
+        if (!std::isfinite(v)) return "reaction force";
+    if (!au) return "";
+    const double vals[] = {au->kinetic, au->strain, au->external_work, au->support_work, au->dissipation, au->balance,
+                           au->momentum[0], au->momentum[1], au->momentum[2], au->angular_momentum[0],
+                           au->angular_momentum[1], au->angular_momentum[2], cum_ext, cum_sup, cum_diss};
+    for (double v : vals)
+      if (!std::isfinite(v)) return "energy or momentum";
+    return "";
+  };
+  if (dynamic) {
+    const EnergyAudit au0 = integrator->initialize(u, cfg.stepping.end_time);
+    const std::string bad = nonfinite(&au0);
+    if (!bad.empty() && rank == 0) {  // an input error: nothing worth keeping was written
+      xdmf.reset();
+      history.reset();
+      energy_csv.reset();
+      std::error_code ec;
+      std::filesystem::remove_all(staging->path(), ec);
+    }
+    if (!bad.empty())
+      throw InputError(cfg.deck_path + ": 'Initial Conditions' give a non-finite initial " + bad +
+                       " (kinetic energy " + fmt(au0.kinetic, 3) + "); use smaller initial values");
+    energy_row(0, 0.0, au0);
+  }
   if (contact) {
     contact->initialize(u, cfg.stepping.end_time);
     system.contact = contact.get();
@@ -433,11 +463,23 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
         cum_contact += cstats.work;
         cum_friction += cstats.friction_dissipation;
       }
+      const std::string bad = nonfinite(&au);
+      if (!bad.empty()) {
+        failure = "non-finite " + bad + " at t = " + fmt(t, 6) + " (loads, velocities or material constants too large?)";
+        failed = true;
+        out << "\n";
+        break;
+      }
       max_balance = std::max(max_balance, std::abs(au.balance));
       out << "  K " << fmt(au.kinetic, 6) << "  E " << fmt(au.kinetic + au.strain, 9) << "  balance " << fmt(au.balance, 2);
       energy_row(step, t, au);
     }
     out << "\n";
+    if (const std::string bad = dynamic ? "" : nonfinite(nullptr); !bad.empty()) {
+      failure = "non-finite " + bad + " at t = " + fmt(t, 6) + " (loads or material constants too large?)";
+      failed = true;
+      break;
+    }
     if (rank == 0) {
       std::vector<double> row = {double(step), t, dt, double(nr.iterations), double(nr.linear_iterations), double(total_cuts),
                                  system.last.energy};

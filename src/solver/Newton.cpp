@@ -18,6 +18,14 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
   res.residual = rn;
   const double ref = std::max(rn, sys.force_scale());
   const double target = std::max(cfg.residual_tolerance * ref, cfg.absolute_tolerance);
+  // A non-finite residual or force scale makes the target inf (or NaN): never converged.
+  if (!std::isfinite(rn) || !std::isfinite(ref)) {
+    std::ostringstream os;
+    os << "the residual (" << rn << ") or the load scale (" << sys.force_scale()
+       << ") is not finite at the start of the step (loads or state too large?)";
+    res.failure = os.str();
+    return res;
+  }
   if (rn <= target && sys.settled()) {
     res.converged = true;
     return res;

@@ -425,6 +425,57 @@ TEST_F(Deck, WrongType) {
                {"wrong type for 'Materials->steel->C1': expected double, got Array(double) {1, 2}"});
 }
 
+// Every real number goes through one strict reader: NaN, Inf, hex floats, overflow and
+// malformed numbers are refused naming the parameter (Teuchos read array entries such
+// as {nan} or {1e999} as 0, and strtod accepted them all).
+TEST_F(Deck, NonFiniteAndUnparsableNumbers) {
+  const std::string traction = "name=\"traction\" type=\"Array(double)\" value=\"{1e3, 0}\"";
+  for (const std::string bad : {"nan", "NaN", "inf", "-inf", "Infinity", "0x1p-2", "1e999", "-1e400", "1e", "1.2.3", "--1", "."}) {
+    SCOPED_TRACE(bad);
+    expect_error(replace(kFullDeck, traction, "name=\"traction\" type=\"Array(double)\" value=\"{" + bad + ", 0}\""),
+                 {"'Boundary Conditions->push->traction'", "needs an array {a, b, ...} of double values", "'" + bad + "'"});
+    expect_error(replace(kMinimalDeck, "name=\"C1\" type=\"double\" value=\"1\"",
+                         "name=\"C1\" type=\"double\" value=\"" + bad + "\""),
+                 {"'Materials->steel->C1'", "needs a number (finite and decimal", "'" + bad + "'"});
+  }
+  // In pass-through lists too.
+  expect_error(replace(kMinimalDeck, "<ParameterList name=\"Bodies\">",
+                       "<ParameterList name=\"Linear Solver\"><ParameterList name=\"Belos\">"
+                       "<Parameter name=\"Convergence Tolerance\" type=\"double\" value=\"nan\"/></ParameterList>"
+                       "</ParameterList>\n<ParameterList name=\"Bodies\">"),
+               {"'Linear Solver->Belos->Convergence Tolerance'", "needs a number"});
+  // Decimal forms are read exactly as written, by the same reader.
+  const Config c = read_deck(write(replace(kFullDeck, traction, "name=\"traction\" type=\"Array(double)\" value=\"{ .5 , -2.E-3 }\"")));
+  bool found = false;
+  for (const auto& l : c.loads)
+    if (l.name == "push") {
+      found = true;
+      EXPECT_EQ(l.vector[0], 0.5);
+      EXPECT_EQ(l.vector[1], -2e-3);
+    }
+  EXPECT_TRUE(found);
+}
+
+// A direction must have a positive, finite length: (1e308, 1e308) used to pass the
+// "not zero" test and be normalised to (0, 0).
+TEST_F(Deck, DirectionsOfZeroOrOverflowingLength) {
+  auto plane = [&](const std::string& normal) {
+    return replace(kMinimalDeck, "<ParameterList name=\"Bodies\">",
+                   "<ParameterList name=\"Contact\"><ParameterList name=\"floor\">"
+                   "<Parameter name=\"slave\" type=\"string\" value=\"bottom\"/>"
+                   "<Parameter name=\"obstacle\" type=\"string\" value=\"plane\"/>"
+                   "<Parameter name=\"point\" type=\"Array(double)\" value=\"{0, 0}\"/>"
+                   "<Parameter name=\"normal\" type=\"Array(double)\" value=\"" + normal + "\"/>"
+                   "</ParameterList></ParameterList>\n<ParameterList name=\"Bodies\">");
+  };
+  expect_error(plane("{1e308, 1e308}"), {"'Contact->floor->normal' must be a direction of nonzero, finite length", "overflows"});
+  expect_error(plane("{0, 0}"), {"'Contact->floor->normal' must be a direction of nonzero, finite length", "is 0"});
+  expect_error(plane("{1e-200, 0}"), {"'Contact->floor->normal'", "is 0"});
+  const Config c = read_deck(write(plane("{0, 2}")));
+  ASSERT_EQ(c.contact.size(), 1u);
+  EXPECT_EQ(c.contact[0].normal[1], 1.0);
+}
+
 TEST_F(Deck, DuplicateName) {
   expect_error(replace(kMinimalDeck, "<Parameter name=\"D\" type=\"double\" value=\"2\"/>",
                        "<Parameter name=\"D\" type=\"double\" value=\"2\"/><Parameter name=\"D\" type=\"double\" value=\"3\"/>"),

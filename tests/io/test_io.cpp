@@ -714,3 +714,27 @@ TEST(Plot, WritesPng) {
   EXPECT_FALSE(plot_csv_png((dir / "missing.csv").string(), (dir / "m.png").string(), "time",
                             {"E_total"}, "t", "y"));
 }
+
+// Deck text reaches plot labels (load and probe names in column headers, the basename in
+// file names); gnuplot runs `backquoted` text inside double quotes, so nothing may be
+// interpreted: labels are single-quoted gnuplot strings.
+TEST(Plot, LabelsAreNeverInterpreted) {
+  if (!gnuplot_available()) GTEST_SKIP() << "gnuplot not installed";
+  const fs::path dir = scratch("plot_inject");
+  const std::string evil = "pull`touch PWNED`_x";
+  const std::string csv = (dir / "h.csv").string();
+  {
+    CsvWriter w(csv, {"time", evil, "it's \\\"q\\\""});
+    for (int i = 0; i <= 5; ++i) w.row({0.2 * i, 1.0 * i, 2.0 * i});
+  }
+  const std::string png = (dir / "p`touch PWNED2`.png").string();
+  ASSERT_TRUE(plot_csv_png(csv, png, "time", {evil, "it's \\\"q\\\""}, "`touch PWNED3` @x", "y'`touch PWNED4`"));
+  EXPECT_EQ(slurp(png).substr(0, 4), "\x89PNG");
+  for (const char* f : {"PWNED", "PWNED2", "PWNED3", "PWNED4"}) {
+    EXPECT_FALSE(fs::exists(dir / f)) << f;
+    EXPECT_FALSE(fs::exists(fs::path(f))) << f;
+  }
+  const std::string script = slurp(dir / "p`touch PWNED2`.gp");
+  EXPECT_NE(script.find("'pull`touch PWNED`_x'"), std::string::npos) << script;
+  EXPECT_NE(script.find("'it''s \\\"q\\\"'"), std::string::npos) << script;
+}

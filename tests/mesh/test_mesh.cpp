@@ -13,6 +13,7 @@
 #include "fem/Geometry.hpp"
 #include "fem/Quadrature.hpp"
 #include "fem/Shape.hpp"
+#include "mesh/GeoScreen.hpp"
 #include "mesh/GmshReader.hpp"
 #include "mesh/MeshCheck.hpp"
 #include "mesh/MeshComm.hpp"
@@ -433,6 +434,70 @@ TEST(GmshReader, Errors) {
   MeshConfig c = config(input("block2d.geo"));
   c.dimension = 4;
   expect_input_error([&] { read_mesh(c); }, {"dimension"});
+}
+
+// A .geo is input, never a program: commands that run programs, write files, end the
+// process or mesh by themselves are refused (file:line) before gmsh reads the file.
+TEST(GeoScreen, RefusesCommandsThatRunOrWrite) {
+  TempDir tmp;
+  const std::string dir = tmp.path.string();
+  auto refused = [&](const std::string& text, const std::string& word, int line) {
+    SCOPED_TRACE(text);
+    expect_input_error([&] { screen_geo_text(text, "x.geo", dir); },
+                       {"x.geo:" + std::to_string(line) + ": '" + word + "'", "remove it from the .geo"});
+  };
+  refused("Point(1) = {0,0,0};\nSystemCall \"touch PWNED\";\n", "SystemCall", 2);
+  refused("System \"touch PWNED\";", "System", 1);
+  refused("a = 1;\n\nPrintf(\"%g\", a) > \"/tmp/PWNED\";", "Printf", 3);
+  refused("Printf(\"x\") >> \"log.txt\";", "Printf", 1);
+  refused("Save \"out.msh\";", "Save", 1);
+  refused("Print \"out.png\";", "Print", 1);
+  refused("CreateDir \"d\";", "CreateDir", 1);
+  refused("Exit;", "Exit", 1);
+  refused("Sleep 1e9;", "Sleep", 1);
+  refused("Mesh 3;", "Mesh", 1);
+  refused("RefineMesh;", "RefineMesh", 1);
+  refused("OnelabRun(\"c\", \"touch PWNED\");", "OnelabRun", 1);
+  refused("General.OptionsFileName = \"/tmp/x\";", "General", 1);
+  refused("Solver.Executable0 = \"/bin/sh\";", "Solver", 1);
+  // Not commands: comments, strings, options, a Printf to the terminal.
+  EXPECT_NO_THROW(screen_geo_text("// SystemCall \"x\";\n/* Exit; Save \"a\"; */\nPrintf(\"Exit; %g\", 1 > 0);\n"
+                                  "Mesh.Algorithm = 6; Print.Width = 3; General.Terminal = 1;\n"
+                                  "Physical Surface(\"Save\") = {1};\nCoherence Mesh;\n",
+                                  "x.geo", dir));
+  // Included files are screened too; a computed include name is refused.
+  tmp.write("evil.geo", "\n\nSystemCall \"touch PWNED\";\n");
+  expect_input_error([&] { screen_geo_text("Include \"evil.geo\";", "x.geo", dir); },
+                     {"evil.geo:3: 'SystemCall'"});
+  expect_input_error([&] { screen_geo_text("Include StrCat(\"ev\", \"il.geo\");", "x.geo", dir); },
+                     {"x.geo:1: 'Include' needs a literal"});
+  EXPECT_NO_THROW(screen_geo_file(input("artery_ring_pins.geo")));
+  // Through read_mesh: refused before gmsh runs it, nothing is written.
+  const std::string geo = tmp.write("sys.geo", "SystemCall \"touch " + tmp.file("PWNED") + "\";\n");
+  expect_input_error([&] { read_mesh(config(geo)); }, {geo + ":1: 'SystemCall' runs a program"});
+  EXPECT_FALSE(fs::exists(tmp.file("PWNED")));
+}
+
+// Meshing is bounded: a size far too small for the geometry is refused before gmsh
+// meshes (it used to run for minutes or die of std::bad_alloc); the limit can be raised.
+TEST(GmshReader, CellEstimateBoundsMeshing) {
+  for (double size : {1e-9, 4.9e-324}) {
+    const std::string msg = expect_input_error([&] { read_mesh(config(input("block2d.geo"), size)); },
+                                               {"block2d.geo: ", "'Mesh->max cells' = 5e+06", "raise 'Mesh->max cells'"});
+    EXPECT_NE(msg.find("larger 'Mesh->size'"), std::string::npos) << msg;
+  }
+  MeshConfig c = config(input("block3d.geo"), 0.05);
+  c.max_cells = 100;
+  expect_input_error([&] { read_mesh(c); }, {"block3d.geo: ", "more than 'Mesh->max cells' = 100"});
+  c.max_cells = 1e6;
+  EXPECT_GT(read_mesh(c).num_volume_cells(), 100u);
+  // The .geo's own sizes (Mesh->size = 0) are estimated from the curve mesh.
+  TempDir tmp;
+  const std::string fine = tmp.write(
+      "fine.geo", "h = 1e-4;\nPoint(1) = {0,0,0,h}; Point(2) = {1,0,0,h}; Point(3) = {1,1,0,h}; Point(4) = {0,1,0,h};\n"
+                  "Line(1) = {1,2}; Line(2) = {2,3}; Line(3) = {3,4}; Line(4) = {4,1};\n"
+                  "Curve Loop(1) = {1,2,3,4}; Plane Surface(1) = {1}; Physical Surface(\"s\") = {1};\n");
+  expect_input_error([&] { read_mesh(config(fine)); }, {fine + ": ", "the .geo's own sizes", "'Mesh->max cells'"});
 }
 
 TEST(GmshReader, UnnamedGroupsAndPointSets) {
