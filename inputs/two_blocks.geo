@@ -1,7 +1,8 @@
 // Two unit-wide blocks stacked at y = 0.5 with NON-matching meshes on the interface
 // (plane strain, metres): the contact patch test of Taylor & Papadopoulos (1991).
 // Physical groups: surfaces "lower", "upper"; curves "base" (y = 0), "lower_top" and
-// "upper_bottom" (the two sides of the interface), "upper_top" (y = 1); points
+// "upper_bottom" (the two sides of the interface), "upper_top" (y = 1), "lower_left" and
+// "upper_left" (x = 0, symmetry-plane variants); points
 // "base_corner" (0, 0) and "top_corner" (0, 1) (rigid-body x motion is fixed there).
 // nl, nu: divisions of the lower and upper block along x (the interface discretisations).
 nl = DefineNumber[4, Name "Parameters/nl"];
@@ -39,5 +40,7 @@ Physical Curve("base") = {1};
 Physical Curve("lower_top") = {3};
 Physical Curve("upper_bottom") = {5};
 Physical Curve("upper_top") = {7};
+Physical Curve("lower_left") = {4};
+Physical Curve("upper_left") = {8};
 Physical Point("base_corner") = {1};
 Physical Point("top_corner") = {8};

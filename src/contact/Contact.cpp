@@ -127,7 +127,7 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
       throw InputError(where + "->formulation = persistence needs a dynamic analysis ('Problem->analysis' = dynamic); use gap in statics");
     const std::vector<GId> nodes = boundary_nodes(mesh, pc.slave);  // throws InputError naming the group
     const auto areas = tributary_areas(mesh, pc.slave);
-    long excluded = 0;
+    long excluded = 0, partial = 0;
     for (GId g : nodes) {
       const auto gi = static_cast<std::size_t>(g);
       if (is_master[gi])
@@ -139,13 +139,14 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
       slave_of[gi] = static_cast<int>(ip);
       if (!dist.owns_node(g)) continue;
       const la::LO l = dist.local_node(g);
-      bool prescribed = false;
-      for (int c = 0; c < dim_; ++c) prescribed = prescribed || assembler.is_dirichlet(l * dim_ + c);
-      if (prescribed) {
+      Slave nd;
+      int nfixed = 0;
+      for (int c = 0; c < dim_; ++c) nfixed += nd.fixed[c] = assembler.is_dirichlet(l * dim_ + c);
+      if (nfixed == dim_) {
         ++excluded;
         continue;
       }
-      Slave nd;
+      partial += nfixed > 0;
       nd.lid = l;
       nd.gid = g;
       auto it = areas.find(g);
@@ -156,6 +157,7 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
     }
     p.out.resize(p.nodes.size());
     Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &excluded, &p.excluded);
+    Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &partial, &p.partial);
   }
   if (!has_master_) return;
 
@@ -203,7 +205,8 @@ std::string Contact::description() const {
     else
       os << p.cfg.obstacle;
     os << ", " << (p.persistence ? "persistence (leapfrog)" : "gap") << ", mu " << p.cfg.friction;
-    if (p.excluded) os << " (" << p.excluded << " slave nodes with a prescribed displacement left out)";
+    if (p.excluded) os << " (" << p.excluded << " slave nodes with every component prescribed left out)";
+    if (p.partial) os << " (" << p.partial << " slave nodes with some prescribed components: contact on the free ones)";
   }
   return os.str();
 }
@@ -299,6 +302,7 @@ void Contact::node_input(const Pair& p, const Slave& nd, const double* x, contac
     in.r[c] = nd.f[c];
   }
   in.d_n = nd.d_n;
+  for (int c = 0; c < 3; ++c) in.fixed[c] = nd.fixed[c];
   if (!p.master) return;
   const auto& fc = p.master->facets()[static_cast<std::size_t>(nd.facet)];
   in.nm = fc.nn;
@@ -374,14 +378,18 @@ void Contact::evaluate_nodes(const la::Vector& u, la::Vector& r) {
           node_input(*pp, nd, x, in);
           contact::LawParams q = lp;
           q.sp = nd.scale;
-          q.cn = pp->cfg.c_normal > 0.0 ? pp->cfg.c_normal : nd.scale * (pp->persistence ? lp.dt : 1.0);
-          q.ct = pp->cfg.c_tangent > 0.0 ? pp->cfg.c_tangent : nd.scale * lp.dt;
+          // Deck values are per unit area (the multipliers then compare as pressures, so one
+          // c has one meaning on every mesh); automatic: the node's stiffness scale.
+          const double area = nd.area > 0.0 ? nd.area : 1.0;
+          q.cn = pp->cfg.c_normal > 0.0 ? pp->cfg.c_normal * area : nd.scale * (pp->persistence ? lp.dt : 1.0);
+          q.ct = pp->cfg.c_tangent > 0.0 ? pp->cfg.c_tangent * area : nd.scale * lp.dt;
           contact::evaluate(in, q, obp, o);
           nd.state = o.state;
           nd.gap = o.gap;
           for (int c = 0; c < 3; ++c) nd.normal[c] = o.normal[c], nd.rel[c] = o.rel[c];
           if (o.state >= contact::Stick)
-            for (int c = 0; c < dim; ++c) rh(nd.lid * dim + c, 0) = o.res[c];
+            for (int c = 0; c < dim; ++c)
+              if (!nd.fixed[c]) rh(nd.lid * dim + c, 0) = o.res[c];
         });
     Kokkos::fence();
   }
@@ -447,6 +455,10 @@ void Contact::rewrite_rigid_rows(la::CrsMatrix& K) {
             double old[3] = {0, 0, 0}, out[3] = {0, 0, 0};
             for (int c = 0; c < dim; ++c) old[c] = Kl.values(b[c] + e);
             for (int k = 0; k < dim; ++k) {
+              if (nd.fixed[k]) {  // a Dirichlet row stays as it is
+                out[k] = old[k];
+                continue;
+              }
               double v = 0.0;
               for (int j = 0; j < dim; ++j) v += o.dres[k][dim + j] * old[j];
               for (int c = 0; c < dim; ++c)
@@ -462,16 +474,17 @@ void Contact::rewrite_rigid_rows(la::CrsMatrix& K) {
   if (bad() > 0) throw std::logic_error("stentor contact: the rows of a node do not share one column pattern");
 }
 
-// Master surfaces: K' = Q K + G, with Q = I except the active slaves' rows (dPhi/dr_p) and
-// the master rows' columns of the slave (dPsi/dr_p = N_a), and G the derivatives at fixed r.
-// Entries of rows owned elsewhere (master nodes) are sent at fillComplete.
+// Master surfaces: K' = Q K + G = K + ((Q - I) K + G), with Q = I except the active slaves'
+// rows (dPhi/dr_p) and the master rows' columns of the slave (dPsi/dr_p = N_a), and G the
+// derivatives at fixed r. Q - I and G have rows only at contact dofs, so the sparse
+// product touches only those rows of K. Entries of rows owned elsewhere (master nodes)
+// are sent at fillComplete.
 la::RCP<la::CrsMatrix> Contact::coupled_tangent(const la::RCP<la::CrsMatrix>& K) {
   using Row = std::vector<std::pair<la::GO, double>>;
   const auto& map = dist_.owned_map();
   const std::size_t nown = map->getNodeNumElements();
   std::vector<Row> q(nown), g(nown);
   std::map<la::GO, Row> q_far, g_far;
-  std::vector<char> replaced(nown, 0);
   auto row_of = [&](la::GO gid, std::vector<Row>& loc, std::map<la::GO, Row>& far) -> Row& {
     const la::LO l = map->getLocalElement(gid);
     return l >= 0 ? loc[static_cast<std::size_t>(l)] : far[gid];
@@ -491,10 +504,10 @@ la::RCP<la::CrsMatrix> Contact::coupled_tangent(const la::RCP<la::CrsMatrix>& K)
         return static_cast<la::GO>(node) * dim_ + l % dim_;
       };
       for (int k = 0; k < dim_; ++k) {
-        replaced[static_cast<std::size_t>(nd.lid * dim_ + k)] = 1;
+        if (nd.fixed[k]) continue;  // Dirichlet rows stay identity rows of Q
         Row& qr = q[static_cast<std::size_t>(nd.lid * dim_ + k)];
         Row& gr = g[static_cast<std::size_t>(nd.lid * dim_ + k)];
-        for (int j = 0; j < dim_; ++j) qr.push_back({static_cast<la::GO>(nd.gid) * dim_ + j, o.dres[k][off_r + j]});
+        for (int j = 0; j < dim_; ++j) qr.push_back({static_cast<la::GO>(nd.gid) * dim_ + j, o.dres[k][off_r + j] - (j == k ? 1.0 : 0.0)});
         for (int l = 0; l < off_r; ++l) gr.push_back({ydof(l), o.dres[k][l]});
       }
       for (int a = 0; a < fc.nn; ++a)
@@ -511,8 +524,6 @@ la::RCP<la::CrsMatrix> Contact::coupled_tangent(const la::RCP<la::CrsMatrix>& K)
   long active_glob = 0;
   Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &active, &active_glob);
   if (active_glob == 0) return K;
-  for (std::size_t i = 0; i < nown; ++i)
-    if (!replaced[i]) q[i].push_back({map->getGlobalElement(static_cast<la::LO>(i)), 1.0});
   auto build = [&](std::vector<Row>& loc, std::map<la::GO, Row>& far) {
     std::vector<std::size_t> counts(nown);
     for (std::size_t i = 0; i < nown; ++i) counts[i] = loc[i].size();
@@ -530,11 +541,12 @@ la::RCP<la::CrsMatrix> Contact::coupled_tangent(const la::RCP<la::CrsMatrix>& K)
     M->fillComplete(map, map);
     return M;
   };
-  auto Q = build(q, q_far);
+  auto Qm = build(q, q_far);  // Q - I
   auto G = build(g, g_far);
-  auto QK = Teuchos::rcp(new la::CrsMatrix(map, 0));
-  Tpetra::MatrixMatrix::Multiply(*Q, false, *K, false, *QK);
-  return Tpetra::MatrixMatrix::add(1.0, false, *QK, 1.0, false, *G, map, map);
+  auto QmK = Teuchos::rcp(new la::CrsMatrix(map, 0));
+  Tpetra::MatrixMatrix::Multiply(*Qm, false, *K, false, *QmK);
+  auto D = Tpetra::MatrixMatrix::add(1.0, false, *QmK, 1.0, false, *G, map, map);
+  return Tpetra::MatrixMatrix::add(1.0, false, *K, 1.0, false, *D, map, map);
 }
 
 void Contact::update_changed() {

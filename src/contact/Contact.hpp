@@ -88,6 +88,7 @@ class Contact {
     la::LO lid = 0;                    // owned node index
     GId gid = 0;
     std::array<la::LO, 3> col{};       // local column indices (tangent's column map) of the node's dofs
+    bool fixed[3] = {false, false, false};  // prescribed components (symmetry planes): rows stay Dirichlet rows
     double X[3] = {0, 0, 0};
     double x_n[3] = {0, 0, 0};
     double d_n = 0.0, d_prev = 0.0;
@@ -110,7 +111,8 @@ class Contact {
     std::unique_ptr<MasterSurface> master;  // null: rigid obstacle
     std::vector<Slave> nodes;
     std::vector<contact::NodeOutput> out;   // per slave node, last apply()
-    long excluded = 0;                      // slave nodes with a prescribed component (left out), global
+    long excluded = 0;                      // slave nodes with every component prescribed (left out), global
+    long partial = 0;                       // slave nodes with some prescribed components (kept), global
   };
   contact::Obstacle obstacle(const Pair& p, double t) const;
   std::array<double, 3> translation(const Pair& p, double t) const;

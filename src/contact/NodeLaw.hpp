@@ -26,6 +26,11 @@
 // and the master nodes' rows receive the reaction: r_a += N_a(xi) r_p (all components).
 // s_p is the slave's largest tangent diagonal (a force/length scale). Inactive nodes keep
 // their bulk rows (lambda = 0) and send nothing to the master.
+// Prescribed components (a slave node on a symmetry plane): their rows stay Dirichlet rows
+// and their bulk residual (zeroed by the assembler) is a constant 0 here; the normal
+// condition goes to the free component most aligned with n, and the remaining free rows
+// take the tangential conditions along the free directions orthogonal to n (3D with one
+// prescribed axis e: t = e x n / |e x n|).
 #pragma once
 #include <Kokkos_Macros.hpp>
 #include <cmath>
@@ -87,6 +92,7 @@ struct NodeInput {
   double xa[facet::kMaxNodes][3] = {}, xa_n[facet::kMaxNodes][3] = {};
   double r[3] = {0, 0, 0};
   double d_n = 0.0;
+  bool fixed[3] = {false, false, false};  // prescribed components (their rows are not contact rows)
 };
 
 struct LawParams {
@@ -236,14 +242,27 @@ KOKKOS_INLINE_FUNCTION int conditions(const NodeInput& in, const LawParams& p, c
       stick = true;
     }
   }
-  int slot_n = 0;
-  for (int c = 1; c < dim; ++c)
-    if (std::abs(normal[c]) > std::abs(normal[slot_n])) slot_n = c;
+  int slot_n = -1, nfixed = 0, fixed_axis = 0;
+  for (int c = 0; c < dim; ++c) {
+    if (in.fixed[c]) {
+      ++nfixed, fixed_axis = c;
+      continue;
+    }
+    if (slot_n < 0 || std::abs(normal[c]) > std::abs(normal[slot_n])) slot_n = c;
+  }
   int slot_t[2] = {0, 0}, nt = 0;
   for (int c = 0; c < dim; ++c)
-    if (c != slot_n) slot_t[nt++] = c;
+    if (c != slot_n && !in.fixed[c]) slot_t[nt++] = c;
+  if (dim == 3 && nfixed == 1) {
+    // The one free tangential direction: e x n (orthogonal to the prescribed axis e and n).
+    T e[3] = {T(0.0), T(0.0), T(0.0)};
+    e[fixed_axis] = T(1.0);
+    T a[3] = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
+    const T len = sqrt(dot3(a, a));
+    for (int c = 0; c < 3; ++c) t[0][c] = a[c] / len;
+  }
   res[slot_n] = p.sp * g;
-  for (int k = 0; k < dim - 1; ++k) {
+  for (int k = 0; k < nt; ++k) {
     if (stick) {
       res[slot_t[k]] = p.sp * dot3(t[k], rel);
     } else {
@@ -267,19 +286,26 @@ KOKKOS_INLINE_FUNCTION void evaluate(const NodeInput& in, const LawParams& p, co
   for (int c = 0; c < 3; ++c) xs[c] = c < dim ? AD::seed(in.xs[c], v++) : AD(in.xs[c]);
   for (int a = 0; a < in.nm; ++a)
     for (int c = 0; c < 3; ++c) xa[a][c] = c < dim ? AD::seed(in.xa[a][c], v++) : AD(in.xa[a][c]);
-  for (int c = 0; c < 3; ++c) r[c] = c < dim ? AD::seed(in.r[c], v++) : AD(0.0);
+  // A prescribed component's bulk residual is zeroed by the assembler: a constant here.
+  for (int c = 0; c < 3; ++c) {
+    r[c] = AD(0.0);
+    if (c >= dim) continue;
+    if (!in.fixed[c]) r[c] = AD::seed(in.r[c], v);
+    ++v;  // the layout keeps a slot per component
+  }
   out.nvar = v;
   AD res[3], add[facet::kMaxNodes][3];
   out.state = conditions(in, p, ob, xs, xa, r, res, add, &out.gap, out.normal, out.rel);
   if (out.state == Inactive) return;
   for (int k = 0; k < dim; ++k) {
+    if (in.fixed[k]) continue;
     out.res[k] = res[k].v;
-    for (int j = 0; j < v; ++j) out.dres[k][j] = res[k].d[j];
+    for (int j = 0; j < v && j < kMaxLocal; ++j) out.dres[k][j] = res[k].d[j];
   }
   for (int a = 0; a < in.nm; ++a)
     for (int c = 0; c < dim; ++c) {
       out.add[a][c] = add[a][c].v;
-      for (int j = 0; j < v; ++j) out.dadd[a][c][j] = add[a][c].d[j];
+      for (int j = 0; j < v && j < kMaxLocal; ++j) out.dadd[a][c][j] = add[a][c].d[j];
     }
 }
 

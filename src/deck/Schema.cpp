@@ -322,10 +322,15 @@ std::vector<ListSpec> build_schema() {
            "dynamics, gap in statics.")
            .one_of({"auto", "persistence", "gap"}),
        dbl("c normal", 0.0,
-           "Active-set parameter c_nu (> 0) of the normal complementarity function; 0: automatic (node's tangent "
-           "diagonal, times dt for persistence).")
+           "Active-set parameter c_nu (> 0) of the normal complementarity function, per unit area of the slave "
+           "surface: [Pa s/m] with persistence (it multiplies the normal velocity), [Pa/m] with gap; each node uses "
+           "c_nu times its tributary area, so the multipliers compare as pressures and one value means the same on "
+           "every mesh (the talk's 1e4). 0: automatic (the node's tangent diagonal, times dt for persistence).")
            .ge(0.0),
-       dbl("c tangent", 0.0, "Active-set parameter c_tau of the friction complementarity function; 0: automatic.").ge(0.0)}));
+       dbl("c tangent", 0.0,
+           "Active-set parameter c_tau [Pa s/m] of the friction complementarity function, per unit area like `c normal`; "
+           "0: automatic (the node's tangent diagonal times dt).")
+           .ge(0.0)}));
   return s;
 }
 
