@@ -191,6 +191,13 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
     }
   master_x_ = master_X_;
   master_xn_ = master_X_;
+  master_area_.assign(master_nodes_.size(), 0.0);
+  for (const auto& p : pairs_)
+    if (p.master)
+      for (const auto& [g, a] : tributary_areas(mesh, p.cfg.master)) {
+        const int pos = master_pos_[static_cast<std::size_t>(g)];
+        if (pos >= 0) master_area_[static_cast<std::size_t>(pos)] = a;
+      }
 }
 
 std::string Contact::description() const {
@@ -551,10 +558,13 @@ la::RCP<la::CrsMatrix> Contact::coupled_tangent(const la::RCP<la::CrsMatrix>& K)
 
 void Contact::update_changed() {
   long loc = 0, glob = 0;
+  // A change of state, or of the master facet under an active node (the residual is only
+  // piecewise smooth across facet edges), counts as a change.
   for (auto& p : pairs_)
     for (auto& nd : p.nodes) {
-      loc += nd.state != nd.prev_state;
+      loc += nd.state != nd.prev_state || (nd.state >= contact::Stick && nd.facet != nd.prev_facet);
       nd.prev_state = nd.state;
+      nd.prev_facet = nd.facet;
     }
   Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &loc, &glob);
   changed_ = glob > 0;
@@ -681,6 +691,32 @@ Contact::NodalFields Contact::nodal_fields() const {
       const double reln = dot3(nd.rel, nd.normal);
       for (int c = 0; c < 3; ++c) out.values.push_back(active ? nd.rel[c] - reln * nd.normal[c] : 0.0);
     }
+  return out;
+}
+
+Contact::NodalFields Contact::master_fields() const {
+  std::map<int, std::array<double, 3>> force;  // master position -> force
+  for (const Pair& p : pairs_) {
+    if (!p.master) continue;
+    for (const Slave& nd : p.nodes) {
+      if (nd.state < contact::Stick || nd.facet < 0) continue;
+      const auto& fc = p.master->facets()[static_cast<std::size_t>(nd.facet)];
+      double xa[facet::kMaxNodes][3];
+      for (int a = 0; a < fc.nn; ++a)
+        for (int c = 0; c < 3; ++c) xa[a][c] = master_x_[3 * static_cast<std::size_t>(fc.node[a]) + static_cast<std::size_t>(c)];
+      facet::Frame<double> fr;
+      facet::frame(fc.type, fc.nn, dim_, fc.orient, xa, nd.xi, fr);
+      for (int a = 0; a < fc.nn; ++a) {
+        auto& f = force[fc.node[a]];
+        for (int c = 0; c < 3; ++c) f[static_cast<std::size_t>(c)] -= fr.N[a] * nd.f[c];
+      }
+    }
+  }
+  NodalFields out;
+  for (const auto& [pos, f] : force) {
+    out.nodes.push_back(static_cast<long long>(master_nodes_[static_cast<std::size_t>(pos)]));
+    out.values.insert(out.values.end(), {f[0], f[1], f[2], master_area_[static_cast<std::size_t>(pos)]});
+  }
   return out;
 }
 

@@ -49,8 +49,9 @@ class Contact {
   // K is given, the tangent: K itself (rewritten in place for rigid obstacles) or, when a
   // node touches a master surface, the new matrix Q K + G. Collective.
   la::RCP<la::CrsMatrix> apply(const la::Vector& u, la::Vector& r, const la::RCP<la::CrsMatrix>& K);
-  // Whether the active set (per slave node: free, inactive, stick, slip) of the last
-  // apply() differs from the one before it (collective result, computed in apply()).
+  // Whether the active set (per slave node: free, inactive, stick, slip, and the master
+  // facet of an active node) of the last apply() differs from the one before it
+  // (collective result, computed in apply()).
   bool active_set_changed() const { return changed_; }
 
   struct PairStats {
@@ -78,6 +79,12 @@ class Contact {
     std::vector<double> values;
   };
   NodalFields nodal_fields() const;
+  // Per master node touched by an active slave of this rank: global node id and 4 values
+  // (the reaction force on the master node, -sum N_a F, x y z; its tributary area). The same
+  // node may come from several ranks: sum the forces, keep the area.
+  static constexpr int kMasterValues = 4;
+  bool has_master_surfaces() const { return has_master_; }
+  NodalFields master_fields() const;
 
   std::vector<std::string> history_columns() const;
   std::vector<double> history_values(const StepStats& s) const;
@@ -99,6 +106,7 @@ class Contact {
     int prev_state = contact::Free;
     double f[3] = {0, 0, 0};           // bulk residual at the node at the last apply()
     int facet = -1;                    // master facet of the last apply() (-1: none / rigid)
+    int prev_facet = -1;               // ... and of the apply() before it
     double xi[2] = {0, 0};
     bool inside = true;
     double gap = 0.0, normal[3] = {0, 0, 0}, rel[3] = {0, 0, 0};
@@ -138,6 +146,7 @@ class Contact {
   std::vector<GId> master_nodes_;          // sorted
   std::vector<int> master_pos_;            // per mesh node: index in master_nodes_, or -1
   std::vector<double> master_X_;           // reference coordinates, 3 per master node
+  std::vector<double> master_area_;        // tributary reference area per master node
   std::vector<double> master_x_, master_xn_;  // current / start-of-step positions, 3 per master node
   std::vector<char> master_fixed_;         // per master dof (dim per node): prescribed
   la::RCP<const la::Map> master_map_;

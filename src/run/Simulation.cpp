@@ -133,7 +133,9 @@ const char* kAxes[3] = {"x", "y", "z"};
 
 // Contact fields on all nodes: status -1 marks nodes that are no slave node (then the
 // other fields are 0); 0 free, 1 inactive, 2 stick, 3 slip.
-void write_contact_fields(XdmfWriter& xdmf, std::size_t nn, const Gathered& slaves) {
+// Master surfaces: contact_master_traction = the reaction force on each master node
+// (summed over ranks) divided by its tributary area (zero on other nodes).
+void write_contact_fields(XdmfWriter& xdmf, std::size_t nn, const Gathered& slaves, const Gathered* masters) {
   constexpr int kv = Contact::kNodalValues;
   std::vector<double> status(nn, -1.0), gap(nn, 0.0), lambda_n(nn, 0.0), pressure(nn, 0.0), lambda_t(3 * nn, 0.0), slip(3 * nn, 0.0);
   for (std::size_t i = 0; i < slaves.ids.size(); ++i) {
@@ -154,6 +156,17 @@ void write_contact_fields(XdmfWriter& xdmf, std::size_t nn, const Gathered& slav
   xdmf.node_field("contact_pressure", 1, pressure);
   xdmf.node_field("contact_lambda_tangent", 3, lambda_t);
   xdmf.node_field("contact_slip", 3, slip);
+  if (!masters) return;  // no master surface in the deck
+  constexpr int km = Contact::kMasterValues;
+  std::vector<double> traction(3 * nn, 0.0), area(nn, 0.0);
+  for (std::size_t i = 0; i < masters->ids.size(); ++i) {
+    const auto g = static_cast<std::size_t>(masters->ids[i]);
+    for (int k = 0; k < 3; ++k) traction[3 * g + k] += masters->values[km * i + k];
+    area[g] = masters->values[km * i + 3];
+  }
+  for (std::size_t g = 0; g < nn; ++g)
+    for (int k = 0; k < 3; ++k) traction[3 * g + k] = area[g] > 0.0 ? traction[3 * g + k] / area[g] : 0.0;
+  xdmf.node_field("contact_master_traction", 3, traction);
 }
 
 std::string fmt(double v, int prec = 4) {
@@ -355,10 +368,12 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     }
     const Gathered cells = gather_on_root(std::vector<long long>(cf.cell_ids.begin(), cf.cell_ids.end()), packed, 8, nranks);
     // Contact fields at slave nodes.
-    Gathered slaves;
+    Gathered slaves, masters;
     if (contact) {
       const Contact::NodalFields nf = contact->nodal_fields();
       slaves = gather_on_root(nf.nodes, nf.values, Contact::kNodalValues, nranks);
+      const Contact::NodalFields mf = contact->master_fields();
+      masters = gather_on_root(mf.nodes, mf.values, Contact::kMasterValues, nranks);
     }
     if (rank != 0 || !xdmf) return;
     const std::size_t nc = mesh.num_volume_cells(), nn = mesh.num_nodes();
@@ -379,7 +394,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     xdmf->cell_field("von_mises", 1, vm);
     xdmf->cell_field("J", 1, J);
     xdmf->cell_field("mpi_rank", 1, owner);
-    if (contact) write_contact_fields(*xdmf, nn, slaves);
+    if (contact) write_contact_fields(*xdmf, nn, slaves, contact->has_master_surfaces() ? &masters : nullptr);
     xdmf->end_step();
   };
 

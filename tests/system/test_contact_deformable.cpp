@@ -412,3 +412,45 @@ TEST(DeformableContact, PatchTest3DHexMatchingIsExactNonMatchingMeasured) {
     EXPECT_LT(r.affine_error, 0.2);  // node-to-segment, one pass, coarse: 8.5 % and 15.6 % measured
   }
 }
+
+namespace {
+
+struct RigSystem : NewtonSystem {
+  Rig& rig;
+  la::RCP<la::CrsMatrix> K;
+  explicit RigSystem(Rig& r) : rig(r) {}
+  bool evaluate(const la::Vector& u, la::Vector& r, bool tangent) override {
+    auto k = rig.eval(u, r, tangent);
+    if (tangent) K = k;
+    return true;
+  }
+  la::RCP<la::CrsMatrix> matrix() override { return K; }
+  bool settled() const override { return !rig.contact->active_set_changed(); }
+};
+
+}  // namespace
+
+TEST(DeformableContact, MasterTractionEqualsThePressure) {
+  // Matching 4/4 interface: the reaction on every master node divided by its tributary
+  // area is the applied pressure (0, -p).
+  Config cfg = read_deck(kInputs + "contact_patch2d.xml");
+  cfg.mesh.file = blocks_geo(4, 4);
+  Rig rig(cfg);
+  la::Vector u(rig.dist->owned_map());
+  rig.contact->initialize(u, 1.0);
+  rig.contact->begin_step(0.0, 1.0, u);
+  LinearSolver lin(rig.cfg.linear, Tpetra::getDefaultComm());
+  RigSystem sys(rig);
+  ASSERT_TRUE(newton_solve(sys, u, lin, rig.cfg.newton, nullptr).converged);
+  const auto mf = rig.contact->master_fields();
+  ASSERT_EQ(mf.nodes.size(), 5u);
+  double fy = 0.0, worst = 0.0;
+  for (std::size_t i = 0; i < mf.nodes.size(); ++i) {
+    const double* v = &mf.values[Contact::kMasterValues * i];
+    fy += v[1];
+    worst = std::max({worst, std::abs(v[0] / v[3]) / 1e4, std::abs(v[1] / v[3] + 1e4) / 1e4});
+  }
+  std::printf("master traction: total force %.6e, max deviation from (0, -p) %.3e\n", fy, worst);
+  EXPECT_NEAR(fy, -1e4, 1e-6);
+  EXPECT_LT(worst, 1e-8);
+}
