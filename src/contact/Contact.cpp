@@ -553,7 +553,62 @@ la::RCP<la::CrsMatrix> Contact::coupled_tangent(const la::RCP<la::CrsMatrix>& K)
   auto QmK = Teuchos::rcp(new la::CrsMatrix(map, 0));
   Tpetra::MatrixMatrix::Multiply(*Qm, false, *K, false, *QmK);
   auto D = Tpetra::MatrixMatrix::add(1.0, false, *QmK, 1.0, false, *G, map, map);
-  return Tpetra::MatrixMatrix::add(1.0, false, *K, 1.0, false, *D, map, map);
+  // While the contact pairs (slave, facet) are the same, K' keeps its graph: only its values
+  // are refilled (and the linear solver reuses its symbolic set-up for the same matrix).
+  const auto sig = pattern_signature();
+  if (!Kp_.is_null() && sig == Kp_signature_ && refill(*K, *D)) return Kp_;
+  Kp_ = Tpetra::MatrixMatrix::add(1.0, false, *K, 1.0, false, *D, map, map);
+  Kp_signature_ = sig;
+  return Kp_;
+}
+
+// (count, sum of hashed (slave, facet)) of the active master-surface nodes, over all ranks.
+std::array<long, 2> Contact::pattern_signature() const {
+  long loc[2] = {0, 0}, glob[2] = {0, 0};
+  for (const auto& p : pairs_) {
+    if (!p.master) continue;
+    for (const auto& nd : p.nodes) {
+      if (nd.state < contact::Stick) continue;
+      const auto h = static_cast<unsigned long>(nd.gid) * 2654435761ul + static_cast<unsigned long>(nd.facet) * 40503ul + 12345ul;
+      loc[0] += 1;
+      loc[1] += static_cast<long>(h & 0xffffffffffful);  // 44 bits: no overflow over 2^19 nodes
+    }
+  }
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 2, loc, glob);
+  return {glob[0], glob[1]};
+}
+
+// Kp_ = K + D on Kp_'s graph. False (collectively) when an entry has no slot in it.
+bool Contact::refill(const la::CrsMatrix& K, const la::CrsMatrix& D) {
+  Kp_->resumeFill();
+  Kp_->setAllToScalar(0.0);
+  const auto& kp_cols = Kp_->getColMap();
+  long missing = 0;
+  std::vector<la::LO> cols;
+  auto sum_rows = [&](const la::CrsMatrix& A) {
+    // A's local column -> Kp_'s local column.
+    const auto& acols = A.getColMap();
+    std::vector<la::LO> to(acols->getNodeNumElements());
+    for (std::size_t j = 0; j < to.size(); ++j) to[j] = kp_cols->getLocalElement(acols->getGlobalElement(static_cast<la::LO>(j)));
+    for (la::LO i = 0; i < static_cast<la::LO>(A.getNodeNumRows()); ++i) {
+      la::CrsMatrix::local_inds_host_view_type ind;
+      la::CrsMatrix::values_host_view_type val;
+      A.getLocalRowView(i, ind, val);
+      cols.resize(ind.extent(0));
+      for (std::size_t k = 0; k < cols.size(); ++k) {
+        cols[k] = to[static_cast<std::size_t>(ind(k))];
+        missing += cols[k] < 0;
+      }
+      const auto n = Kp_->sumIntoLocalValues(i, Teuchos::ArrayView<const la::LO>(cols), Teuchos::ArrayView<const double>(val.data(), val.extent(0)));
+      missing += static_cast<long>(cols.size()) - n;
+    }
+  };
+  sum_rows(K);
+  sum_rows(D);
+  long glob = 0;
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &missing, &glob);
+  Kp_->fillComplete(dist_.owned_map(), dist_.owned_map());
+  return glob == 0;
 }
 
 void Contact::update_changed() {

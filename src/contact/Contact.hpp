@@ -133,6 +133,8 @@ class Contact {
   void send_reactions(la::Vector& r);
   void rewrite_rigid_rows(la::CrsMatrix& K);
   la::RCP<la::CrsMatrix> coupled_tangent(const la::RCP<la::CrsMatrix>& K);
+  std::array<long, 2> pattern_signature() const;
+  bool refill(const la::CrsMatrix& K, const la::CrsMatrix& D);
   void update_changed();
 
   int dim_;
@@ -153,6 +155,9 @@ class Contact {
   la::RCP<const la::Import> master_import_;
   la::RCP<const la::Export> master_export_;
   la::RCP<la::Vector> master_u_, master_r_;
+  // The coupled tangent K' of the last evaluation and the signature of its graph.
+  la::RCP<la::CrsMatrix> Kp_;
+  std::array<long, 2> Kp_signature_{};
 };
 
 }  // namespace stentor
