@@ -425,6 +425,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     total_linear += nr.linear_iterations;
     if (!nr.converged) {
       u.update(1.0, u_prev, 0.0);
+      assembler->rollback_history();  // Gauss-point state: back to the last accepted step
       if (consecutive_cuts >= cfg.stepping.max_cutbacks) {
         std::ostringstream os;
         os << "Newton failed at t = " << t_new << " (" << nr.failure << ") after " << consecutive_cuts
@@ -441,6 +442,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     }
     t = t_new;
     ++step;
+    assembler->commit_history();  // Newton's last assemble() was at the accepted u
     u_before_last.update(1.0, u_prev, 0.0);
     dt_last = dt;
     const auto& reac = assembler->reactions();
