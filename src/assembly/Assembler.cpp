@@ -724,7 +724,22 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
 
 Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
   u_overlap_->doImport(u, *dist_.importer(), Tpetra::INSERT);
+  using Law = CiarletGeymonatPlasticity;
   CellFields out;
+  std::vector<int> extra_index;  // history columns written out
+  if (has_history())
+    for (int i = 0; i < Law::kNumHist; ++i)
+      if (Law::kHistory[i].output) {
+        out.extra_names.push_back(Law::kHistory[i].name);
+        extra_index.push_back(i);
+      }
+  const int nx = static_cast<int>(extra_index.size());
+  Kokkos::View<int*, la::ExecSpace> xcol("extra_columns", extra_index.size());
+  {
+    auto xh = Kokkos::create_mirror_view(xcol);
+    for (int k = 0; k < nx; ++k) xh(k) = extra_index[static_cast<std::size_t>(k)];
+    Kokkos::deep_copy(xcol, xh);
+  }
   const int dim = dim_;
   auto X = dist_.coords();
   auto uv = u_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
@@ -744,14 +759,14 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
     const CellType type = lb.type;
     const int nn = lb.nodes_per_cell;
     auto conn = lb.conn;
-    Kokkos::View<double* [8], Kokkos::LayoutRight, la::ExecSpace> res("cell_fields", nc);
+    Kokkos::View<double**, Kokkos::LayoutRight, la::ExecSpace> res("cell_fields", nc, 8 + nx);
     Kokkos::parallel_for(
         "stentor::cell_fields", Kokkos::RangePolicy<la::ExecSpace>(0, nc), KOKKOS_LAMBDA(const int c) {
           double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], N[kMaxCellNodes], dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
           int dofs[kMaxCellDofs];
           gather_cell(c, nn, dim, conn, X, uv, Xe, Ue, dofs);
           Mat3 sig = Mat3::zero();
-          double Jm = 0.0, vol = 0.0;
+          double Jm = 0.0, vol = 0.0, acc[CiarletGeymonatPlasticity::kNumHist] = {};
           for (int g = 0; g < q.n; ++g) {
             shape_functions(type, q.xi[g], N, dN);
             const double w = q.w[g] * reference_gradients(dim, nn, Xe, dN, dNdX);
@@ -759,6 +774,7 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
             const double J = det(F);
             vol += w;
             Jm += w * J;
+            for (int k = 0; has_hist && k < nx; ++k) acc[k] += w * hist(c * ngp + g, xcol(k));
             if (J > 0.0 && has_hist) {
               Mat3 Ftr;
               for (int i = 0; i < 9; ++i) Ftr(i / 3, i % 3) = hist(c * ngp + g, CiarletGeymonatPlasticity::kFtr + i);
@@ -769,6 +785,7 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
             }
           }
           sig = (1.0 / vol) * sig;
+          for (int k = 0; k < nx; ++k) res(c, 8 + k) = acc[k] / vol;
           res(c, 0) = sig(0, 0);
           res(c, 1) = sig(1, 1);
           res(c, 2) = sig(2, 2);
@@ -783,6 +800,7 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
       for (int k = 0; k < 6; ++k) out.stress.push_back(h(c, k));
       out.von_mises.push_back(h(c, 6));
       out.J.push_back(h(c, 7));
+      for (int k = 0; k < nx; ++k) out.extra.push_back(h(c, 8 + k));
     }
   }
   return out;

@@ -16,6 +16,7 @@
 // docs/performance.md compares the two.
 #pragma once
 #include <array>
+#include <string>
 #include <vector>
 
 #include "bc/Loads.hpp"
@@ -110,9 +111,14 @@ class Assembler {
 
   // Per local cell: Cauchy stress (xx, yy, zz, xy, yz, xz) averaged over Gauss points,
   // von Mises of that average, mean J. Order: Distribution::blocks() order.
+  // With Gauss-point history (has_history()): per cell the average over its Gauss points
+  // of each history variable marked for output (kHistory), named in extra_names
+  // (0 in blocks without history); `extra` holds extra_names.size() values per cell.
   struct CellFields {
     std::vector<GId> cell_ids;
     std::vector<double> stress, von_mises, J;
+    std::vector<std::string> extra_names;
+    std::vector<double> extra;
   };
   CellFields cell_fields(const la::Vector& u);
 

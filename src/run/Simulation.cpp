@@ -241,6 +241,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     for (int k = 0; k < dim; ++k) columns.push_back("u_" + p.name + "_" + kAxes[k]);
   if (contact)
     for (const auto& c : contact->history_columns()) columns.push_back(c);
+  if (assembler->has_history()) columns.push_back("plastic_dissipation");  // of the step
   int io_error = 0;
   std::string io_message;
   if (rank == 0) {
@@ -331,14 +332,16 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     Timers::Scope s{timers, "output"};
     u_all.doImport(u, gather, Tpetra::INSERT);
     Assembler::CellFields cf = assembler->cell_fields(u);
-    std::vector<double> packed;  // per local cell: stress (6), von Mises, J
+    const std::size_t nx = cf.extra_names.size(), kv = 8 + nx;  // + history fields (plasticity)
+    std::vector<double> packed;  // per local cell: stress (6), von Mises, J, extra
     for (std::size_t c = 0; c < cf.cell_ids.size(); ++c) {
       packed.insert(packed.end(), cf.stress.begin() + static_cast<std::ptrdiff_t>(6 * c),
                     cf.stress.begin() + static_cast<std::ptrdiff_t>(6 * c + 6));
       packed.push_back(cf.von_mises[c]);
       packed.push_back(cf.J[c]);
+      packed.insert(packed.end(), cf.extra.begin() + static_cast<std::ptrdiff_t>(nx * c), cf.extra.begin() + static_cast<std::ptrdiff_t>(nx * c + nx));
     }
-    const Gathered cells = gather_on_root(std::vector<long long>(cf.cell_ids.begin(), cf.cell_ids.end()), packed, 8, nranks);
+    const Gathered cells = gather_on_root(std::vector<long long>(cf.cell_ids.begin(), cf.cell_ids.end()), packed, static_cast<int>(kv), nranks);
     // Contact fields at slave nodes.
     Gathered slaves;
     if (contact) {
@@ -347,15 +350,16 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     }
     if (rank != 0 || !xdmf) return;
     const std::size_t nc = mesh.num_volume_cells(), nn = mesh.num_nodes();
-    std::vector<double> disp(3 * nn, 0.0), stress(6 * nc), vm(nc), J(nc), owner(nc);
+    std::vector<double> disp(3 * nn, 0.0), stress(6 * nc), vm(nc), J(nc), owner(nc), extra(nx * nc);
     auto uh = u_all.getLocalViewHost(Tpetra::Access::ReadOnly);
     for (std::size_t i = 0; i < all_dofs.size(); ++i)
       disp[3 * static_cast<std::size_t>(all_dofs[i] / dim) + static_cast<std::size_t>(all_dofs[i] % dim)] = uh(i, 0);
     for (std::size_t i = 0; i < cells.ids.size(); ++i) {
       const auto id = static_cast<std::size_t>(cells.ids[i]);
-      for (int k = 0; k < 6; ++k) stress[6 * id + k] = cells.values[8 * i + k];
-      vm[id] = cells.values[8 * i + 6];
-      J[id] = cells.values[8 * i + 7];
+      for (int k = 0; k < 6; ++k) stress[6 * id + k] = cells.values[kv * i + k];
+      vm[id] = cells.values[kv * i + 6];
+      J[id] = cells.values[kv * i + 7];
+      for (std::size_t k = 0; k < nx; ++k) extra[k * nc + id] = cells.values[kv * i + 8 + k];
       owner[id] = cells.from[i];
     }
     xdmf->begin_step(t);
@@ -364,6 +368,8 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     xdmf->cell_field("von_mises", 1, vm);
     xdmf->cell_field("J", 1, J);
     xdmf->cell_field("mpi_rank", 1, owner);
+    for (std::size_t k = 0; k < nx; ++k)
+      xdmf->cell_field(cf.extra_names[k], 1, std::vector<double>(extra.begin() + k * nc, extra.begin() + (k + 1) * nc));
     if (contact) write_contact_fields(*xdmf, nn, slaves);
     xdmf->end_step();
   };
@@ -492,6 +498,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
         for (int k = 0; k < dim; ++k) row.push_back(pv[3 * p + k]);
       if (contact)
         for (double v : contact->history_values(cstats)) row.push_back(v);
+      if (assembler->has_history()) row.push_back(system.last.plastic_dissipation);
       Timers::Scope s{timers, "output"};
       history->row(row);
     } else {

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <Tpetra_Core.hpp>
+#include <hdf5.h>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -32,7 +33,8 @@ constexpr double kC1 = 0.5e6, kC2 = 0.005e6, kD = 0.35e6, kY = 0.1e6;
 
 // Unit cube (inputs/block3d.geo) pulled to x = 1 + stretch on the right face, symmetry
 // conditions on left/front/bottom: a homogeneous uniaxial state the mesh reproduces exactly.
-std::string deck_text(const std::string& model_params, double stretch, int steps, int newton_max, const std::string& name) {
+std::string deck_text(const std::string& model_params, double stretch, int steps, int newton_max, const std::string& name,
+                      bool fields = false) {
   const std::string geo = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
   return R"X(<ParameterList name="stentor">
   <ParameterList name="Mesh">
@@ -69,7 +71,7 @@ std::string deck_text(const std::string& model_params, double stretch, int steps
   <ParameterList name="Linear Solver"><Parameter name="method" type="string" value="direct"/></ParameterList>
   <ParameterList name="Output">
     <Parameter name="basename" type="string" value=")X" + name + R"X("/>
-    <Parameter name="fields" type="bool" value="false"/>
+    <Parameter name="fields" type="bool" value=")X" + std::string(fields ? "true" : "false") + R"X("/>
   </ParameterList>
 </ParameterList>
 )X";
@@ -109,6 +111,35 @@ double nominal_stress(double lambda, double Y, double H) {
     if (tau_axial(mid) - Y - H * std::log(lambda / mid) > 0) hi = mid; else lo = mid;
   }
   return tau_axial(0.5 * (lo + hi)) / lambda;
+}
+
+// Cell field `name` of the last output step of an HDF5 file (all cells).
+std::vector<double> last_cell_field(const fs::path& h5, int step, const std::string& name) {
+  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  std::vector<double> v;
+  if (f < 0) return v;
+  const std::string path = "/step_" + std::to_string(step) + "/" + name;
+  const hid_t d = H5Dopen2(f, path.c_str(), H5P_DEFAULT);
+  if (d >= 0) {
+    const hid_t sp = H5Dget_space(d);
+    v.resize(static_cast<std::size_t>(H5Sget_simple_extent_npoints(sp)));
+    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Sclose(sp);
+    H5Dclose(d);
+  }
+  H5Fclose(f);
+  return v;
+}
+
+// Equivalent plastic strain of uniaxial tension at stretch lambda (0 while elastic).
+double alpha_uniaxial(double lambda, double Y, double H) {
+  if (tau_axial(lambda) <= Y) return 0.0;
+  double lo = 1.0, hi = lambda;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (tau_axial(mid) - Y - H * std::log(lambda / mid) > 0) hi = mid; else lo = mid;
+  }
+  return std::log(lambda / (0.5 * (lo + hi)));
 }
 
 // ---- Assembler-level fixture: the cube with the plastic material.
@@ -240,7 +271,7 @@ TEST(PlasticityFE, CommittedStateOnlyChangesOnCommit) {
 TEST(PlasticityFE, UniaxialTensionMatchesClosedForm) {
   for (double H : {0.0, 0.5e6}) {
     const std::string name = H == 0.0 ? "uniaxial_perfect" : "uniaxial_hardening";
-    const Config cfg = write_and_read(deck_text(plastic_params(kY, H), 0.2, 10, 25, name), name);
+    const Config cfg = write_and_read(deck_text(plastic_params(kY, H), 0.2, 10, 25, name, true), name);
     RunOptions o;
     o.output_dir = (kDir / name).string();
     RunResult res;
@@ -254,6 +285,33 @@ TEST(PlasticityFE, UniaxialTensionMatchesClosedForm) {
     }
     std::cout << "[ plastic ] uniaxial H = " << H << ": max |reaction - P11 closed form| / Y = " << worst << "\n";
     EXPECT_LT(worst, 1e-8);
+    // Output: cell fields of the last step (homogeneous state: every cell the same) and the
+    // per-step plastic dissipation column (unit volume), whose sum is the accumulated field.
+    const fs::path h5 = kDir / name / (name + ".h5");
+    const auto alpha = last_cell_field(h5, 10, "equivalent_plastic_strain");
+    const auto q = last_cell_field(h5, 10, "mandel_hill_norm");
+    const auto flag = last_cell_field(h5, 10, "yielding");
+    const auto dp = last_cell_field(h5, 10, "plastic_dissipation");
+    ASSERT_EQ(alpha.size(), 100u);
+    ASSERT_EQ(dp.size(), 100u);
+    const double a_exact = alpha_uniaxial(1.2, kY, H);
+    double dp_sum = 0.0;
+    for (std::size_t i = 0; i < hist.rows(); ++i) {
+      EXPECT_GE(hist["plastic_dissipation"][i], 0.0);
+      dp_sum += hist["plastic_dissipation"][i];
+    }
+    double ea = 0.0, eq = 0.0;
+    for (std::size_t c = 0; c < alpha.size(); ++c) {
+      ea = std::max(ea, std::abs(alpha[c] - a_exact));
+      eq = std::max(eq, std::abs(q[c] - (kY + H * a_exact)) / kY);
+      EXPECT_EQ(flag[c], 1.0);
+      EXPECT_NEAR(dp[c], dp_sum, 1e-10 * dp_sum);
+    }
+    std::cout << "[ plastic ] uniaxial H = " << H << ": alpha = " << a_exact << ", max |alpha - closed form| = " << ea
+              << ", max ||M||_H/(Y + H alpha) - 1 = " << eq << ", sum D_p / (Y alpha) = " << dp_sum / (kY * a_exact) << "\n";
+    EXPECT_LT(ea, 1e-10);
+    EXPECT_LT(eq, 1e-10);
+    EXPECT_GE(dp_sum, kY * a_exact);  // D_p >= dg Y + H dg^2 / 2 per step (docs/plasticity.md)
     EXPECT_LT(tau_axial(1.02), kY);  // the path crosses the yield onset
     EXPECT_GT(tau_axial(1.2), 1.5 * kY);
   }
