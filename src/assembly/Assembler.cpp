@@ -471,7 +471,8 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
       ElementTime et;
       et.eval = in.eval;
       et.dt = in.dt;
-      et.eta = block_eta_[static_cast<std::size_t>(lb.volume_block)];
+      // Viscosity needs a step (dt > 0): the initial-state assembly (dt = 0) has none (it was 0/0 = NaN).
+      et.eta = in.dt > 0.0 ? block_eta_[static_cast<std::size_t>(lb.volume_block)] : 0.0;
       et.has_old = has_old && (in.eval != StressEval::EndPoint || et.eta > 0.0);
       const CellType type = lb.type;
       const int nn = lb.nodes_per_cell;

@@ -1135,9 +1135,9 @@ Config DeckReader::read() {
   if (root.isSublist("Stepping")) read_stepping(root.sublist("Stepping"));
   if (cfg_.problem.dynamic()) {
     for (const auto& m : cfg_.materials)
-      if (m.plastic())
-        fail("'Materials->" + m.name + "->model' = Ciarlet-Geymonat plasticity is not available in a dynamic analysis yet "
-             "(statics only; docs/plasticity.md)");
+      if (m.plastic() && cfg_.time.scheme == "midpoint")
+        fail("'Materials->" + m.name + "->model' = Ciarlet-Geymonat plasticity needs 'Time Integration->scheme' = gonzalez "
+             "(energy-dissipative), newmark or hht, not midpoint");
     for (const auto& m : cfg_.materials)
       if (!(m.density > 0.0))
         fail("'Materials->" + m.name + "->density' must be > 0 in a dynamic analysis ('Problem->analysis' = dynamic)");

@@ -123,8 +123,8 @@ std::vector<ListSpec> build_schema() {
       "A hyperelastic material. Ciarlet-Geymonat: W = C1 (I1 - 3) + C2 (I2 - 3) + D (I3 - 1) "
       "- (C1 + 2 C2 + D) ln I3; small-strain mu = 2 (C1 + C2), lambda = 4 (C2 + D). Plane strain in 2D. "
       "`Ciarlet-Geymonat plasticity` adds multiplicative von Mises plasticity F = Fe Ftr with the Mandel "
-      "stress, yield |M|_H <= Y + H alpha and linear isotropic hardening (docs/plasticity.md); statics only "
-      "for now.",
+      "stress, yield |M|_H <= Y + H alpha and linear isotropic hardening (docs/plasticity.md); in dynamics "
+      "with the gonzalez (energy-dissipative), newmark or hht scheme.",
       {str("model", "Ciarlet-Geymonat", "Constitutive law.").one_of({"Ciarlet-Geymonat", "Ciarlet-Geymonat plasticity"}),
        dbl("C1", 0.0, "First invariant coefficient [Pa].").req().gt(0.0),
        dbl("C2", 0.0, "Second invariant coefficient [Pa].").ge(0.0),

@@ -234,6 +234,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
                                                    "angular_momentum_x", "angular_momentum_y", "angular_momentum_z"};
   std::vector<std::string> energy_cols = energy_columns;
   if (contact) energy_cols.insert(energy_cols.end(), {"contact_work", "friction_dissipation"});
+  if (assembler->has_history()) energy_cols.push_back("plastic_dissipation");  // cumulative; also in "dissipation"
   std::vector<std::string> columns = {"step", "time", "dt", "newton_iterations", "linear_iterations", "cutbacks", "strain_energy"};
   for (const auto& d : assembler->dirichlet_sets())
     for (int k = 0; k < dim; ++k) columns.push_back("reaction_" + d.name + "_" + kAxes[k]);
@@ -283,12 +284,14 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   // Cumulative energy terms (dynamics), written per step to <basename>_energy.csv.
   double cum_ext = 0.0, cum_sup = 0.0, cum_diss = 0.0, max_balance = 0.0;
   double cum_contact = 0.0, cum_friction = 0.0;  // contact work on the body, frictional dissipation
+  double cum_plastic = 0.0;
   auto energy_row = [&](int step_no, double time, const EnergyAudit& au) {
     if (rank != 0 || !energy_csv) return;
     std::vector<double> row = {double(step_no), time, au.kinetic, au.strain, au.kinetic + au.strain, cum_ext, cum_sup, cum_diss, au.balance,
                                au.momentum[0], au.momentum[1], au.momentum[2], au.angular_momentum[0], au.angular_momentum[1],
                                au.angular_momentum[2]};
     if (contact) row.insert(row.end(), {cum_contact, cum_friction});
+    if (assembler->has_history()) row.push_back(cum_plastic);
     energy_csv->row(row);
   };
   // Non-finite values never reach the CSV or HDF5 files: the name of the first
@@ -465,6 +468,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
       cum_ext += au.external_work;
       cum_sup += au.support_work;
       cum_diss += au.dissipation;
+      cum_plastic += au.plastic_dissipation;
       if (contact) {
         // E_{n+1} - E_n = W_ext + W_sup - D + W_contact - D_friction.
         au.balance -= cstats.work - cstats.friction_dissipation;

@@ -517,6 +517,12 @@ TEST_F(Deck, PlasticityParameters) {
   expect_error(replace(kMinimalDeck, d, plastic + Y + "<Parameter name=\"hardening\" type=\"double\" value=\"-1\"/>" + d),
                {"'Materials->steel->hardening' must be >= 0, got -1"});
   expect_error(replace(kMinimalDeck, d, Y + d), {"'Materials->steel->yield stress' needs 'model' = Ciarlet-Geymonat plasticity"});
+  const std::string dyn = "<ParameterList name=\"Problem\"><Parameter name=\"analysis\" type=\"string\" value=\"dynamic\"/>"
+                          "</ParameterList><ParameterList name=\"Time Integration\"><Parameter name=\"scheme\" "
+                          "type=\"string\" value=\"midpoint\"/></ParameterList><ParameterList name=\"Mesh\">";
+  const std::string rho = "<Parameter name=\"density\" type=\"double\" value=\"1\"/>";
+  expect_error(replace(replace(kMinimalDeck, d, plastic + Y + rho + d), "<ParameterList name=\"Mesh\">", dyn),
+               {"plasticity needs 'Time Integration->scheme' = gonzalez"});
 }
 
 TEST_F(Deck, OtherRangesAndChoices) {
