@@ -399,3 +399,51 @@ TEST(PlasticityFE, DynamicImpactEnergyBalanceWithPlasticDissipation) {
   EXPECT_GE(dmin, 0.0);
   EXPECT_LT(worst, 1e-9);
 }
+
+// The Gonzalez (energy-dissipative) step with history: its tangent against central
+// differences (flow at most points, committed state from a first plastic step), and with
+// an unreachable yield stress the elastic Gonzalez kernel.
+TEST(PlasticityFE, GonzalezStepTangentAndElasticLimit) {
+  Fixture s(write_and_read(deck_text(plastic_params(kY, 0.3e6), 0.1, 1, 25, "gz"), "gz"));
+  Fixture big(write_and_read(deck_text(plastic_params(1e30, 0.0), 0.1, 1, 25, "gzbig"), "gzbig"));
+  Fixture el(write_and_read(deck_text("", 0.1, 1, 25, "gzel"), "gzel"));
+  const auto map = s.dist->owned_map();
+  la::Vector u0(map), u(map), r(map), rp(map), rm(map), du(map), Kdu(map), up(map);
+  s.fill(u0, 0.6);
+  s.as->assemble(u0, 1.0, 1.0, r, false);
+  s.as->commit_history();
+  s.fill(u, 1.0, 0.03);
+  Assembler::StepInput in;
+  in.eval = StressEval::Gonzalez;
+  in.u_old = &u0;
+  in.dt = 1e-3;
+  in.load_time = 1.0;
+  const auto st = s.as->assemble(u, in, r, true);
+  EXPECT_GT(yielding_points(s.as->trial_history(0)), 50);
+  EXPECT_GT(st.plastic_dissipation, 0.0);
+  du.randomize();
+  for (la::LO i = 0; i < static_cast<la::LO>(map->getNodeNumElements()); ++i)
+    if (s.as->is_dirichlet(i)) du.getLocalViewHost(Tpetra::Access::ReadWrite)(i, 0) = 0.0;
+  s.as->matrix()->apply(du, Kdu);
+  const double h = 1e-7;
+  up.update(1.0, u, h, du, 0.0);
+  s.as->assemble(up, in, rp, false);
+  up.update(1.0, u, -h, du, 0.0);
+  s.as->assemble(up, in, rm, false);
+  rp.update(-0.5 / h, rm, 0.5 / h);
+  rp.update(-1.0, Kdu, 1.0);
+  double err = 0.0;
+  auto a = rp.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (std::size_t i = 0; i < a.extent(0); ++i)
+    if (!s.as->is_dirichlet(static_cast<la::LO>(i))) err = std::max(err, std::abs(a(i, 0)));
+  std::cout << "[ plastic ] Gonzalez step: |K du - FD|/|K du| = " << err / Kdu.normInf() << "\n";
+  EXPECT_LT(err / Kdu.normInf(), 1e-6);
+
+  la::Vector r1(map), r2(map);
+  const auto s1 = el.as->assemble(u, in, r1, true);
+  const auto s2 = big.as->assemble(u, in, r2, true);
+  EXPECT_NEAR(s1.energy, s2.energy, 1e-14 * std::abs(s1.energy));
+  EXPECT_EQ(s2.plastic_dissipation, 0.0);
+  r1.update(-1.0, r2, 1.0);
+  EXPECT_LE(r1.normInf(), 1e-14 * r2.normInf());
+}
