@@ -56,6 +56,8 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
   for (std::size_t b = 0; b < mesh.volumes.size(); ++b) {
     const MaterialConfig& m = cfg.materials[static_cast<std::size_t>(block_material[b])];
     block_mat_.push_back(CiarletGeymonat{m.C1, m.C2, m.D});
+    block_plastic_.push_back(m.plastic() ? 1 : 0);
+    block_plastic_law_.push_back(CiarletGeymonatPlasticity{CiarletGeymonat{m.C1, m.C2, m.D}, m.yield_stress, m.hardening});
     block_density_.push_back(m.density);
     // Viscosity acts only in dynamics (it needs a time step); statics pays nothing for it.
     block_eta_.push_back(cfg.problem.dynamic() ? m.viscosity : 0.0);
@@ -70,8 +72,9 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
   r_static_ = Teuchos::rcp(new la::Vector(dist.owned_map()));
   f_ext_ = Teuchos::rcp(new la::Vector(dist.owned_map()));
   work_ = Teuchos::rcp(new la::Vector(dist.owned_map()));
-  failures_ = Kokkos::View<int*, la::ExecSpace>("failures", 2);
+  failures_ = Kokkos::View<int*, la::ExecSpace>("failures", 3);
   build_graph();
+  init_history();
 
   // Dirichlet flags (all overlap dofs, so ghost rows are skipped too) and owned values.
   const la::LO nloc = dist.num_local_nodes();
@@ -109,6 +112,47 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
   for (la::LO i : owned_dirichlet_dofs_) owned_dirichlet_flag_[static_cast<std::size_t>(i)] = 1;
   reactions_.assign(loads.dirichlet.size(), {0.0, 0.0, 0.0});
   setup_loads(mesh);
+}
+
+void Assembler::init_history() {
+  // Views only for blocks whose law has history, and none at all without such a block.
+  using Law = CiarletGeymonatPlasticity;
+  bool any = false;
+  for (const auto& lb : dist_.blocks()) any = any || block_plastic_[static_cast<std::size_t>(lb.volume_block)];
+  if (!any) return;
+  for (const auto& lb : dist_.blocks()) {
+    BlockHistory bh;
+    bh.ngp = make_rule(lb.type, stiffness_quadrature_degree(lb.type)).n;
+    if (block_plastic_[static_cast<std::size_t>(lb.volume_block)]) {
+      const std::size_t rows = lb.cell_ids.size() * static_cast<std::size_t>(bh.ngp);
+      bh.committed = HistoryView("history_committed", rows, Law::kNumHist);
+      bh.trial = HistoryView("history_trial", rows, Law::kNumHist);
+      auto h = bh.committed;
+      Kokkos::parallel_for(
+          "stentor::init_history", Kokkos::RangePolicy<la::ExecSpace>(0, rows),
+          KOKKOS_LAMBDA(const int i) { stentor::init_history<Law>(&h(i, 0)); });
+      Kokkos::deep_copy(bh.trial, bh.committed);
+    }
+    history_.push_back(bh);
+  }
+}
+
+void Assembler::commit_history() {
+  for (auto& bh : history_)
+    if (bh.committed.extent(0) > 0) Kokkos::deep_copy(bh.committed, bh.trial);
+}
+
+void Assembler::rollback_history() {
+  for (auto& bh : history_)
+    if (bh.committed.extent(0) > 0) Kokkos::deep_copy(bh.trial, bh.committed);
+}
+
+Assembler::HistoryView Assembler::committed_history(std::size_t b) const {
+  return b < history_.size() ? history_[b].committed : HistoryView();
+}
+
+Assembler::HistoryView Assembler::trial_history(std::size_t b) const {
+  return b < history_.size() ? history_[b].trial : HistoryView();
 }
 
 void Assembler::build_graph() {
@@ -412,7 +456,7 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
     Kl = K_overlap_->getLocalMatrixDevice();
     Kokkos::deep_copy(Kl.values, 0.0);
   }
-  double energy = 0.0, dissipation = 0.0;
+  double energy = 0.0, dissipation = 0.0, plastic = 0.0;
   {
     auto uv = u_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
     auto u0v = u0_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
@@ -427,64 +471,89 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
       ElementTime et;
       et.eval = in.eval;
       et.dt = in.dt;
-      et.eta = block_eta_[static_cast<std::size_t>(lb.volume_block)];
+      // Viscosity needs a step (dt > 0): the initial-state assembly (dt = 0) has none (it was 0/0 = NaN).
+      et.eta = in.dt > 0.0 ? block_eta_[static_cast<std::size_t>(lb.volume_block)] : 0.0;
       et.has_old = has_old && (in.eval != StressEval::EndPoint || et.eta > 0.0);
       const CellType type = lb.type;
       const int nn = lb.nodes_per_cell;
       auto conn = lb.conn;
       double e_block = 0.0;
-      Kokkos::View<double*, la::ExecSpace> dsum("dissipation", 1);
-      auto body = [=](const int c, double& e, auto tangent_tag, auto atomic_tag) {
-        constexpr bool T = decltype(tangent_tag)::value;
-        constexpr bool A = decltype(atomic_tag)::value;
-        double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], U0e[kMaxCellNodes][3], re[kMaxCellDofs];
-        double ke[T ? kMaxCellDofs : 1][kMaxCellDofs];
-        int dofs[kMaxCellDofs];
-        gather_cell(c, nn, dim, conn, X, uv, Xe, Ue, dofs);
-        if (et.has_old)
-          for (int a = 0; a < nn; ++a)
-            for (int d = 0; d < 3; ++d) U0e[a][d] = d < dim ? u0v(dofs[a * dim] + d, 0) : 0.0;
-        double ec = 0.0, dc = 0.0;
-        const int status = solid_element<T>(dim, type, nn, Xe, Ue, U0e, mat, et, q, re, ke, ec, dc);
-        if (status != kElementOk) {
-          Kokkos::atomic_increment(&fails(status == kElementInverted ? 0 : 1));
-          return;
+      Kokkos::View<double*, la::ExecSpace> dsum("dissipation", 2);  // viscous, plastic
+      // One launch per block; a block whose law has Gauss-point history reads its committed
+      // rows and writes its trial rows (cell c: rows c * ngp ...).
+      auto launch = [&](const auto& law, auto history_tag) {
+        constexpr bool H = decltype(history_tag)::value;
+        HistoryView hn, h1;
+        int ngp = 0, nh = 0;
+        if (H) {
+          hn = history_[bi].committed;
+          h1 = history_[bi].trial;
+          ngp = history_[bi].ngp;
+          nh = static_cast<int>(hn.extent(1));
         }
-        e += ec;
-        if (dc != 0.0) Kokkos::atomic_add(&dsum(0), dc);
-        scatter<T, A>(nn * dim, dofs, re, ke, rv, Kl, flags);
-      };
-      if (colors_.empty()) {
-        // Atomic sums: all cells in one kernel.
-        if (with_tangent)
-          Kokkos::parallel_reduce(
-              "stentor::solid_residual_tangent", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
-              KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::true_type{}, std::true_type{}); }, e_block);
-        else
-          Kokkos::parallel_reduce(
-              "stentor::solid_residual", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
-              KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::false_type{}, std::true_type{}); }, e_block);
-      } else {
-        // One kernel per colour: its cells share no node, so plain sums are race-free.
-        const BlockColors& bc = colors_[bi];
-        auto cells = bc.cells;
-        for (std::size_t k = 0; k + 1 < bc.offsets.size(); ++k) {
-          double e_color = 0.0;
-          const Kokkos::RangePolicy<la::ExecSpace> range(bc.offsets[k], bc.offsets[k + 1]);
+        auto body = [=](const int c, double& e, auto tangent_tag, auto atomic_tag) {
+          constexpr bool T = decltype(tangent_tag)::value;
+          constexpr bool A = decltype(atomic_tag)::value;
+          double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], U0e[kMaxCellNodes][3], re[kMaxCellDofs];
+          double ke[T ? kMaxCellDofs : 1][kMaxCellDofs];
+          int dofs[kMaxCellDofs];
+          gather_cell(c, nn, dim, conn, X, uv, Xe, Ue, dofs);
+          if (et.has_old)
+            for (int a = 0; a < nn; ++a)
+              for (int d = 0; d < 3; ++d) U0e[a][d] = d < dim ? u0v(dofs[a * dim] + d, 0) : 0.0;
+          double ec = 0.0, dc = 0.0, pc = 0.0;
+          int status;
+          if constexpr (H)
+            status = solid_element<T>(dim, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc,
+                                      CellHistory{&hn(c * ngp, 0), &h1(c * ngp, 0), nh}, &pc);
+          else
+            status = solid_element<T>(dim, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc);
+          if (status != kElementOk) {
+            Kokkos::atomic_increment(&fails(status == kElementInverted ? 0 : status == kElementLocalFailure ? 2 : 1));
+            return;
+          }
+          e += ec;
+          if (dc != 0.0) Kokkos::atomic_add(&dsum(0), dc);
+          if (H && pc != 0.0) Kokkos::atomic_add(&dsum(1), pc);
+          scatter<T, A>(nn * dim, dofs, re, ke, rv, Kl, flags);
+        };
+        if (colors_.empty()) {
+          // Atomic sums: all cells in one kernel.
           if (with_tangent)
             Kokkos::parallel_reduce(
-                "stentor::solid_residual_tangent_colored", range,
-                KOKKOS_LAMBDA(const int i, double& e) { body(cells(i), e, std::true_type{}, std::false_type{}); }, e_color);
+                "stentor::solid_residual_tangent", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
+                KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::true_type{}, std::true_type{}); }, e_block);
           else
             Kokkos::parallel_reduce(
-                "stentor::solid_residual_colored", range,
-                KOKKOS_LAMBDA(const int i, double& e) { body(cells(i), e, std::false_type{}, std::false_type{}); }, e_color);
-          e_block += e_color;
+                "stentor::solid_residual", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
+                KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::false_type{}, std::true_type{}); }, e_block);
+        } else {
+          // One kernel per colour: its cells share no node, so plain sums are race-free.
+          const BlockColors& bc = colors_[bi];
+          auto cells = bc.cells;
+          for (std::size_t k = 0; k + 1 < bc.offsets.size(); ++k) {
+            double e_color = 0.0;
+            const Kokkos::RangePolicy<la::ExecSpace> range(bc.offsets[k], bc.offsets[k + 1]);
+            if (with_tangent)
+              Kokkos::parallel_reduce(
+                  "stentor::solid_residual_tangent_colored", range,
+                  KOKKOS_LAMBDA(const int i, double& e) { body(cells(i), e, std::true_type{}, std::false_type{}); }, e_color);
+            else
+              Kokkos::parallel_reduce(
+                  "stentor::solid_residual_colored", range,
+                  KOKKOS_LAMBDA(const int i, double& e) { body(cells(i), e, std::false_type{}, std::false_type{}); }, e_color);
+            e_block += e_color;
+          }
         }
-      }
+      };
+      if (!history_.empty() && history_[bi].committed.extent(0) > 0)
+        launch(block_plastic_law_[static_cast<std::size_t>(lb.volume_block)], std::true_type{});
+      else
+        launch(mat, std::false_type{});
       auto dh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dsum);
       energy += e_block;
       dissipation += dh(0);
+      plastic += dh(1);
     }
 
     // Follower pressure p on the current surface (configuration u_n + theta (u - u_n)):
@@ -565,16 +634,17 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
   r_overlap_->update(1.0, *rext_overlap_, 1.0);
 
   auto fh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), failures_);
-  long local_fail[2] = {fh(0), fh(1)}, global_fail[2] = {0, 0};
-  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 2, local_fail, global_fail);
+  long local_fail[3] = {fh(0), fh(1), fh(2)}, global_fail[3] = {0, 0, 0};
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 3, local_fail, global_fail);
   if (global_fail[1] > 0)
     throw std::runtime_error(std::to_string(global_fail[1]) + " cells have a non-positive reference Jacobian (mesh check missed them)");
   Stats st;
-  double loc2[2] = {energy, dissipation}, glob2[2] = {0, 0};
-  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 2, loc2, glob2);
-  st.energy = glob2[0];
-  st.dissipation = glob2[1];
-  st.inverted = global_fail[0];
+  double loc3[3] = {energy, dissipation, plastic}, glob3[3] = {0, 0, 0};
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 3, loc3, glob3);
+  st.energy = glob3[0];
+  st.dissipation = glob3[1];
+  st.plastic_dissipation = glob3[2];
+  st.inverted = global_fail[0] + global_fail[2];  // a failed return map is inadmissible like an inverted cell
   if (st.inverted > 0) return st;
 
   r_static_->putScalar(0.0);
@@ -655,27 +725,49 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
 
 Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
   u_overlap_->doImport(u, *dist_.importer(), Tpetra::INSERT);
+  using Law = CiarletGeymonatPlasticity;
   CellFields out;
+  std::vector<int> extra_index;  // history columns written out
+  if (has_history())
+    for (int i = 0; i < Law::kNumHist; ++i)
+      if (Law::kHistory[i].output) {
+        out.extra_names.push_back(Law::kHistory[i].name);
+        extra_index.push_back(i);
+      }
+  const int nx = static_cast<int>(extra_index.size());
+  Kokkos::View<int*, la::ExecSpace> xcol("extra_columns", extra_index.size());
+  {
+    auto xh = Kokkos::create_mirror_view(xcol);
+    for (int k = 0; k < nx; ++k) xh(k) = extra_index[static_cast<std::size_t>(k)];
+    Kokkos::deep_copy(xcol, xh);
+  }
   const int dim = dim_;
   auto X = dist_.coords();
   auto uv = u_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
-  for (const auto& lb : dist_.blocks()) {
+  for (std::size_t bi = 0; bi < dist_.blocks().size(); ++bi) {
+    const auto& lb = dist_.blocks()[bi];
     const std::size_t nc = lb.cell_ids.size();
     out.cell_ids.insert(out.cell_ids.end(), lb.cell_ids.begin(), lb.cell_ids.end());
     if (nc == 0) continue;
     const CiarletGeymonat mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
-    const QuadRule q = make_rule(lb.type, quad_degree_[static_cast<std::size_t>(lb.volume_block)]);
+    // With history: the stress of the committed state at the kernels' Gauss points,
+    // S = G Sbar(G^T C G) G^T, G = Ftr^-1 (FrozenPlasticPotential).
+    const HistoryView hist = bi < history_.size() ? history_[bi].committed : HistoryView();
+    const bool has_hist = hist.extent(0) > 0;
+    const int ngp = has_hist ? history_[bi].ngp : 0;
+    const QuadRule q = make_rule(lb.type, has_hist ? stiffness_quadrature_degree(lb.type)
+                                                   : quad_degree_[static_cast<std::size_t>(lb.volume_block)]);
     const CellType type = lb.type;
     const int nn = lb.nodes_per_cell;
     auto conn = lb.conn;
-    Kokkos::View<double* [8], Kokkos::LayoutRight, la::ExecSpace> res("cell_fields", nc);
+    Kokkos::View<double**, Kokkos::LayoutRight, la::ExecSpace> res("cell_fields", nc, 8 + nx);
     Kokkos::parallel_for(
         "stentor::cell_fields", Kokkos::RangePolicy<la::ExecSpace>(0, nc), KOKKOS_LAMBDA(const int c) {
           double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], N[kMaxCellNodes], dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
           int dofs[kMaxCellDofs];
           gather_cell(c, nn, dim, conn, X, uv, Xe, Ue, dofs);
           Mat3 sig = Mat3::zero();
-          double Jm = 0.0, vol = 0.0;
+          double Jm = 0.0, vol = 0.0, acc[CiarletGeymonatPlasticity::kNumHist] = {};
           for (int g = 0; g < q.n; ++g) {
             shape_functions(type, q.xi[g], N, dN);
             const double w = q.w[g] * reference_gradients(dim, nn, Xe, dN, dNdX);
@@ -683,9 +775,18 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
             const double J = det(F);
             vol += w;
             Jm += w * J;
-            if (J > 0.0) sig = sig + w * cauchy_stress(F, matmul(F, mat.stress(tmul(F, F))));
+            for (int k = 0; has_hist && k < nx; ++k) acc[k] += w * hist(c * ngp + g, xcol(k));
+            if (J > 0.0 && has_hist) {
+              Mat3 Ftr;
+              for (int i = 0; i < 9; ++i) Ftr(i / 3, i % 3) = hist(c * ngp + g, CiarletGeymonatPlasticity::kFtr + i);
+              const FrozenPlasticPotential frozen{mat, inverse(Ftr)};
+              sig = sig + w * cauchy_stress(F, matmul(F, frozen.stress(tmul(F, F))));
+            } else if (J > 0.0) {
+              sig = sig + w * cauchy_stress(F, matmul(F, mat.stress(tmul(F, F))));
+            }
           }
           sig = (1.0 / vol) * sig;
+          for (int k = 0; k < nx; ++k) res(c, 8 + k) = acc[k] / vol;
           res(c, 0) = sig(0, 0);
           res(c, 1) = sig(1, 1);
           res(c, 2) = sig(2, 2);
@@ -700,6 +801,7 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
       for (int k = 0; k < 6; ++k) out.stress.push_back(h(c, k));
       out.von_mises.push_back(h(c, 6));
       out.J.push_back(h(c, 7));
+      for (int k = 0; k < nx; ++k) out.extra.push_back(h(c, 8 + k));
     }
   }
   return out;

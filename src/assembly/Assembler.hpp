@@ -16,12 +16,14 @@
 // docs/performance.md compares the two.
 #pragma once
 #include <array>
+#include <string>
 #include <vector>
 
 #include "bc/Loads.hpp"
 #include "deck/Config.hpp"
 #include "assembly/HyperelasticElement.hpp"
 #include "material/CiarletGeymonat.hpp"
+#include "material/Plasticity.hpp"
 #include "parallel/Distribution.hpp"
 
 namespace stentor {
@@ -34,7 +36,8 @@ class Assembler {
   struct Stats {
     double energy = 0.0;       // stored elastic energy int W(C_{n+1}) (global)
     double dissipation = 0.0;  // viscous energy dissipated over the step (global; 0 without viscosity)
-    long inverted = 0;         // cells with det F <= 0 at a Gauss point (global)
+    double plastic_dissipation = 0.0;  // plastic dissipation int D_p of the step t_n -> t_{n+1} (global; trial state)
+    long inverted = 0;         // cells with det F <= 0 at a Gauss point, or whose local return map failed (global)
   };
 
   // What a time step adds to the static residual. The defaults give statics:
@@ -82,6 +85,23 @@ class Assembler {
   // Colour of each cell of local block b (Distribution::blocks() order); empty with atomics.
   std::vector<int> cell_colors(std::size_t b) const;
 
+  // Gauss-point history (laws with internal state, e.g. Ciarlet-Geymonat plasticity), per
+  // local block in Kokkos views: `committed` (h_n, read by the kernels) and `trial`
+  // (h_{n+1}, written by every assemble() at the state it assembles). A deck without such
+  // a law allocates nothing and these are no-ops.
+  bool has_history() const { return !history_.empty(); }
+  // The step is accepted: trial -> committed. Call after the Newton solve converged (its
+  // last assemble() was at the accepted state).
+  void commit_history();
+  // The step is cut back: the trial copy is reset to the committed state (which no
+  // assemble() ever writes).
+  void rollback_history();
+  // Per local block b (Distribution::blocks() order): rows cell * ngp + g, kNumHist columns;
+  // empty views for blocks without history.
+  using HistoryView = Kokkos::View<double**, Kokkos::LayoutRight, la::ExecSpace>;
+  HistoryView committed_history(std::size_t b) const;
+  HistoryView trial_history(std::size_t b) const;
+
   // Sets the prescribed values at time t on the owned Dirichlet dofs of u.
   void apply_dirichlet(la::Vector& u, double t, double end_time) const;
 
@@ -91,9 +111,14 @@ class Assembler {
 
   // Per local cell: Cauchy stress (xx, yy, zz, xy, yz, xz) averaged over Gauss points,
   // von Mises of that average, mean J. Order: Distribution::blocks() order.
+  // With Gauss-point history (has_history()): per cell the average over its Gauss points
+  // of each history variable marked for output (kHistory), named in extra_names
+  // (0 in blocks without history); `extra` holds extra_names.size() values per cell.
   struct CellFields {
     std::vector<GId> cell_ids;
     std::vector<double> stress, von_mises, J;
+    std::vector<std::string> extra_names;
+    std::vector<double> extra;
   };
   CellFields cell_fields(const la::Vector& u);
 
@@ -106,6 +131,8 @@ class Assembler {
   const Loads& loads_;
   int dim_;
   std::vector<CiarletGeymonat> block_mat_;  // per mesh volume block
+  std::vector<char> block_plastic_;         // per mesh volume block: Ciarlet-Geymonat plasticity
+  std::vector<CiarletGeymonatPlasticity> block_plastic_law_;
   std::vector<double> block_density_, block_eta_;
   std::vector<int> quad_degree_;            // per mesh volume block: mass, body force, output
                                             // (the stiffness uses stiffness_quadrature_degree)
@@ -118,6 +145,14 @@ class Assembler {
     Kokkos::View<int*, la::ExecSpace> cells;
   };
   std::vector<BlockColors> colors_;
+
+  // Gauss-point history per local block (empty when no block has a law with history).
+  struct BlockHistory {
+    int ngp = 0;                 // Gauss points per cell (stiffness rule)
+    HistoryView committed, trial;  // empty for blocks without history
+  };
+  std::vector<BlockHistory> history_;
+  void init_history();
 
   la::RCP<const la::Export> exporter_;       // overlap -> owned
   la::RCP<la::CrsMatrix> K_overlap_, K_;

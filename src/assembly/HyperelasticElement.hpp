@@ -12,6 +12,7 @@
 #include "material/CiarletGeymonat.hpp"
 #include "material/DiscreteGradient.hpp"
 #include "material/Kinematics.hpp"
+#include "material/MaterialState.hpp"
 #include "stentor/tensor.hpp"
 
 namespace stentor {
@@ -29,7 +30,24 @@ inline QuadRule make_rule(CellType t, int degree) {
   return q;
 }
 
-enum ElementStatus : int { kElementOk = 0, kElementInverted = 1, kElementDegenerate = 2 };
+// kElementLocalFailure: a Gauss point's local (return-map) solve did not converge; like an
+// inverted cell, the state is inadmissible (Newton line search, then step cut-back).
+enum ElementStatus : int { kElementOk = 0, kElementInverted = 1, kElementDegenerate = 2, kElementLocalFailure = 3 };
+
+// Gauss-point history of one cell for solid_element. NoHistory: a stateless law (the
+// kernel is then exactly the hyperelastic one). CellHistory: rows g of the committed
+// (h_n, read) and trial (h_{n+1}, written) per-block Views, kNumHist doubles per point.
+struct NoHistory {
+  static constexpr bool kActive = false;
+};
+struct CellHistory {
+  static constexpr bool kActive = true;
+  const double* hn;  // row of Gauss point 0 of this cell, committed
+  double* h1;        // same, trial
+  int stride;        // doubles per Gauss point
+  KOKKOS_INLINE_FUNCTION const double* n(int g) const { return hn + g * stride; }
+  KOKKOS_INLINE_FUNCTION double* np1(int g) const { return h1 + g * stride; }
+};
 
 // Deformation gradient at a point: F = I + sum_a U_a (x) dN_a/dX.
 KOKKOS_INLINE_FUNCTION Mat3 deformation_gradient(int dim, int nn, const double (*U)[3], const double (*dNdX)[3]) {
@@ -54,14 +72,80 @@ struct ElementTime {
   double eta = 0.0;      // Curnier viscosity; 0 skips all viscous work
 };
 
+// Stress and (WithTangent) A = dP/dF of a law with Gauss-point history at F1 (end point):
+// the update reads h_n and writes h_{n+1} (trial); adds Psi_{n+1} and the step's plastic
+// dissipation (times wq). False if the local solve failed.
+template <bool WithTangent, class Law>
+KOKKOS_INLINE_FUNCTION bool history_point(const Law& law, const Mat3& F1, const double* hn, double* h1, double wq, Mat3& P,
+                                          Ten4& A, double& energy, double& plastic) {
+  const PointResponse pr = law.update(tmul(F1, F1), hn, h1);
+  if (!pr.converged) return false;
+  energy += wq * pr.energy;
+  plastic += wq * pr.dissipation;
+  P = matmul(F1, pr.S);
+  if (WithTangent) spatial_tangent_dPdF(F1, pr.S, pr.CC, A);
+  return true;
+}
+
+// dP/dF_{n+1} of P = F_{n+1/2} Sigma(C_n, C_{n+1}), D = dSigma/dC_{n+1}:
+//   A_iJkL = 1/2 delta_ik Sigma_LJ + 2 sum_{I,N} Fm_iI D_IJLN F1_kN.
+KOKKOS_INLINE_FUNCTION void gonzalez_dPdF(const Mat3& Fv, const Mat3& F1, const Mat3& Sig, const Ten4& D, Ten4& A) {
+  for (int I = 0; I < 3; ++I)
+    for (int J = 0; J < 3; ++J)
+      for (int L = 0; L < 3; ++L)
+        for (int k = 0; k < 3; ++k) {
+          double t = 0.0;
+          for (int Nn = 0; Nn < 3; ++Nn) t += D(I, J, L, Nn) * F1(k, Nn);
+          A(I, J, L, k) = t;  // temporarily T[I][J][L][k]
+        }
+  Ten4 T = A;
+  for (int i = 0; i < 3; ++i)
+    for (int J = 0; J < 3; ++J)
+      for (int k = 0; k < 3; ++k)
+        for (int L = 0; L < 3; ++L) {
+          double v = 2.0 * (Fv(i, 0) * T(0, J, L, k) + Fv(i, 1) * T(1, J, L, k) + Fv(i, 2) * T(2, J, L, k));
+          if (i == k) v += 0.5 * Sig(L, J);
+          A(i, J, k, L) = v;
+        }
+}
+
+// Energy-dissipative midpoint step of a law with history (docs/plasticity.md): the return
+// map at C_{n+1} gives the state h_{n+1}, Psi_{n+1} and D_p; the stress is Gonzalez's
+// discrete gradient Sigma(C_n, C_{n+1}) of the frozen-state potential C -> W(G^T C G),
+// G = Ftr_n^-1, so that Psi_{n+1} - Psi_n = 1/2 Sigma : (C_{n+1} - C_n) - D_p exactly.
+// P = F_{n+1/2} Sigma; Sigma does not depend on the return map, so A is the plain Gonzalez one.
+template <bool WithTangent, class Law>
+KOKKOS_INLINE_FUNCTION bool history_gonzalez(const Law& law, const Mat3& Fv, const Mat3& F1, const Mat3& C0, const Mat3& C1,
+                                             const double* hn, double* h1, double wq, Mat3& P, Ten4& A, double& energy,
+                                             double& plastic) {
+  const PointResponse pr = law.update(C1, hn, h1);
+  if (!pr.converged) return false;
+  energy += wq * pr.energy;
+  plastic += wq * pr.dissipation;
+  const auto frozen = law.frozen_potential(hn);
+  Mat3 Sig;
+  Ten4 D;
+  if (WithTangent)
+    gonzalez_stress_and_tangent(frozen, C0, C1, Sig, D);
+  else
+    Sig = gonzalez_stress(frozen, C0, C1);
+  P = matmul(Fv, Sig);
+  if (WithTangent) gonzalez_dPdF(Fv, F1, Sig, D, A);
+  return true;
+}
+
 // Element internal force (and its derivative with respect to u_{n+1}):
 //   r_(a,i) = sum_q P_iJ dN_a/dX_J w detJ,  K = dr/du_{n+1} = sum_q dN_a/dX_J A_iJkL dN_b/dX_L w detJ.
-// `energy` = int W(C_{n+1}); `dissipation` = int S^v : (C_{n+1} - C_n)/2 = int eta |dC|^2/dt.
-template <bool WithTangent>
+// `energy` = int W(C_{n+1}) (with history: int Psi_{n+1}); `dissipation` = int S^v : (C_{n+1} - C_n)/2
+// = int eta |dC|^2/dt; `plastic` += int D_p of the step (laws with history only).
+// Mat is CiarletGeymonat with Hist = NoHistory, or a law with history (MaterialState.hpp,
+// e.g. CiarletGeymonatPlasticity) with Hist = CellHistory; with history the stress is
+// evaluated at the end point, or by history_gonzalez for the Gonzalez scheme.
+template <bool WithTangent, class Mat = CiarletGeymonat, class Hist = NoHistory>
 KOKKOS_INLINE_FUNCTION int solid_element(int dim, CellType type, int nn, const double (*X)[3], const double (*U)[3],
-                                         const double (*U0)[3], const CiarletGeymonat& mat, const ElementTime& et,
+                                         const double (*U0)[3], const Mat& mat, const ElementTime& et,
                                          const QuadRule& q, double* re, double (*ke)[kMaxCellDofs], double& energy,
-                                         double& dissipation) {
+                                         double& dissipation, const Hist& hist = Hist{}, double* plastic = nullptr) {
   const int nd = nn * dim;
   for (int i = 0; i < nd; ++i) {
     re[i] = 0.0;
@@ -79,15 +163,22 @@ KOKKOS_INLINE_FUNCTION int solid_element(int dim, CellType type, int nn, const d
     const Mat3 F1 = deformation_gradient(dim, nn, U, dNdX);
     if (!(det(F1) > 0.0)) return kElementInverted;
     const Mat3 C1 = tmul(F1, F1);
-    energy += wq * mat.energy(C1);
     Mat3 P, Fv = F1, C0 = C1;
     Ten4 A;
+    if constexpr (!Hist::kActive) energy += wq * mat.energy(C1);
     if (et.has_old) {
       const Mat3 F0 = deformation_gradient(dim, nn, U0, dNdX);
       C0 = tmul(F0, F0);
       if (et.eval != StressEval::EndPoint) Fv = 0.5 * (F0 + F1);
     }
-    if (et.eval == StressEval::EndPoint || et.eval == StressEval::Midpoint) {
+    if constexpr (Hist::kActive) {
+      // End point (statics, Newmark, HHT) or the energy-dissipative Gonzalez step; the deck
+      // refuses the plain midpoint rule with history.
+      const bool ok = et.eval == StressEval::Gonzalez
+                          ? history_gonzalez<WithTangent>(mat, Fv, F1, C0, C1, hist.n(g), hist.np1(g), wq, P, A, energy, *plastic)
+                          : history_point<WithTangent>(mat, F1, hist.n(g), hist.np1(g), wq, P, A, energy, *plastic);
+      if (!ok) return kElementLocalFailure;
+    } else if (et.eval == StressEval::EndPoint || et.eval == StressEval::Midpoint) {
       // Stress of the evaluation configuration Fv (F_{n+1} or F_{n+1/2}).
       if (!(det(Fv) > 0.0)) return kElementInverted;
       const Mat3 Cv = tmul(Fv, Fv);
@@ -116,25 +207,7 @@ KOKKOS_INLINE_FUNCTION int solid_element(int dim, CellType type, int nn, const d
       else
         Sig = gonzalez_stress(mat, C0, C1);
       P = matmul(Fv, Sig);
-      if (WithTangent) {
-        for (int I = 0; I < 3; ++I)
-          for (int J = 0; J < 3; ++J)
-            for (int L = 0; L < 3; ++L)
-              for (int k = 0; k < 3; ++k) {
-                double t = 0.0;
-                for (int Nn = 0; Nn < 3; ++Nn) t += D(I, J, L, Nn) * F1(k, Nn);
-                A(I, J, L, k) = t;  // temporarily T[I][J][L][k]
-              }
-        Ten4 T = A;
-        for (int i = 0; i < 3; ++i)
-          for (int J = 0; J < 3; ++J)
-            for (int k = 0; k < 3; ++k)
-              for (int L = 0; L < 3; ++L) {
-                double v = 2.0 * (Fv(i, 0) * T(0, J, L, k) + Fv(i, 1) * T(1, J, L, k) + Fv(i, 2) * T(2, J, L, k));
-                if (i == k) v += 0.5 * Sig(L, J);
-                A(i, J, k, L) = v;
-              }
-      }
+      if (WithTangent) gonzalez_dPdF(Fv, F1, Sig, D, A);
     }
     if (et.eta > 0.0) {
       // Curnier viscosity at the evaluation configuration: P^v = Fv S^v, S^v = 2 eta (C1 - C0)/dt.

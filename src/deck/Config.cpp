@@ -666,6 +666,16 @@ void DeckReader::read_materials(const ParameterList& pl) {
     m.D = get_double(sub, ls, "D");
     m.density = get_double(sub, ls, "density");
     m.viscosity = get_double(sub, ls, "viscosity");
+    m.yield_stress = get_double(sub, ls, "yield stress");
+    m.hardening = get_double(sub, ls, "hardening");
+    const bool has_plastic_param = sub.isParameter("yield stress") || sub.isParameter("hardening");
+    if (m.plastic() && !sub.isParameter("yield stress"))
+      fail("missing required parameter " + quoted(path + "->yield stress") + " (double, > 0) for model = Ciarlet-Geymonat plasticity");
+    if (m.plastic() && !(m.yield_stress > 0.0))
+      fail(quoted(path + "->yield stress") + " must be > 0, got " + num(m.yield_stress));
+    if (!m.plastic() && has_plastic_param)
+      fail(quoted(path + (sub.isParameter("yield stress") ? "->yield stress" : "->hardening")) +
+           " needs 'model' = Ciarlet-Geymonat plasticity");
     cfg_.materials.push_back(m);
   }
   if (cfg_.materials.empty()) fail("'Materials' defines no material; add one sublist per material");
@@ -1124,6 +1134,10 @@ Config DeckReader::read() {
   if (root.isSublist("Time Integration")) read_time(root.sublist("Time Integration"));
   if (root.isSublist("Stepping")) read_stepping(root.sublist("Stepping"));
   if (cfg_.problem.dynamic()) {
+    for (const auto& m : cfg_.materials)
+      if (m.plastic() && cfg_.time.scheme == "midpoint")
+        fail("'Materials->" + m.name + "->model' = Ciarlet-Geymonat plasticity needs 'Time Integration->scheme' = gonzalez "
+             "(energy-dissipative), newmark or hht, not midpoint");
     for (const auto& m : cfg_.materials)
       if (!(m.density > 0.0))
         fail("'Materials->" + m.name + "->density' must be > 0 in a dynamic analysis ('Problem->analysis' = dynamic)");

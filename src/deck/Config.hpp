@@ -46,6 +46,9 @@ struct MaterialConfig {
   double C1 = 0, C2 = 0, D = 0;           // "C1", "C2", "D" [Pa], all > 0 (C2 >= 0 allowed)
   double density = 0;                     // "density" [kg/m^3], >= 0
   double viscosity = 0;                   // "viscosity" eta (Curnier), >= 0; unused in statics
+  double yield_stress = 0;                // "yield stress" Y [Pa], > 0 (plasticity only)
+  double hardening = 0;                   // "hardening" H [Pa], >= 0 (plasticity only)
+  bool plastic() const { return model == "Ciarlet-Geymonat plasticity"; }
 };
 
 struct BodyConfig {

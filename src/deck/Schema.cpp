@@ -121,13 +121,26 @@ std::vector<ListSpec> build_schema() {
   s.push_back(list(
       "Materials/*", "Materials-><material>",
       "A hyperelastic material. Ciarlet-Geymonat: W = C1 (I1 - 3) + C2 (I2 - 3) + D (I3 - 1) "
-      "- (C1 + 2 C2 + D) ln I3; small-strain mu = 2 (C1 + C2), lambda = 4 (C2 + D). Plane strain in 2D.",
-      {str("model", "Ciarlet-Geymonat", "Constitutive law.").one_of({"Ciarlet-Geymonat"}),
+      "- (C1 + 2 C2 + D) ln I3; small-strain mu = 2 (C1 + C2), lambda = 4 (C2 + D). Plane strain in 2D. "
+      "`Ciarlet-Geymonat plasticity` adds multiplicative von Mises plasticity F = Fe Ftr with the Mandel "
+      "stress, yield |M|_H <= Y + H alpha and linear isotropic hardening (docs/plasticity.md); in dynamics "
+      "with the gonzalez (energy-dissipative), newmark or hht scheme.",
+      {str("model", "Ciarlet-Geymonat", "Constitutive law.").one_of({"Ciarlet-Geymonat", "Ciarlet-Geymonat plasticity"}),
        dbl("C1", 0.0, "First invariant coefficient [Pa].").req().gt(0.0),
        dbl("C2", 0.0, "Second invariant coefficient [Pa].").ge(0.0),
        dbl("D", 0.0, "Volumetric coefficient [Pa].").req().gt(0.0),
        dbl("density", 0.0, "Mass density [kg/m^3] (dynamics).").ge(0.0),
-       dbl("viscosity", 0.0, "Viscosity eta [Pa s] (Curnier); unused in statics.").ge(0.0)}));
+       dbl("viscosity", 0.0, "Viscosity eta [Pa s] (Curnier); unused in statics.").ge(0.0),
+       dbl("yield stress", 0.0,
+           "Initial yield stress Y [Pa, the unit of C1, C2, D] of `Ciarlet-Geymonat plasticity`, where it is "
+           "required and must be > 0 (not allowed with other models): the bound on the Hill (von Mises) norm "
+           "of the Mandel stress.")
+           .ge(0.0),
+       dbl("hardening", 0.0,
+           "Linear isotropic hardening modulus H [Pa, the unit of C1, C2, D] of `Ciarlet-Geymonat "
+           "plasticity`: the yield stress is Y + H alpha (alpha the equivalent plastic strain); 0 is "
+           "perfect plasticity.")
+           .ge(0.0)}));
 
   {
     auto l = list("Bodies", "Bodies", "The bodies to simulate (at least one): each is a mesh physical group made of one material.");

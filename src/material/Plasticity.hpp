@@ -294,6 +294,16 @@ struct CiarletGeymonatPlasticity {
     return r;
   }
 
+  // The elastic potential at the frozen state of history row hn: C -> W(G^T C G),
+  // G = Ftr_n^-1 (for the Gonzalez stress of the energy-dissipative dynamic step).
+  template <class HIn>
+  KOKKOS_INLINE_FUNCTION FrozenPlasticPotential frozen_potential(const HIn& hn) const {
+    Mat3 Ftr;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) Ftr(i, j) = hn[kFtr + 3 * i + j];
+    return FrozenPlasticPotential{elastic, inverse(Ftr)};
+  }
+
   // Same on structured state (C = F^T F at t_{n+1}; s0 at t_n is not modified).
   KOKKOS_INLINE_FUNCTION PointResponse update_state(const Mat3& C, const PlasticState& s0,
                                                     Step& out) const {

@@ -262,6 +262,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
                                                    "angular_momentum_x", "angular_momentum_y", "angular_momentum_z"};
   std::vector<std::string> energy_cols = energy_columns;
   if (contact) energy_cols.insert(energy_cols.end(), {"contact_work", "friction_dissipation"});
+  if (assembler->has_history()) energy_cols.push_back("plastic_dissipation");  // cumulative; also in "dissipation"
   std::vector<std::string> columns = {"step", "time", "dt", "newton_iterations", "linear_iterations", "cutbacks", "strain_energy"};
   for (const auto& d : assembler->dirichlet_sets())
     for (int k = 0; k < dim; ++k) columns.push_back("reaction_" + d.name + "_" + kAxes[k]);
@@ -269,6 +270,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     for (int k = 0; k < dim; ++k) columns.push_back("u_" + p.name + "_" + kAxes[k]);
   if (contact)
     for (const auto& c : contact->history_columns()) columns.push_back(c);
+  if (assembler->has_history()) columns.push_back("plastic_dissipation");  // of the step
   int io_error = 0;
   std::string io_message;
   if (rank == 0) {
@@ -310,12 +312,14 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   // Cumulative energy terms (dynamics), written per step to <basename>_energy.csv.
   double cum_ext = 0.0, cum_sup = 0.0, cum_diss = 0.0, max_balance = 0.0;
   double cum_contact = 0.0, cum_friction = 0.0;  // contact work on the body, frictional dissipation
+  double cum_plastic = 0.0;
   auto energy_row = [&](int step_no, double time, const EnergyAudit& au) {
     if (rank != 0 || !energy_csv) return;
     std::vector<double> row = {double(step_no), time, au.kinetic, au.strain, au.kinetic + au.strain, cum_ext, cum_sup, cum_diss, au.balance,
                                au.momentum[0], au.momentum[1], au.momentum[2], au.angular_momentum[0], au.angular_momentum[1],
                                au.angular_momentum[2]};
     if (contact) row.insert(row.end(), {cum_contact, cum_friction});
+    if (assembler->has_history()) row.push_back(cum_plastic);
     energy_csv->row(row);
   };
   // Non-finite values never reach the CSV or HDF5 files: the name of the first
@@ -359,14 +363,16 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     Timers::Scope s{timers, "output"};
     u_all.doImport(u, gather, Tpetra::INSERT);
     Assembler::CellFields cf = assembler->cell_fields(u);
-    std::vector<double> packed;  // per local cell: stress (6), von Mises, J
+    const std::size_t nx = cf.extra_names.size(), kv = 8 + nx;  // + history fields (plasticity)
+    std::vector<double> packed;  // per local cell: stress (6), von Mises, J, extra
     for (std::size_t c = 0; c < cf.cell_ids.size(); ++c) {
       packed.insert(packed.end(), cf.stress.begin() + static_cast<std::ptrdiff_t>(6 * c),
                     cf.stress.begin() + static_cast<std::ptrdiff_t>(6 * c + 6));
       packed.push_back(cf.von_mises[c]);
       packed.push_back(cf.J[c]);
+      packed.insert(packed.end(), cf.extra.begin() + static_cast<std::ptrdiff_t>(nx * c), cf.extra.begin() + static_cast<std::ptrdiff_t>(nx * c + nx));
     }
-    const Gathered cells = gather_on_root(std::vector<long long>(cf.cell_ids.begin(), cf.cell_ids.end()), packed, 8, nranks);
+    const Gathered cells = gather_on_root(std::vector<long long>(cf.cell_ids.begin(), cf.cell_ids.end()), packed, static_cast<int>(kv), nranks);
     // Contact fields at slave nodes.
     Gathered slaves, masters;
     if (contact) {
@@ -377,15 +383,16 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     }
     if (rank != 0 || !xdmf) return;
     const std::size_t nc = mesh.num_volume_cells(), nn = mesh.num_nodes();
-    std::vector<double> disp(3 * nn, 0.0), stress(6 * nc), vm(nc), J(nc), owner(nc);
+    std::vector<double> disp(3 * nn, 0.0), stress(6 * nc), vm(nc), J(nc), owner(nc), extra(nx * nc);
     auto uh = u_all.getLocalViewHost(Tpetra::Access::ReadOnly);
     for (std::size_t i = 0; i < all_dofs.size(); ++i)
       disp[3 * static_cast<std::size_t>(all_dofs[i] / dim) + static_cast<std::size_t>(all_dofs[i] % dim)] = uh(i, 0);
     for (std::size_t i = 0; i < cells.ids.size(); ++i) {
       const auto id = static_cast<std::size_t>(cells.ids[i]);
-      for (int k = 0; k < 6; ++k) stress[6 * id + k] = cells.values[8 * i + k];
-      vm[id] = cells.values[8 * i + 6];
-      J[id] = cells.values[8 * i + 7];
+      for (int k = 0; k < 6; ++k) stress[6 * id + k] = cells.values[kv * i + k];
+      vm[id] = cells.values[kv * i + 6];
+      J[id] = cells.values[kv * i + 7];
+      for (std::size_t k = 0; k < nx; ++k) extra[k * nc + id] = cells.values[kv * i + 8 + k];
       owner[id] = cells.from[i];
     }
     xdmf->begin_step(t);
@@ -394,6 +401,8 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     xdmf->cell_field("von_mises", 1, vm);
     xdmf->cell_field("J", 1, J);
     xdmf->cell_field("mpi_rank", 1, owner);
+    for (std::size_t k = 0; k < nx; ++k)
+      xdmf->cell_field(cf.extra_names[k], 1, std::vector<double>(extra.begin() + k * nc, extra.begin() + (k + 1) * nc));
     if (contact) write_contact_fields(*xdmf, nn, slaves, contact->has_master_surfaces() ? &masters : nullptr);
     xdmf->end_step();
   };
@@ -455,6 +464,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     total_linear += nr.linear_iterations;
     if (!nr.converged) {
       u.update(1.0, u_prev, 0.0);
+      assembler->rollback_history();  // Gauss-point state: back to the last accepted step
       if (consecutive_cuts >= cfg.stepping.max_cutbacks) {
         std::ostringstream os;
         os << "Newton failed at t = " << t_new << " (" << nr.failure << ") after " << consecutive_cuts
@@ -472,6 +482,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     t = t_new;
     ++step;
     system.record_scale();
+    assembler->commit_history();  // Newton's last assemble() was at the accepted u
     u_before_last.update(1.0, u_prev, 0.0);
     dt_last = dt;
     const auto& reac = assembler->reactions();
@@ -488,6 +499,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
       cum_ext += au.external_work;
       cum_sup += au.support_work;
       cum_diss += au.dissipation;
+      cum_plastic += au.plastic_dissipation;
       if (contact) {
         // E_{n+1} - E_n = W_ext + W_sup - D + W_contact - D_friction.
         au.balance -= cstats.work - cstats.friction_dissipation;
@@ -521,6 +533,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
         for (int k = 0; k < dim; ++k) row.push_back(pv[3 * p + k]);
       if (contact)
         for (double v : contact->history_values(cstats)) row.push_back(v);
+      if (assembler->has_history()) row.push_back(system.last.plastic_dissipation);
       Timers::Scope s{timers, "output"};
       history->row(row);
     } else {

@@ -143,7 +143,8 @@ EnergyAudit TimeIntegrator::accept(const la::Vector& u_n, const la::Vector& u_np
     f_ext_n_->update(1.0, assembler_.external_force(), 0.0);
   }
   au.support_work = assembler_.support_work(*du_);
-  au.dissipation = last.dissipation;
+  au.plastic_dissipation = last.plastic_dissipation;
+  au.dissipation = last.dissipation + last.plastic_dissipation;
   const EnergyAudit state = audit(u_np1);
   au.kinetic = state.kinetic;
   au.momentum = state.momentum;

@@ -25,7 +25,8 @@ namespace stentor {
 
 struct EnergyAudit {
   double kinetic = 0, strain = 0;                      // at t_{n+1}
-  double external_work = 0, support_work = 0, dissipation = 0;  // over the step
+  double external_work = 0, support_work = 0, dissipation = 0;  // over the step (dissipation: viscous + plastic)
+  double plastic_dissipation = 0;                      // over the step (laws with Gauss-point history)
   double balance = 0;                                  // E_{n+1} - E_n - (W_ext + W_sup - D)
   std::array<double, 3> momentum{}, angular_momentum{};
 };

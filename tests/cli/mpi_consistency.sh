@@ -3,7 +3,8 @@
 # <basename>_history.csv except the iteration counts agrees with the first run to a
 # relative difference below TOL. Reactions are scaled by the largest reaction,
 # probe displacements by the largest probe displacement, the energy by its largest
-# value (so components that are zero up to round-off do not count as relative noise).
+# value, the plastic dissipation by its largest value (so components that are zero up to
+# round-off do not count as relative noise).
 # usage: mpi_consistency.sh STENTOR MPIEXEC NPFLAG WORKDIR DECK BASENAME TOL RUN...
 # Each RUN is a rank count R or RxT: R MPI ranks with T OpenMP threads each
 # (OMP_NUM_THREADS=T; ranks are then not bound to one core, so their threads can spread).
@@ -46,6 +47,7 @@ for run in "$@"; do
       if (name ~ /^reaction_/) return "reaction"
       if (name ~ /^u_/) return "probe"
       if (name == "strain_energy") return "energy"
+      if (name == "plastic_dissipation") return "plastic"
       if (name == "newton_iterations" || name == "linear_iterations") return ""
       if (name ~ /_force_[xyz]$/) return "contact_force"
       if (name ~ /_min_gap$/) return "gap"

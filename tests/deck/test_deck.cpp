@@ -497,7 +497,32 @@ TEST_F(Deck, MaterialRanges) {
                {"'Materials->steel->density' must be >= 0, got -1"});
   expect_error(replace(kMinimalDeck, "<Parameter name=\"D\"",
                        "<Parameter name=\"model\" type=\"string\" value=\"neo-hooke\"/><Parameter name=\"D\""),
-               {"'Materials->steel->model' must be one of Ciarlet-Geymonat; got 'neo-hooke'"});
+               {"'Materials->steel->model' must be one of Ciarlet-Geymonat, Ciarlet-Geymonat plasticity; got 'neo-hooke'"});
+}
+
+TEST_F(Deck, PlasticityParameters) {
+  const std::string d = "<Parameter name=\"D\"";
+  const std::string plastic = "<Parameter name=\"model\" type=\"string\" value=\"Ciarlet-Geymonat plasticity\"/>";
+  const std::string Y = "<Parameter name=\"yield stress\" type=\"double\" value=\"0.5\"/>";
+  const std::string H = "<Parameter name=\"hardening\" type=\"double\" value=\"2\"/>";
+  const Config c = read_deck(write(replace(kMinimalDeck, d, plastic + Y + H + d)));
+  ASSERT_EQ(c.materials.size(), 1u);
+  EXPECT_TRUE(c.materials[0].plastic());
+  EXPECT_EQ(c.materials[0].yield_stress, 0.5);
+  EXPECT_EQ(c.materials[0].hardening, 2.0);
+  expect_error(replace(kMinimalDeck, d, plastic + d),
+               {"missing required parameter 'Materials->steel->yield stress'", "Ciarlet-Geymonat plasticity"});
+  expect_error(replace(kMinimalDeck, d, plastic + "<Parameter name=\"yield stress\" type=\"double\" value=\"0\"/>" + d),
+               {"'Materials->steel->yield stress' must be > 0, got 0"});
+  expect_error(replace(kMinimalDeck, d, plastic + Y + "<Parameter name=\"hardening\" type=\"double\" value=\"-1\"/>" + d),
+               {"'Materials->steel->hardening' must be >= 0, got -1"});
+  expect_error(replace(kMinimalDeck, d, Y + d), {"'Materials->steel->yield stress' needs 'model' = Ciarlet-Geymonat plasticity"});
+  const std::string dyn = "<ParameterList name=\"Problem\"><Parameter name=\"analysis\" type=\"string\" value=\"dynamic\"/>"
+                          "</ParameterList><ParameterList name=\"Time Integration\"><Parameter name=\"scheme\" "
+                          "type=\"string\" value=\"midpoint\"/></ParameterList><ParameterList name=\"Mesh\">";
+  const std::string rho = "<Parameter name=\"density\" type=\"double\" value=\"1\"/>";
+  expect_error(replace(replace(kMinimalDeck, d, plastic + Y + rho + d), "<ParameterList name=\"Mesh\">", dyn),
+               {"plasticity needs 'Time Integration->scheme' = gonzalez"});
 }
 
 TEST_F(Deck, OtherRangesAndChoices) {

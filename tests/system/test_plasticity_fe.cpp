@@ -1,0 +1,449 @@
+// Plasticity in the element kernels (issue 11; docs/plasticity.md, "In the element
+// kernel"): the Gauss-point history views of the Assembler (committed / trial), the
+// global tangent against finite differences with plastic flow active, a plastic law with
+// an unreachable yield stress against the elastic kernel, the committed state under a
+// failed (cut-back) evaluation, and uniaxial finite-strain tension of a block (statics)
+// against the material-point closed form: yield onset, plateau for H = 0, hardening.
+#include <gtest/gtest.h>
+
+#include <Tpetra_Core.hpp>
+#include <hdf5.h>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "CsvSeries.hpp"
+#include "assembly/Assembler.hpp"
+#include "bc/Loads.hpp"
+#include "deck/Config.hpp"
+#include "mesh/MeshComm.hpp"
+#include "parallel/Distribution.hpp"
+#include "run/Simulation.hpp"
+
+using namespace stentor;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "plasticity_fe";
+constexpr double kC1 = 0.5e6, kC2 = 0.005e6, kD = 0.35e6, kY = 0.1e6;
+
+// Unit cube (inputs/block3d.geo) pulled to x = 1 + stretch on the right face, symmetry
+// conditions on left/front/bottom: a homogeneous uniaxial state the mesh reproduces exactly.
+std::string deck_text(const std::string& model_params, double stretch, int steps, int newton_max, const std::string& name,
+                      bool fields = false) {
+  const std::string geo = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
+  return R"X(<ParameterList name="stentor">
+  <ParameterList name="Mesh">
+    <Parameter name="file" type="string" value=")X" + geo + R"X("/>
+    <Parameter name="size" type="double" value="0.5"/>
+  </ParameterList>
+  <ParameterList name="Materials"><ParameterList name="metal">
+    <Parameter name="C1" type="double" value="0.5e6"/>
+    <Parameter name="C2" type="double" value="0.005e6"/>
+    <Parameter name="D" type="double" value="0.35e6"/>
+    )X" + model_params + R"X(
+  </ParameterList></ParameterList>
+  <ParameterList name="Bodies"><ParameterList name="block">
+    <Parameter name="material" type="string" value="metal"/>
+  </ParameterList></ParameterList>
+  <ParameterList name="Boundary Conditions">
+    <ParameterList name="left"><Parameter name="type" type="string" value="Dirichlet"/>
+      <Parameter name="boundary" type="string" value="left"/><Parameter name="components" type="string" value="x"/></ParameterList>
+    <ParameterList name="front"><Parameter name="type" type="string" value="Dirichlet"/>
+      <Parameter name="boundary" type="string" value="front"/><Parameter name="components" type="string" value="y"/></ParameterList>
+    <ParameterList name="bottom"><Parameter name="type" type="string" value="Dirichlet"/>
+      <Parameter name="boundary" type="string" value="bottom"/><Parameter name="components" type="string" value="z"/></ParameterList>
+    <ParameterList name="pull"><Parameter name="type" type="string" value="Dirichlet"/>
+      <Parameter name="boundary" type="string" value="right"/><Parameter name="components" type="string" value="x"/>
+      <Parameter name="values" type="Array(double)" value="{)X" + std::to_string(stretch) + R"X(}"/></ParameterList>
+  </ParameterList>
+  <ParameterList name="Stepping">
+    <Parameter name="end time" type="double" value="1.0"/>
+    <Parameter name="steps" type="int" value=")X" + std::to_string(steps) + R"X("/>
+  </ParameterList>
+  <ParameterList name="Newton">
+    <Parameter name="max iterations" type="int" value=")X" + std::to_string(newton_max) + R"X("/>
+  </ParameterList>
+  <ParameterList name="Linear Solver"><Parameter name="method" type="string" value="direct"/></ParameterList>
+  <ParameterList name="Output">
+    <Parameter name="basename" type="string" value=")X" + name + R"X("/>
+    <Parameter name="fields" type="bool" value=")X" + std::string(fields ? "true" : "false") + R"X("/>
+  </ParameterList>
+</ParameterList>
+)X";
+}
+
+std::string plastic_params(double Y, double H) {
+  return R"X(<Parameter name="model" type="string" value="Ciarlet-Geymonat plasticity"/>
+    <Parameter name="yield stress" type="double" value=")X" + std::to_string(Y) + R"X("/>
+    <Parameter name="hardening" type="double" value=")X" + std::to_string(H) + R"X("/>)X";
+}
+
+Config write_and_read(const std::string& text, const std::string& name) {
+  fs::create_directories(kDir);
+  const fs::path p = kDir / (name + ".xml");
+  std::ofstream(p) << text;
+  return read_deck(p.string());
+}
+
+// ---- Closed form of uniaxial tension (docs/plasticity.md): lateral stress free.
+// Axial Kirchhoff stress tau_1 of the elastic stretch le (lateral m = l_lat^2 from the
+// quadratic (C2 + D le^2) m^2 + (C1 + C2 le^2) m - K = 0).
+double tau_axial(double le) {
+  const double K = kC1 + 2 * kC2 + kD, l2 = le * le;
+  const double a = kC2 + kD * l2, b = kC1 + kC2 * l2;
+  const double m = (-b + std::sqrt(b * b + 4 * a * K)) / (2 * a);
+  return 2 * (kC1 * l2 + 2 * kC2 * l2 * m + kD * l2 * m * m - K);
+}
+
+// Nominal axial stress P_11 = tau_1 / lambda at total stretch lambda, yield stress Y,
+// hardening H: elastic while tau_1(lambda) <= Y, else the elastic stretch le solves
+// tau_1(le) = Y + H alpha with alpha = ln lambda - ln le (axial flow n_1 = 1).
+double nominal_stress(double lambda, double Y, double H) {
+  if (tau_axial(lambda) <= Y) return tau_axial(lambda) / lambda;
+  double lo = 1.0, hi = lambda;  // g(le) = tau(le) - Y - H (ln lambda - ln le) increases in le
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (tau_axial(mid) - Y - H * std::log(lambda / mid) > 0) hi = mid; else lo = mid;
+  }
+  return tau_axial(0.5 * (lo + hi)) / lambda;
+}
+
+// Cell field `name` of the last output step of an HDF5 file (all cells).
+std::vector<double> last_cell_field(const fs::path& h5, int step, const std::string& name) {
+  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  std::vector<double> v;
+  if (f < 0) return v;
+  const std::string path = "/step_" + std::to_string(step) + "/" + name;
+  const hid_t d = H5Dopen2(f, path.c_str(), H5P_DEFAULT);
+  if (d >= 0) {
+    const hid_t sp = H5Dget_space(d);
+    v.resize(static_cast<std::size_t>(H5Sget_simple_extent_npoints(sp)));
+    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Sclose(sp);
+    H5Dclose(d);
+  }
+  H5Fclose(f);
+  return v;
+}
+
+// Equivalent plastic strain of uniaxial tension at stretch lambda (0 while elastic).
+double alpha_uniaxial(double lambda, double Y, double H) {
+  if (tau_axial(lambda) <= Y) return 0.0;
+  double lo = 1.0, hi = lambda;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (tau_axial(mid) - Y - H * std::log(lambda / mid) > 0) hi = mid; else lo = mid;
+  }
+  return std::log(lambda / (0.5 * (lo + hi)));
+}
+
+// ---- Assembler-level fixture: the cube with the plastic material.
+struct Fixture {
+  Config cfg;
+  Mesh mesh;
+  Loads loads;
+  std::vector<int> block_mat;
+  std::unique_ptr<Distribution> dist;
+  std::unique_ptr<Assembler> as;
+  explicit Fixture(const Config& c) : cfg(c) {
+    mesh = read_mesh_on_root(cfg.mesh, MPI_COMM_WORLD, true, false);
+    loads = resolve_loads(cfg, mesh);
+    block_mat = block_materials(cfg, mesh);
+    dist = std::make_unique<Distribution>(mesh, Tpetra::getDefaultComm());
+    as = std::make_unique<Assembler>(mesh, *dist, cfg, loads, block_mat);
+  }
+  // A smooth non-homogeneous displacement (stretch, shear, twist), scaled by amp.
+  void fill(la::Vector& u, double amp, double phase = 0.0) const {
+    auto uh = u.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (la::LO l = 0; l < dist->num_owned_nodes(); ++l) {
+      const double* X = &mesh.x[3 * static_cast<std::size_t>(dist->global_node(l))];
+      uh(3 * l + 0, 0) = amp * (0.10 * X[0] + 0.05 * X[1] * X[2] + phase * X[1]);
+      uh(3 * l + 1, 0) = amp * (-0.03 * X[1] + 0.04 * std::sin(X[0] + X[2]));
+      uh(3 * l + 2, 0) = amp * (0.02 * X[0] * X[1] - 0.05 * X[2] * X[2] + phase * X[0] * X[2]);
+    }
+  }
+};
+
+std::vector<double> host_copy(const Assembler::HistoryView& v) {
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
+  return std::vector<double>(h.data(), h.data() + h.size());
+}
+
+int yielding_points(const Assembler::HistoryView& v) {
+  auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), v);
+  int n = 0;
+  for (std::size_t i = 0; i < h.extent(0); ++i) n += h(i, CiarletGeymonatPlasticity::kYielding) > 0.0;
+  return n;
+}
+
+}  // namespace
+
+TEST(PlasticityFE, NoHistoryViewsWithoutPlasticity) {
+  Fixture s(write_and_read(deck_text("", 0.1, 1, 25, "elastic"), "elastic"));
+  EXPECT_FALSE(s.as->has_history());
+  EXPECT_EQ(s.as->committed_history(0).extent(0), 0u);
+}
+
+TEST(PlasticityFE, UnreachableYieldIsTheElasticKernel) {
+  Fixture e(write_and_read(deck_text("", 0.1, 1, 25, "elastic"), "elastic"));
+  Fixture p(write_and_read(deck_text(plastic_params(1e30, 0.0), 0.1, 1, 25, "ybig"), "ybig"));
+  ASSERT_TRUE(p.as->has_history());
+  la::Vector u(e.dist->owned_map()), r1(e.dist->owned_map()), r2(e.dist->owned_map());
+  e.fill(u, 1.0);
+  const auto s1 = e.as->assemble(u, 1.0, 1.0, r1, true);
+  const auto s2 = p.as->assemble(u, 1.0, 1.0, r2, true);
+  EXPECT_EQ(s1.energy, s2.energy);
+  EXPECT_EQ(s2.plastic_dissipation, 0.0);
+  r1.update(-1.0, r2, 1.0);
+  EXPECT_EQ(r1.normInf(), 0.0);
+  auto K1 = e.as->matrix()->getLocalMatrixHost();
+  auto K2 = p.as->matrix()->getLocalMatrixHost();
+  double d = 0.0;
+  for (std::size_t i = 0; i < K1.values.extent(0); ++i) d = std::max(d, std::abs(K1.values(i) - K2.values(i)));
+  EXPECT_EQ(d, 0.0);
+}
+
+// K du against central differences of r along du, with plastic flow at most Gauss points
+// and a non-trivial committed state (one plastic step accepted first).
+TEST(PlasticityFE, TangentMatchesFiniteDifferences) {
+  for (double H : {0.0, 0.5e6}) {
+    Fixture s(write_and_read(deck_text(plastic_params(kY, H), 0.1, 1, 25, "fd"), "fd"));
+    const auto map = s.dist->owned_map();
+    la::Vector u(map), r(map), rp(map), rm(map), du(map), Kdu(map), up(map);
+    s.fill(u, 0.6);
+    s.as->assemble(u, 1.0, 1.0, r, false);
+    s.as->commit_history();
+    s.fill(u, 1.0, 0.03);
+    const auto st = s.as->assemble(u, 1.0, 1.0, r, true);
+    const int ngp = static_cast<int>(s.as->trial_history(0).extent(0));
+    const int ny = yielding_points(s.as->trial_history(0));
+    EXPECT_GT(ny, ngp / 2) << "most Gauss points must flow in this step";
+    EXPECT_GT(st.plastic_dissipation, 0.0);
+    du.randomize();
+    for (la::LO i = 0; i < static_cast<la::LO>(map->getNodeNumElements()); ++i)
+      if (s.as->is_dirichlet(i)) du.getLocalViewHost(Tpetra::Access::ReadWrite)(i, 0) = 0.0;
+    s.as->matrix()->apply(du, Kdu);
+    const double h = 1e-7;
+    up.update(1.0, u, h, du, 0.0);
+    s.as->assemble(up, 1.0, 1.0, rp, false);
+    up.update(1.0, u, -h, du, 0.0);
+    s.as->assemble(up, 1.0, 1.0, rm, false);
+    rp.update(-0.5 / h, rm, 0.5 / h);  // FD directional derivative
+    double err = 0.0;
+    auto a = rp.getLocalViewHost(Tpetra::Access::ReadOnly);
+    auto b = Kdu.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (std::size_t i = 0; i < a.extent(0); ++i)
+      if (!s.as->is_dirichlet(static_cast<la::LO>(i))) err = std::max(err, std::abs(a(i, 0) - b(i, 0)));
+    const double rel = err / Kdu.normInf();
+    std::cout << "[ plastic ] H = " << H << ": " << ny << "/" << ngp << " Gauss points flowing, |K du - FD|/|K du| = " << rel << "\n";
+    EXPECT_LT(rel, 1e-6);
+  }
+}
+
+// Assembling at any state writes only the trial rows; commit copies them, rollback
+// restores the trial copy from the committed one.
+TEST(PlasticityFE, CommittedStateOnlyChangesOnCommit) {
+  Fixture s(write_and_read(deck_text(plastic_params(kY, 0.0), 0.1, 1, 25, "commit"), "commit"));
+  la::Vector u(s.dist->owned_map()), r(s.dist->owned_map());
+  const std::vector<double> virgin = host_copy(s.as->committed_history(0));
+  s.fill(u, 1.0);
+  s.as->assemble(u, 1.0, 1.0, r, true);
+  EXPECT_EQ(host_copy(s.as->committed_history(0)), virgin);
+  EXPECT_GT(yielding_points(s.as->trial_history(0)), 0);
+  s.as->commit_history();
+  const std::vector<double> step1 = host_copy(s.as->committed_history(0));
+  EXPECT_NE(step1, virgin);
+  s.fill(u, 3.0, 0.2);  // a wild Newton trial, then the step is cut back
+  s.as->assemble(u, 1.0, 1.0, r, true);
+  EXPECT_EQ(host_copy(s.as->committed_history(0)), step1);
+  EXPECT_NE(host_copy(s.as->trial_history(0)), step1);
+  s.as->rollback_history();
+  EXPECT_EQ(host_copy(s.as->trial_history(0)), step1);
+}
+
+// Uniaxial tension to 20% in 10 load steps: the reaction on the pulled face is the
+// nominal stress of the closed form at every step (elastic, onset, plateau / hardening).
+TEST(PlasticityFE, UniaxialTensionMatchesClosedForm) {
+  for (double H : {0.0, 0.5e6}) {
+    const std::string name = H == 0.0 ? "uniaxial_perfect" : "uniaxial_hardening";
+    const Config cfg = write_and_read(deck_text(plastic_params(kY, H), 0.2, 10, 25, name, true), name);
+    RunOptions o;
+    o.output_dir = (kDir / name).string();
+    RunResult res;
+    ASSERT_EQ(run_simulation(cfg, o, &res), 0);
+    const auto hist = stentor::testing::read_csv(kDir / name / (name + "_history.csv"));
+    double worst = 0.0;
+    for (std::size_t i = 0; i < hist.rows(); ++i) {
+      const double lambda = 1.0 + 0.2 * hist["time"][i];
+      const double P = nominal_stress(lambda, kY, H);
+      worst = std::max(worst, std::abs(hist["reaction_pull_x"][i] - P) / kY);
+    }
+    std::cout << "[ plastic ] uniaxial H = " << H << ": max |reaction - P11 closed form| / Y = " << worst << "\n";
+    EXPECT_LT(worst, 1e-8);
+    // Output: cell fields of the last step (homogeneous state: every cell the same) and the
+    // per-step plastic dissipation column (unit volume), whose sum is the accumulated field.
+    const fs::path h5 = kDir / name / (name + ".h5");
+    const auto alpha = last_cell_field(h5, 10, "equivalent_plastic_strain");
+    const auto q = last_cell_field(h5, 10, "mandel_hill_norm");
+    const auto flag = last_cell_field(h5, 10, "yielding");
+    const auto dp = last_cell_field(h5, 10, "plastic_dissipation");
+    ASSERT_EQ(alpha.size(), 100u);
+    ASSERT_EQ(dp.size(), 100u);
+    const double a_exact = alpha_uniaxial(1.2, kY, H);
+    double dp_sum = 0.0;
+    for (std::size_t i = 0; i < hist.rows(); ++i) {
+      EXPECT_GE(hist["plastic_dissipation"][i], 0.0);
+      dp_sum += hist["plastic_dissipation"][i];
+    }
+    double ea = 0.0, eq = 0.0;
+    for (std::size_t c = 0; c < alpha.size(); ++c) {
+      ea = std::max(ea, std::abs(alpha[c] - a_exact));
+      eq = std::max(eq, std::abs(q[c] - (kY + H * a_exact)) / kY);
+      EXPECT_EQ(flag[c], 1.0);
+      EXPECT_NEAR(dp[c], dp_sum, 1e-10 * dp_sum);
+    }
+    std::cout << "[ plastic ] uniaxial H = " << H << ": alpha = " << a_exact << ", max |alpha - closed form| = " << ea
+              << ", max ||M||_H/(Y + H alpha) - 1 = " << eq << ", sum D_p / (Y alpha) = " << dp_sum / (kY * a_exact) << "\n";
+    EXPECT_LT(ea, 1e-10);
+    EXPECT_LT(eq, 1e-10);
+    EXPECT_GE(dp_sum, kY * a_exact);  // D_p >= dg Y + H dg^2 / 2 per step (docs/plasticity.md)
+    EXPECT_LT(tau_axial(1.02), kY);  // the path crosses the yield onset
+    EXPECT_GT(tau_axial(1.2), 1.5 * kY);
+  }
+}
+
+// Steps too large for a 3-iteration Newton cut back; a failed step must not leave its
+// Gauss-point state behind: perfect plasticity ends on the plateau P11 = Y / lambda.
+TEST(PlasticityFE, CutBacksKeepTheCommittedState) {
+  const std::string name = "cutback";
+  const Config cfg = write_and_read(deck_text(plastic_params(kY, 0.0), 0.2, 2, 3, name), name);
+  RunOptions o;
+  o.output_dir = (kDir / name).string();
+  RunResult res;
+  ASSERT_EQ(run_simulation(cfg, o, &res), 0);
+  EXPECT_GT(res.cutbacks, 0);
+  EXPECT_NEAR(res.reactions[3][0], kY / 1.2, 1e-8 * kY);
+}
+
+// ---- Dynamics: a plastic block hitting a rigid support (Gonzalez, energy-dissipative).
+// The cube moves at 5 m/s towards its face x = 0, which is held fixed from t = 0 (a rigid
+// wall it sticks to): a compressive wave with plastic flow near the wall. Per step
+// E_{n+1} - E_n = W_ext + W_sup - D_visc - D_p to solver tolerance, D_p >= 0 (docs/plasticity.md).
+std::string impact_deck(double Y, const std::string& name) {
+  const std::string geo = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
+  return R"X(<ParameterList name="stentor">
+  <ParameterList name="Problem"><Parameter name="analysis" type="string" value="dynamic"/></ParameterList>
+  <ParameterList name="Mesh">
+    <Parameter name="file" type="string" value=")X" + geo + R"X("/>
+    <Parameter name="size" type="double" value="0.5"/>
+  </ParameterList>
+  <ParameterList name="Materials"><ParameterList name="metal">
+    <Parameter name="C1" type="double" value="0.5e6"/>
+    <Parameter name="C2" type="double" value="0.005e6"/>
+    <Parameter name="D" type="double" value="0.35e6"/>
+    <Parameter name="density" type="double" value="1000"/>
+    <Parameter name="viscosity" type="double" value="50"/>
+    )X" + plastic_params(Y, 0.2e6) + R"X(
+  </ParameterList></ParameterList>
+  <ParameterList name="Bodies"><ParameterList name="block">
+    <Parameter name="material" type="string" value="metal"/>
+  </ParameterList></ParameterList>
+  <ParameterList name="Boundary Conditions">
+    <ParameterList name="wall"><Parameter name="type" type="string" value="Dirichlet"/>
+      <Parameter name="boundary" type="string" value="left"/><Parameter name="components" type="string" value="all"/></ParameterList>
+  </ParameterList>
+  <ParameterList name="Initial Conditions">
+    <Parameter name="velocity" type="Array(double)" value="{-5.0, 0.0, 0.0}"/>
+  </ParameterList>
+  <ParameterList name="Stepping">
+    <Parameter name="end time" type="double" value="0.02"/>
+    <Parameter name="steps" type="int" value="20"/>
+  </ParameterList>
+  <ParameterList name="Newton">
+    <Parameter name="relative residual tolerance" type="double" value="1e-12"/>
+  </ParameterList>
+  <ParameterList name="Linear Solver"><Parameter name="method" type="string" value="direct"/></ParameterList>
+  <ParameterList name="Output">
+    <Parameter name="basename" type="string" value=")X" + name + R"X("/>
+    <Parameter name="fields" type="bool" value="false"/>
+  </ParameterList>
+</ParameterList>
+)X";
+}
+
+TEST(PlasticityFE, DynamicImpactEnergyBalanceWithPlasticDissipation) {
+  const std::string name = "impact";
+  const Config cfg = write_and_read(impact_deck(kY, name), name);
+  RunOptions o;
+  o.output_dir = (kDir / name).string();
+  RunResult res;
+  ASSERT_EQ(run_simulation(cfg, o, &res), 0);
+  const auto e = stentor::testing::read_csv(kDir / name / (name + "_energy.csv"));
+  ASSERT_EQ(e.rows(), 21u);
+  const double E0 = e["total"][0];
+  double worst = 0.0, dmin = 1e300;
+  for (std::size_t i = 1; i < e.rows(); ++i) {
+    worst = std::max(worst, std::abs(e["balance_residual"][i]) / E0);
+    dmin = std::min(dmin, e["plastic_dissipation"][i] - e["plastic_dissipation"][i - 1]);
+  }
+  const double dp = e["plastic_dissipation"][e.rows() - 1];
+  std::cout << "[ plastic ] impact: E0 = " << E0 << " J, plastic dissipation " << dp / E0 << " E0, viscous "
+            << (e["dissipation"][e.rows() - 1] - dp) / E0 << " E0, max |balance| per step / E0 = " << worst
+            << ", min D_p per step = " << dmin << " J\n";
+  EXPECT_GT(dp, 0.01 * E0);  // the impact yields
+  EXPECT_GE(dmin, 0.0);
+  EXPECT_LT(worst, 1e-9);
+}
+
+// The Gonzalez (energy-dissipative) step with history: its tangent against central
+// differences (flow at most points, committed state from a first plastic step), and with
+// an unreachable yield stress the elastic Gonzalez kernel.
+TEST(PlasticityFE, GonzalezStepTangentAndElasticLimit) {
+  Fixture s(write_and_read(deck_text(plastic_params(kY, 0.3e6), 0.1, 1, 25, "gz"), "gz"));
+  Fixture big(write_and_read(deck_text(plastic_params(1e30, 0.0), 0.1, 1, 25, "gzbig"), "gzbig"));
+  Fixture el(write_and_read(deck_text("", 0.1, 1, 25, "gzel"), "gzel"));
+  const auto map = s.dist->owned_map();
+  la::Vector u0(map), u(map), r(map), rp(map), rm(map), du(map), Kdu(map), up(map);
+  s.fill(u0, 0.6);
+  s.as->assemble(u0, 1.0, 1.0, r, false);
+  s.as->commit_history();
+  s.fill(u, 1.0, 0.03);
+  Assembler::StepInput in;
+  in.eval = StressEval::Gonzalez;
+  in.u_old = &u0;
+  in.dt = 1e-3;
+  in.load_time = 1.0;
+  const auto st = s.as->assemble(u, in, r, true);
+  EXPECT_GT(yielding_points(s.as->trial_history(0)), 50);
+  EXPECT_GT(st.plastic_dissipation, 0.0);
+  du.randomize();
+  for (la::LO i = 0; i < static_cast<la::LO>(map->getNodeNumElements()); ++i)
+    if (s.as->is_dirichlet(i)) du.getLocalViewHost(Tpetra::Access::ReadWrite)(i, 0) = 0.0;
+  s.as->matrix()->apply(du, Kdu);
+  const double h = 1e-7;
+  up.update(1.0, u, h, du, 0.0);
+  s.as->assemble(up, in, rp, false);
+  up.update(1.0, u, -h, du, 0.0);
+  s.as->assemble(up, in, rm, false);
+  rp.update(-0.5 / h, rm, 0.5 / h);
+  rp.update(-1.0, Kdu, 1.0);
+  double err = 0.0;
+  auto a = rp.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (std::size_t i = 0; i < a.extent(0); ++i)
+    if (!s.as->is_dirichlet(static_cast<la::LO>(i))) err = std::max(err, std::abs(a(i, 0)));
+  std::cout << "[ plastic ] Gonzalez step: |K du - FD|/|K du| = " << err / Kdu.normInf() << "\n";
+  EXPECT_LT(err / Kdu.normInf(), 1e-6);
+
+  la::Vector r1(map), r2(map);
+  const auto s1 = el.as->assemble(u, in, r1, true);
+  const auto s2 = big.as->assemble(u, in, r2, true);
+  EXPECT_NEAR(s1.energy, s2.energy, 1e-14 * std::abs(s1.energy));
+  EXPECT_EQ(s2.plastic_dissipation, 0.0);
+  r1.update(-1.0, r2, 1.0);
+  EXPECT_LE(r1.normInf(), 1e-14 * r2.normInf());
+}
