@@ -1,0 +1,68 @@
+// The state a run carries from step to step: displacements, time, the step-size
+// controller, the cumulative energy terms and the counters of the summary.
+#pragma once
+#include <algorithm>
+#include <string>
+
+#include "parallel/LinearAlgebra.hpp"
+
+namespace stentor {
+
+// Step size: starts at the deck's step; a failed step is halved (at most `max_cutbacks`
+// times in a row); after a run of cut-backs the next success doubles it once, capped at
+// the deck's step.
+class StepControl {
+ public:
+  StepControl(double target, int max_cutbacks) : target_(target), dt_(target), max_cutbacks_(max_cutbacks) {}
+  // The step to try next, never past the end of the interval (`remaining`).
+  double propose(double remaining) {
+    dt_ = std::min(dt_, remaining);
+    return dt_;
+  }
+  // After a failed step: halves the step; false when the cut-backs are used up.
+  bool cut() {
+    if (consecutive_ >= max_cutbacks_) return false;
+    ++consecutive_;
+    ++total_;
+    dt_ *= 0.5;
+    return true;
+  }
+  void accepted() {
+    if (consecutive_ > 0) dt_ = std::min(target_, 2.0 * dt_);
+    consecutive_ = 0;
+  }
+  double dt() const { return dt_; }
+  double target() const { return target_; }
+  int consecutive_cuts() const { return consecutive_; }
+  int total_cuts() const { return total_; }
+
+ private:
+  double target_, dt_;
+  int max_cutbacks_;
+  int consecutive_ = 0, total_ = 0;
+};
+
+// Cumulative energy terms of a dynamic run (written per step to <basename>_energy.csv).
+struct EnergyTotals {
+  double external = 0.0, support = 0.0, dissipation = 0.0;
+  double contact = 0.0, friction = 0.0;  // contact work on the bodies, frictional dissipation
+  double max_balance = 0.0;              // max |balance residual| per step
+};
+
+struct RunState {
+  RunState(const la::RCP<const la::Map>& map, double dt, int max_cutbacks)
+      : u(map), u_prev(map), u_before_last(map), control(dt, max_cutbacks) {}
+  la::Vector u;              // current iterate; after an accepted step u_{n+1}
+  la::Vector u_prev;         // u_n, the start of the step being solved
+  la::Vector u_before_last;  // u_{n-1}: the static predictor extrapolates u_n - u_{n-1}
+  double t = 0.0;            // time of the last accepted step
+  double dt_last = 0.0;      // its step size
+  int step = 0;              // accepted steps
+  StepControl control;
+  EnergyTotals energy;
+  int newton_iterations = 0, linear_iterations = 0;  // all attempts, failed ones included
+  bool failed = false;
+  std::string failure;       // why the run stopped, for the summary
+};
+
+}  // namespace stentor
