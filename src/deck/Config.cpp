@@ -1001,6 +1001,13 @@ void DeckReader::read_stepping(const ParameterList& pl) {
   cfg_.stepping.end_time = get_double(pl, ls, "end time");
   cfg_.stepping.num_steps = get_int(pl, ls, "steps");
   cfg_.stepping.max_cutbacks = get_int(pl, ls, "max cutbacks");
+  cfg_.stepping.growth = get_double(pl, ls, "growth");
+  cfg_.stepping.min_dt = get_double(pl, ls, "min dt");
+  cfg_.stepping.max_steps = get_int(pl, ls, "max steps");
+  const double step = cfg_.stepping.end_time / cfg_.stepping.num_steps;
+  if (cfg_.stepping.min_dt > step)
+    fail("'Stepping->min dt' must not exceed the step 'Stepping->end time' / 'Stepping->steps' = " + num(step) + ", got " +
+         num(cfg_.stepping.min_dt));
 }
 
 void DeckReader::read_newton(const ParameterList& pl) {

@@ -87,7 +87,13 @@ struct TimeIntegrationConfig {
 struct SteppingConfig {
   double end_time = 1.0;   // "Stepping"->"end time" > 0
   int num_steps = 1;       // "Stepping"->"steps" >= 1 (initial step = end time / steps)
-  int max_cutbacks = 6;    // "Stepping"->"max cutbacks" >= 0: halvings of a failed step before giving up
+  int max_cutbacks = 6;    // "Stepping"->"max cutbacks" >= 0: halvings of a failed step in a row before giving up
+  double growth = 1.5;     // "Stepping"->"growth" in [1, 4]: step growth per accepted step, up to end time / steps
+  double min_dt = 0.0;     // "Stepping"->"min dt": smallest step (0: 1e-6 x end time / steps, see min_step())
+  int max_steps = 0;       // "Stepping"->"max steps": cap on steps tried (0: 100 x steps + 1000, see step_cap())
+  // The values in force, 0 resolved to the defaults.
+  double min_step() const { return min_dt > 0.0 ? min_dt : 1e-6 * end_time / num_steps; }
+  long step_cap() const { return max_steps > 0 ? max_steps : 100L * num_steps + 1000L; }
 };
 
 struct NewtonConfig {

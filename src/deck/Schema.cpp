@@ -211,10 +211,25 @@ std::vector<ListSpec> build_schema() {
       {str("scheme", "gonzalez", "Time integration scheme.").one_of({"gonzalez", "midpoint", "newmark", "hht"}),
        dbl("hht alpha", -0.1, "HHT parameter alpha (0: Newmark average acceleration).").ge(-1.0 / 3.0).le(0.0)}));
 
-  s.push_back(list("Stepping", "Stepping", "Load/time stepping.",
-                   {dbl("end time", 1.0, "Final time [s].").gt(0.0),
-                    integer("steps", 1, "Number of steps (initial step = end time / steps).").ge(1),
-                    integer("max cutbacks", 6, "Halvings of a failed step before giving up.").ge(0)}));
+  s.push_back(list(
+      "Stepping", "Stepping",
+      "Load/time stepping. A step whose Newton solve fails is retried from the last converged state with half "
+      "the step; after each accepted step the step grows by `growth` again, up to the deck's step (end time / "
+      "steps). The run stops with exit status 3 when a step would need more than `max cutbacks` halvings in a "
+      "row, a step smaller than `min dt`, or more than `max steps` steps. Rejected steps write no output.",
+      {dbl("end time", 1.0, "Final time [s].").gt(0.0),
+       integer("steps", 1, "Number of steps (initial step = end time / steps).").ge(1),
+       integer("max cutbacks", 6, "Halvings of a failed step in a row before giving up.").ge(0),
+       dbl("growth", 1.5, "Factor by which the step grows after each accepted step until it is the deck's step again.")
+           .ge(1.0)
+           .le(4.0),
+       dbl("min dt", 0.0, "Smallest step [s]: a cut-back below it ends the run (exit 3). 0: 1e-6 x (end time / steps).")
+           .ge(0.0)
+           .dflt_doc("`0` (1e-6 x end time / steps)"),
+       integer("max steps", 0, "Cap on the number of steps tried, accepted and rejected (exit 3 when reached). "
+               "0: 100 x steps + 1000.")
+           .ge(0)
+           .dflt_doc("`0` (100 x steps + 1000)")}));
 
   s.push_back(list(
       "Newton", "Newton",

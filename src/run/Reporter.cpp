@@ -245,6 +245,20 @@ void Reporter::history_row(const RunState& s, const StepRecord& rec, double ener
   history_->row(row);
 }
 
+void Reporter::begin_interval(double t0, double t1) {
+  interval_start_ = std::chrono::steady_clock::now();
+  interval_t0_ = t0;
+  interval_t1_ = t1;
+}
+
+namespace {
+std::string seconds(double s) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(s < 10.0 ? 1 : 0) << s << " s";
+  return os.str();
+}
+}  // namespace
+
 void Reporter::step_line(const RunState& s, const StepRecord& rec, double energy) {
   const NewtonResult& nr = rec.newton;
   out_ << "  step " << std::setw(4) << s.step << "  t " << fmt(s.t, 4) << "  dt " << fmt(rec.dt, 2) << "  newton " << std::setw(2)
@@ -255,11 +269,18 @@ void Reporter::step_line(const RunState& s, const StepRecord& rec, double energy
     const EnergyAudit& au = rec.audit;
     out_ << "  K " << fmt(au.kinetic, 6) << "  E " << fmt(au.kinetic + au.strain, 9) << "  balance " << fmt(au.balance, 2);
   }
-  out_ << "\n";
+  // Time left: the wall time per unit of simulated time so far in this interval.
+  const auto now = std::chrono::steady_clock::now();
+  const double wall = std::chrono::duration<double>(now - start_).count();
+  const double spent = std::chrono::duration<double>(now - interval_start_).count();
+  const double done = s.t - interval_t0_, left = std::max(0.0, interval_t1_ - s.t);
+  out_ << "  [" << seconds(wall);
+  if (done > 0.0) out_ << ", ~" << seconds(spent * left / done) << " left";
+  out_ << "]" << std::endl;
 }
 
 void Reporter::cutback_line(const RunState& s, double t_new, const NewtonResult& nr, double dt_new) {
-  out_ << "  step " << s.step + 1 << " t=" << fmt(t_new, 3) << ": " << nr.failure << "; cutting dt to " << fmt(dt_new, 3) << "\n";
+  out_ << "  step " << s.step + 1 << " t=" << fmt(t_new, 3) << ": " << nr.failure << "; cutting dt to " << fmt(dt_new, 3) << std::endl;
 }
 
 std::vector<double> Reporter::displacement(const la::Vector& u) {

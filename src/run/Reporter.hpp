@@ -40,7 +40,10 @@ class Reporter {
   void energy_row(int step, double t, const EnergyAudit& au, const EnergyTotals& e);
   // One row of <basename>_history.csv (collective: probes).
   void history_row(const RunState& s, const StepRecord& rec, double energy);
-  // The progress line of an accepted step; without energy terms when they are not finite.
+  // The stepping of [t0, t1] begins: the reference of the time-left estimate.
+  void begin_interval(double t0, double t1);
+  // The progress line of an accepted step (flushed): without energy terms when they are
+  // not finite; then the wall time so far and an estimate of the time left.
   void step_line(const RunState& s, const StepRecord& rec, double energy);
   void cutback_line(const RunState& s, double t_new, const NewtonResult& nr, double dt_new);
 
@@ -64,6 +67,8 @@ class Reporter {
   std::ostream& out_;
   std::string out_dir_;
   std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point interval_start_;  // begin_interval()
+  double interval_t0_ = 0.0, interval_t1_ = 1.0;
   std::unique_ptr<OutputDir> staging_;
   std::unique_ptr<XdmfWriter> xdmf_;
   std::unique_ptr<CsvWriter> history_, energy_csv_;

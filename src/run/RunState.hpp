@@ -8,36 +8,40 @@
 
 namespace stentor {
 
-// Step size: starts at the deck's step; a failed step is halved (at most `max_cutbacks`
-// times in a row); after a run of cut-backs the next success doubles it once, capped at
-// the deck's step.
+// Step size: starts at the deck's step (the target); a failed step is retried with half
+// the step tried, at most `max_cutbacks` times in a row and never below `min_dt`; each
+// accepted step lets the step grow by `growth` again, up to the target.
 class StepControl {
  public:
-  StepControl(double target, int max_cutbacks) : target_(target), dt_(target), max_cutbacks_(max_cutbacks) {}
+  StepControl(double target, int max_cutbacks, double growth, double min_dt)
+      : target_(target), dt_(target), growth_(growth), min_dt_(min_dt), max_cutbacks_(max_cutbacks) {}
   // The step to try next, never past the end of the interval (`remaining`).
   double propose(double remaining) {
-    dt_ = std::min(dt_, remaining);
-    return dt_;
+    tried_ = std::min(dt_, remaining);
+    return tried_;
   }
-  // After a failed step: halves the step; false when the cut-backs are used up.
-  bool cut() {
-    if (consecutive_ >= max_cutbacks_) return false;
+  enum class Cut { Ok, TooManyCutbacks, BelowMinimum };
+  // After a failed step: halves the step tried; says why not when it may not.
+  Cut cut() {
+    if (consecutive_ >= max_cutbacks_) return Cut::TooManyCutbacks;
+    if (0.5 * tried_ < min_dt_) return Cut::BelowMinimum;
     ++consecutive_;
     ++total_;
-    dt_ *= 0.5;
-    return true;
+    dt_ = 0.5 * tried_;
+    return Cut::Ok;
   }
   void accepted() {
-    if (consecutive_ > 0) dt_ = std::min(target_, 2.0 * dt_);
+    dt_ = std::min(target_, growth_ * dt_);
     consecutive_ = 0;
   }
   double dt() const { return dt_; }
   double target() const { return target_; }
+  double min_dt() const { return min_dt_; }
   int consecutive_cuts() const { return consecutive_; }
   int total_cuts() const { return total_; }
 
  private:
-  double target_, dt_;
+  double target_, dt_, tried_ = 0.0, growth_, min_dt_;
   int max_cutbacks_;
   int consecutive_ = 0, total_ = 0;
 };
@@ -50,14 +54,14 @@ struct EnergyTotals {
 };
 
 struct RunState {
-  RunState(const la::RCP<const la::Map>& map, double dt, int max_cutbacks)
-      : u(map), u_prev(map), u_before_last(map), control(dt, max_cutbacks) {}
+  RunState(const la::RCP<const la::Map>& map, const StepControl& c) : u(map), u_prev(map), u_before_last(map), control(c) {}
   la::Vector u;              // current iterate; after an accepted step u_{n+1}
   la::Vector u_prev;         // u_n, the start of the step being solved
   la::Vector u_before_last;  // u_{n-1}: the static predictor extrapolates u_n - u_{n-1}
   double t = 0.0;            // time of the last accepted step
   double dt_last = 0.0;      // its step size
   int step = 0;              // accepted steps
+  long attempts = 0;         // steps tried, accepted and rejected
   StepControl control;
   EnergyTotals energy;
   int newton_iterations = 0, linear_iterations = 0;  // all attempts, failed ones included

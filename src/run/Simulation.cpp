@@ -75,12 +75,35 @@ bool accept_step(Run& r, double dt, const NewtonResult& nr, double end) {
   return true;
 }
 
+// Why the run stops at a failed step that may not be cut back again.
+std::string cutback_failure(const RunState& s, double dt, const NewtonResult& nr, StepControl::Cut why) {
+  std::ostringstream os;
+  os << "Newton failed at t = " << s.t + dt << " (" << nr.failure << ")";
+  if (why == StepControl::Cut::BelowMinimum)
+    os << " with dt = " << dt << "; half of it is below Stepping->min dt = " << s.control.min_dt()
+       << " (see Stepping->min dt, Newton->max iterations)";
+  else
+    os << " after " << s.control.consecutive_cuts() << " step halvings (dt = " << dt
+       << "); see Stepping->max cutbacks, Newton->max iterations";
+  return os.str();
+}
+
 // Steps from the current time to `end`: each step is tried with the controller's size; a
 // failed Newton solve is retried from the last converged state with half the step.
-// False when the run must stop (cut-backs used up, or a non-finite state).
+// False when the run must stop (cut-backs or steps used up, or a non-finite state).
 bool run_interval(Run& r, double end) {
   RunState& s = r.state;
+  const long cap = r.model.cfg.stepping.step_cap();
   while (s.t < end * (1.0 - 1e-12)) {
+    if (s.attempts >= cap) {
+      std::ostringstream os;
+      os << "reached Stepping->max steps = " << cap << " (" << s.step << " accepted, " << s.attempts - s.step
+         << " rejected) at t = " << s.t << " of " << end << "; raise it, or see why steps are cut back";
+      s.failure = os.str();
+      s.failed = true;
+      return false;
+    }
+    ++s.attempts;
     const double dt = s.control.propose(end - s.t);
     const NewtonResult nr = r.stepper.solve(s, dt);
     if (nr.converged) {
@@ -88,11 +111,9 @@ bool run_interval(Run& r, double end) {
       continue;
     }
     r.stepper.reject(s);
-    if (!s.control.cut()) {
-      std::ostringstream os;
-      os << "Newton failed at t = " << s.t + dt << " (" << nr.failure << ") after " << s.control.consecutive_cuts()
-         << " step halvings (dt = " << dt << "); see Stepping->max cutbacks, Newton->max iterations";
-      s.failure = os.str();
+    const StepControl::Cut why = s.control.cut();
+    if (why != StepControl::Cut::Ok) {
+      s.failure = cutback_failure(s, dt, nr, why);
       s.failed = true;
       return false;
     }
@@ -135,10 +156,12 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   std::ostringstream sink;
   std::ostream* contact_log = opts.verbose ? (verbose0 ? static_cast<std::ostream*>(&std::cout) : &sink) : nullptr;
   Stepper stepper(model, timers, verbose0 ? &std::cout : nullptr, contact_log);
-  RunState state(model.dist->owned_map(), cfg.stepping.end_time / cfg.stepping.num_steps, cfg.stepping.max_cutbacks);
+  const SteppingConfig& st = cfg.stepping;
+  RunState state(model.dist->owned_map(), StepControl(st.end_time / st.num_steps, st.max_cutbacks, st.growth, st.min_step()));
   Run run{model, stepper, reporter, state};
 
   initialize(run);
+  reporter.begin_interval(0.0, cfg.stepping.end_time);
   run_interval(run, cfg.stepping.end_time);
 
   if (result) fill_result(run, *result);
