@@ -267,6 +267,10 @@ void Contact::initialize(const la::Vector& u0, double end_time) {
   }
 }
 
+void Contact::set_active_pairs(const std::vector<bool>& active) {
+  for (std::size_t i = 0; i < pairs_.size() && i < active.size(); ++i) pairs_[i].active = active[i];
+}
+
 void Contact::begin_step(double t_n, double dt, const la::Vector& u_n) {
   t0_ = t_n;
   t1_ = t_n + dt;
@@ -339,6 +343,10 @@ void Contact::evaluate_nodes(const la::Vector& u, la::Vector& r) {
   auto rh = r.getLocalViewHost(Tpetra::Access::ReadWrite);
   if (has_master_) update_master_positions(u, master_x_);
   for (auto& p : pairs_) {
+    if (!p.active) {
+      for (std::size_t i = 0; i < p.nodes.size(); ++i) p.nodes[i].state = p.out[i].state = contact::Free;
+      continue;
+    }
     if (p.master) p.master->build(master_x_);
     const contact::Obstacle ob = obstacle(p, t1_);
     contact::LawParams lp;

@@ -52,6 +52,9 @@ class Contact {
   // Whether the active set (per slave node: free, inactive, stick, slip) of the last
   // apply() differs from the one before it (collective result, computed in apply()).
   bool active_set_changed() const { return changed_; }
+  // Which pairs enforce contact (one flag per Config::contact entry; all by default): the
+  // slave nodes of an inactive pair are free. "Stages" switch pairs per stage.
+  void set_active_pairs(const std::vector<bool>& active);
 
   struct PairStats {
     long active = 0, stick = 0, slip = 0;
@@ -111,6 +114,7 @@ class Contact {
     std::vector<Slave> nodes;
     std::vector<contact::NodeOutput> out;   // per slave node, last apply()
     long excluded = 0;                      // slave nodes with a prescribed component (left out), global
+    bool active = true;                     // set_active_pairs()
   };
   contact::Obstacle obstacle(const Pair& p, double t) const;
   std::array<double, 3> translation(const Pair& p, double t) const;

@@ -113,6 +113,7 @@ std::vector<std::string> Reporter::history_columns() const {
     for (int k = 0; k < m_.dim; ++k) columns.push_back("u_" + p.name + "_" + kAxes[k]);
   if (m_.contact)
     for (const auto& c : m_.contact->history_columns()) columns.push_back(c);
+  if (!cfg_.stages.empty()) columns.push_back("stage");
   return columns;
 }
 
@@ -241,8 +242,15 @@ void Reporter::history_row(const RunState& s, const StepRecord& rec, double ener
     for (int k = 0; k < dim; ++k) row.push_back(pv[3 * p + k]);
   if (m_.contact)
     for (double v : m_.contact->history_values(rec.contact)) row.push_back(v);
+  if (!cfg_.stages.empty()) row.push_back(double(s.stage + 1));
   Timers::Scope sc{timers_, "output"};
   history_->row(row);
+}
+
+void Reporter::begin_stage(std::size_t k) {
+  const StageConfig& st = cfg_.stages[k];
+  out_ << "stage " << k + 1 << "/" << cfg_.stages.size() << " '" << st.name << "': t " << fmt(st.start, 4) << " -> "
+       << fmt(st.end, 4) << ", " << st.num_steps << " step(s) of " << fmt(st.step(), 3) << "\n";
 }
 
 void Reporter::begin_interval(double t0, double t1) {
@@ -274,7 +282,9 @@ void Reporter::step_line(const RunState& s, const StepRecord& rec, double energy
   const double wall = std::chrono::duration<double>(now - start_).count();
   const double spent = std::chrono::duration<double>(now - interval_start_).count();
   const double done = s.t - interval_t0_, left = std::max(0.0, interval_t1_ - s.t);
-  out_ << "  [" << seconds(wall);
+  out_ << "  [";
+  if (!cfg_.stages.empty()) out_ << cfg_.stages[static_cast<std::size_t>(s.stage)].name << ", ";
+  out_ << seconds(wall);
   if (done > 0.0) out_ << ", ~" << seconds(spent * left / done) << " left";
   out_ << "]" << std::endl;
 }

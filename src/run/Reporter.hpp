@@ -40,6 +40,8 @@ class Reporter {
   void energy_row(int step, double t, const EnergyAudit& au, const EnergyTotals& e);
   // One row of <basename>_history.csv (collective: probes).
   void history_row(const RunState& s, const StepRecord& rec, double energy);
+  // Stage k of Config::stages begins: its header line.
+  void begin_stage(std::size_t k);
   // The stepping of [t0, t1] begins: the reference of the time-left estimate.
   void begin_interval(double t0, double t1);
   // The progress line of an accepted step (flushed): without energy terms when they are

@@ -30,6 +30,12 @@ class StepControl {
     dt_ = 0.5 * tried_;
     return Cut::Ok;
   }
+  // A new interval (stage) with its own step and minimum; the cut-back total carries on.
+  void restart(double target, double min_dt) {
+    target_ = dt_ = target;
+    min_dt_ = min_dt;
+    consecutive_ = 0;
+  }
   void accepted() {
     dt_ = std::min(target_, growth_ * dt_);
     consecutive_ = 0;
@@ -62,6 +68,7 @@ struct RunState {
   double dt_last = 0.0;      // its step size
   int step = 0;              // accepted steps
   long attempts = 0;         // steps tried, accepted and rejected
+  int stage = 0;             // index into Config::stages (0 without stages)
   StepControl control;
   EnergyTotals energy;
   int newton_iterations = 0, linear_iterations = 0;  // all attempts, failed ones included

@@ -1,6 +1,7 @@
 // The run, as the procedure reads (cf. deal.II step-44 run()):
 //   run_simulation   build the model, open the output, set the initial state, step the
 //                    interval, report;
+//   run_stages       with "Stages": each stage's step and contact pairs, then its interval;
 //   run_interval     the time loop: try a step, cut it back on failure, accept it;
 //   accept_step      make a converged step part of the history and write it out.
 // The pieces live in their own files: Model (mesh, loads, assembler, solvers), RunState
@@ -122,6 +123,23 @@ bool run_interval(Run& r, double end) {
   return true;
 }
 
+// The stages in order, each with its own step and its contact pairs; the state carries
+// over. False when a stage fails.
+bool run_stages(Run& r) {
+  const SteppingConfig& st = r.model.cfg.stepping;
+  const auto& stages = r.model.cfg.stages;
+  for (std::size_t k = 0; k < stages.size(); ++k) {
+    const StageConfig& stage = stages[k];
+    RunState& s = r.state;
+    s.stage = static_cast<int>(k);
+    s.control.restart(stage.step(), st.min_dt > 0.0 ? st.min_dt : 1e-6 * stage.step());
+    if (r.model.contact) r.model.contact->set_active_pairs(stage.contact_active);
+    r.reporter.begin_stage(k);
+    if (!run_interval(r, stage.end)) return false;
+  }
+  return true;
+}
+
 void fill_result(Run& r, RunResult& result) {
   const RunState& s = r.state;
   result.displacement = r.reporter.displacement(s.u);
@@ -162,7 +180,10 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
 
   initialize(run);
   reporter.begin_interval(0.0, cfg.stepping.end_time);
-  run_interval(run, cfg.stepping.end_time);
+  if (cfg.stages.empty())
+    run_interval(run, cfg.stepping.end_time);
+  else
+    run_stages(run);
 
   if (result) fill_result(run, *result);
   reporter.summary(state);
