@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -77,6 +78,9 @@ void test_failure_hook(int rank) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // The log is line-buffered even when redirected to a file: a killed batch job keeps
+  // every line written so far (the progress line is also flushed every step).
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   Tpetra::ScopeGuard guard(&argc, &argv);
   const int rank = Tpetra::getDefaultComm()->getRank();
   MPI_Comm_dup(MPI_COMM_WORLD, &g_fail_comm);

@@ -158,6 +158,11 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
     p.out.resize(p.nodes.size());
     Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &excluded, &p.excluded);
     Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &partial, &p.partial);
+    long mine = static_cast<long>(p.nodes.size()), usable = 0;
+    Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &mine, &usable);
+    if (usable == 0)
+      throw InputError(where + "->slave: none of the " + std::to_string(nodes.size()) + " nodes of group '" + pc.slave +
+                       "' can touch anything: every one has all its components prescribed by a Dirichlet condition");
   }
   if (!has_master_) return;
 
@@ -277,6 +282,10 @@ void Contact::initialize(const la::Vector& u0, double end_time) {
   }
 }
 
+void Contact::set_active_pairs(const std::vector<bool>& active) {
+  for (std::size_t i = 0; i < pairs_.size() && i < active.size(); ++i) pairs_[i].active = active[i];
+}
+
 void Contact::begin_step(double t_n, double dt, const la::Vector& u_n) {
   t0_ = t_n;
   t1_ = t_n + dt;
@@ -350,6 +359,10 @@ void Contact::evaluate_nodes(const la::Vector& u, la::Vector& r) {
   auto rh = r.getLocalViewHost(Tpetra::Access::ReadWrite);
   if (has_master_) update_master_positions(u, master_x_);
   for (auto& p : pairs_) {
+    if (!p.active) {
+      for (std::size_t i = 0; i < p.nodes.size(); ++i) p.nodes[i].state = p.out[i].state = contact::Free;
+      continue;
+    }
     if (p.master) p.master->build(master_x_);
     const contact::Obstacle ob = obstacle(p, t1_);
     contact::LawParams lp;

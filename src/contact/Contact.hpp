@@ -53,6 +53,9 @@ class Contact {
   // facet of an active node) of the last apply() differs from the one before it
   // (collective result, computed in apply()).
   bool active_set_changed() const { return changed_; }
+  // Which pairs enforce contact (one flag per Config::contact entry; all by default): the
+  // slave nodes of an inactive pair are free. "Stages" switch pairs per stage.
+  void set_active_pairs(const std::vector<bool>& active);
 
   struct PairStats {
     long active = 0, stick = 0, slip = 0;
@@ -121,6 +124,7 @@ class Contact {
     std::vector<contact::NodeOutput> out;   // per slave node, last apply()
     long excluded = 0;                      // slave nodes with every component prescribed (left out), global
     long partial = 0;                       // slave nodes with some prescribed components (kept), global
+    bool active = true;                     // set_active_pairs()
   };
   contact::Obstacle obstacle(const Pair& p, double t) const;
   std::array<double, 3> translation(const Pair& p, double t) const;

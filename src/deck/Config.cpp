@@ -24,11 +24,12 @@
 
 namespace stentor {
 
-double Ramp::operator()(double t, double end_time) const {
+namespace {
+double ramp_value(Ramp::Kind kind, const std::vector<double>& times, const std::vector<double>& factors, double t, double end_time) {
   switch (kind) {
-    case Kind::Constant: return 1.0;
-    case Kind::Linear: return end_time > 0.0 ? t / end_time : 1.0;
-    case Kind::Table: {
+    case Ramp::Kind::Constant: return 1.0;
+    case Ramp::Kind::Linear: return end_time > 0.0 ? t / end_time : 1.0;
+    case Ramp::Kind::Table: {
       if (times.empty() || factors.size() != times.size()) return 1.0;
       if (t <= times.front()) return factors.front();
       if (t >= times.back()) return factors.back();
@@ -40,6 +41,25 @@ double Ramp::operator()(double t, double end_time) const {
     }
   }
   return 1.0;
+}
+}  // namespace
+
+double Ramp::operator()(double t, double end_time) const {
+  if (stages.empty()) return ramp_value(kind, times, factors, t, end_time);
+  // The stage (start, end] holding t; a time within round-off of a stage's end belongs
+  // to that stage (its last step ends there), a time past the last stage to the last.
+  const Piece* p = &stages.back();
+  for (const auto& q : stages)
+    if (t <= q.end + 1e-9 * (q.end - q.start)) {
+      p = &q;
+      break;
+    }
+  switch (p->mode) {
+    case Piece::Mode::Off: return 0.0;
+    case Piece::Mode::Hold: return p->held;
+    case Piece::Mode::Active: break;
+  }
+  return ramp_value(p->kind, p->times, p->factors, t - p->start, p->end - p->start);
 }
 
 const MaterialConfig& Config::material(const std::string& name) const {
@@ -214,6 +234,10 @@ class DeckReader {
   void read_output(const ParameterList& pl);
   Ramp read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls, const std::string& key = "ramp") const;
   void read_contact(const ParameterList& pl);
+  void read_stages(const ParameterList& pl, const ParameterList* stepping);
+  std::vector<bool> read_active(const ParameterList& sub, const std::string& path, const std::string& key,
+                                const std::vector<std::string>& names, const std::string& what) const;
+  void read_stage_ramps(const ParameterList& sub, const std::string& path, std::size_t k);
   void read_contact_obstacle(const ParameterList& sub, const std::string& path, const ListSpec& ls, ContactPairConfig& c);
   void check_dim_length(const std::vector<double>& v, const std::string& path) const;
   void check_safe_name(const std::string& text, const std::string& path, const std::string& what) const;
@@ -1011,6 +1035,9 @@ void DeckReader::read_stepping(const ParameterList& pl) {
   cfg_.stepping.end_time = get_double(pl, ls, "end time");
   cfg_.stepping.num_steps = get_int(pl, ls, "steps");
   cfg_.stepping.max_cutbacks = get_int(pl, ls, "max cutbacks");
+  cfg_.stepping.growth = get_double(pl, ls, "growth");
+  cfg_.stepping.min_dt = get_double(pl, ls, "min dt");
+  cfg_.stepping.max_steps = get_int(pl, ls, "max steps");
 }
 
 void DeckReader::read_newton(const ParameterList& pl) {
@@ -1095,6 +1122,180 @@ void DeckReader::read_output(const ParameterList& pl) {
   }
 }
 
+// ------------------------------------------------------------------------------------
+// Stages: a procedure of consecutive intervals. Each load's and obstacle's ramp becomes
+// one Ramp::Piece per stage (stage-local time; held or off where not active).
+
+std::vector<bool> DeckReader::read_active(const ParameterList& sub, const std::string& path, const std::string& key,
+                                          const std::vector<std::string>& names, const std::string& what) const {
+  const ListSpec& ls = deck_list_spec("Stages/*");
+  const std::string text = get_string(sub, ls, key), kpath = path + "->" + key;
+  if (lower(trim(text)) == "all") return std::vector<bool>(names.size(), true);
+  std::vector<bool> active(names.size(), false);
+  if (lower(trim(text)) == "none") return active;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const std::string n = trim(item);
+    if (n.empty()) fail(quoted(kpath) + " must be 'all', 'none' or names separated by commas; got '" + text + "'");
+    const auto it = std::find(names.begin(), names.end(), n);
+    if (it == names.end()) {
+      std::string msg = quoted(kpath) + " names undefined " + what + " '" + n + "'; defined: " + (names.empty() ? "(none)" : join(names));
+      const std::string near = nearest_name(n, names);
+      if (!near.empty()) msg += "; did you mean '" + near + "'?";
+      fail(msg);
+    }
+    const auto i = static_cast<std::size_t>(it - names.begin());
+    if (active[i]) fail(quoted(kpath) + " lists '" + n + "' twice");
+    active[i] = true;
+  }
+  return active;
+}
+
+namespace {
+Ramp::Piece piece_of(const Ramp& r, const StageConfig& st) {
+  Ramp::Piece p;
+  p.start = st.start;
+  p.end = st.end;
+  p.kind = r.kind;
+  p.times = r.times;
+  p.factors = r.factors;
+  return p;
+}
+// The factor at the end of a piece.
+double end_value(const Ramp::Piece& p) {
+  Ramp r;
+  r.stages = {p};
+  return r(p.end, p.end);
+}
+}  // namespace
+
+// "Ramps" of stage k: ramp overrides (stage-local time) of active loads and obstacles,
+// written into the k-th piece of their ramps.
+void DeckReader::read_stage_ramps(const ParameterList& sub, const std::string& path, std::size_t k) {
+  const ListSpec& ls = deck_list_spec("Stages/*/Ramps/*");
+  const StageConfig& st = cfg_.stages[k];
+  check_list(sub, path, {&deck_list_spec("Stages/*/Ramps")});
+  for (auto it = sub.begin(); it != sub.end(); ++it) {
+    const std::string& name = sub.name(it);
+    const std::string p = path + "->" + name;
+    const ParameterList& r = sub.sublist(name);
+    check_list(r, p, {&ls});
+    int load = -1, pair = -1;
+    for (std::size_t i = 0; i < cfg_.loads.size(); ++i)
+      if (cfg_.loads[i].name == name) load = static_cast<int>(i);
+    for (std::size_t i = 0; i < cfg_.contact.size(); ++i)
+      if (cfg_.contact[i].name == name) pair = static_cast<int>(i);
+    if (load < 0 && pair < 0) fail(quoted(p) + ": no load ('Boundary Conditions') or contact pair ('Contact') is named '" + name + "'");
+    if (load >= 0 && pair >= 0) fail(quoted(p) + ": '" + name + "' names both a load and a contact pair; rename one");
+    auto uses = [&](const std::vector<std::string>& keys) {
+      for (const auto& key : keys)
+        if (r.isParameter(key)) return key;
+      return std::string();
+    };
+    const std::vector<std::string> load_keys = {"ramp", "ramp times", "ramp factors"};
+    const std::vector<std::string> obstacle_keys = {"translation ramp", "translation ramp times", "translation ramp factors",
+                                                    "radius ramp", "radius ramp times", "radius ramp factors"};
+    if (load >= 0) {
+      if (!st.load_active[static_cast<std::size_t>(load)])
+        fail(quoted(p) + ": load '" + name + "' is not active in this stage (see 'Stages->" + st.name + "->loads')");
+      if (const std::string bad = uses(obstacle_keys); !bad.empty()) fail(quoted(p + "->" + bad) + " belongs to a contact obstacle, '" + name + "' is a load");
+      if (uses(load_keys).empty()) continue;
+      Ramp& ramp = cfg_.loads[static_cast<std::size_t>(load)].ramp;
+      const Ramp over = read_ramp(r, p, ls, "ramp");
+      ramp.stages[k] = piece_of(over, st);
+    } else {
+      ContactPairConfig& c = cfg_.contact[static_cast<std::size_t>(pair)];
+      if (!st.contact_active[static_cast<std::size_t>(pair)])
+        fail(quoted(p) + ": contact pair '" + name + "' is not active in this stage (see 'Stages->" + st.name + "->contact')");
+      if (const std::string bad = uses(load_keys); !bad.empty()) fail(quoted(p + "->" + bad) + " belongs to a load, '" + name + "' is a contact pair (use 'translation ramp' or 'radius ramp')");
+      if (c.obstacle.empty()) fail(quoted(p) + ": contact pair '" + name + "' has a deformable master and no obstacle to program");
+      if (r.isParameter("translation ramp") || r.isParameter("translation ramp times") || r.isParameter("translation ramp factors"))
+        c.translation_ramp.stages[k] = piece_of(read_ramp(r, p, ls, "translation ramp"), st);
+      if (r.isParameter("radius ramp") || r.isParameter("radius ramp times") || r.isParameter("radius ramp factors")) {
+        if (c.obstacle == "plane") fail(quoted(p + "->radius ramp") + " is not used by a plane obstacle");
+        c.radius_ramp.stages[k] = piece_of(read_ramp(r, p, ls, "radius ramp"), st);
+      }
+    }
+  }
+}
+
+void DeckReader::read_stages(const ParameterList& pl, const ParameterList* stepping) {
+  const ListSpec& ls = deck_list_spec("Stages/*");
+  check_list(pl, "Stages", {&deck_list_spec("Stages")});
+  if (stepping)
+    for (const char* k : {"end time", "steps"})
+      if (stepping->isParameter(k))
+        fail(std::string("'Stepping->") + k + "' is not used with 'Stages' (each stage has its own duration and steps); remove it");
+  std::vector<std::string> load_names, pair_names;
+  for (const auto& l : cfg_.loads) load_names.push_back(l.name);
+  for (const auto& c : cfg_.contact) pair_names.push_back(c.name);
+  double t = 0.0;
+  int total = 0;
+  for (auto it = pl.begin(); it != pl.end(); ++it) {
+    const std::string& name = pl.name(it);
+    const std::string path = "Stages->" + name;
+    check_safe_name(name, path, "the stage name");
+    const ParameterList& sub = pl.sublist(name);
+    check_list(sub, path, {&ls});
+    StageConfig st;
+    st.name = name;
+    st.start = t;
+    const bool has_d = sub.isParameter("duration"), has_e = sub.isParameter("end time");
+    if (has_d == has_e) fail(quoted(path) + " needs exactly one of 'duration' and 'end time'" + (has_d ? ", not both" : ""));
+    st.end = has_d ? t + get_double(sub, ls, "duration") : get_double(sub, ls, "end time");
+    if (!(st.end > t)) fail(quoted(path + "->end time") + " must be after the previous stage's end " + num(t) + ", got " + num(st.end));
+    if (sub.isParameter("steps") && sub.isParameter("step")) fail(quoted(path) + " takes 'steps' or 'step', not both");
+    st.num_steps = get_int(sub, ls, "steps");
+    if (sub.isParameter("step")) {
+      const double n = std::ceil((st.end - st.start) / get_double(sub, ls, "step") * (1.0 - 1e-12));
+      if (n > 1e7) fail(quoted(path + "->step") + " gives more than 1e7 steps");
+      st.num_steps = std::max(1, static_cast<int>(n));
+    }
+    if (cfg_.stepping.min_dt > st.step())
+      fail("'Stepping->min dt' = " + num(cfg_.stepping.min_dt) + " exceeds the step " + num(st.step()) + " of stage " + quoted(path));
+    st.load_active = read_active(sub, path, "loads", load_names, "load");
+    st.contact_active = read_active(sub, path, "contact", pair_names, "contact pair");
+    cfg_.stages.push_back(st);
+    const std::size_t k = cfg_.stages.size() - 1;
+    // Default pieces: the deck's ramp in stage-local time where active, else held
+    // (Dirichlet values, obstacle motion) or off (forces).
+    for (std::size_t i = 0; i < cfg_.loads.size(); ++i) {
+      Ramp& r = cfg_.loads[i].ramp;
+      Ramp::Piece p = piece_of(r, st);
+      if (!st.load_active[i]) p.mode = cfg_.loads[i].type == LoadConfig::Type::Dirichlet ? Ramp::Piece::Mode::Hold : Ramp::Piece::Mode::Off;
+      r.stages.push_back(p);
+    }
+    for (auto& c : cfg_.contact) {
+      c.translation_ramp.stages.push_back(piece_of(c.translation_ramp, st));
+      c.radius_ramp.stages.push_back(piece_of(c.radius_ramp, st));
+      if (!st.contact_active[static_cast<std::size_t>(&c - cfg_.contact.data())]) {
+        c.translation_ramp.stages.back().mode = Ramp::Piece::Mode::Hold;
+        c.radius_ramp.stages.back().mode = Ramp::Piece::Mode::Hold;
+      }
+    }
+    if (sub.isSublist("Ramps")) read_stage_ramps(sub.sublist("Ramps"), path + "->Ramps", k);
+    t = st.end;
+    total += st.num_steps;
+  }
+  if (cfg_.stages.empty()) fail("'Stages' defines no stage; add one sublist per stage or remove 'Stages'");
+  // Held values: the factor at the end of the stage before (0 before the first).
+  auto fill_held = [](Ramp& r) {
+    double prev = 0.0;
+    for (auto& p : r.stages) {
+      if (p.mode == Ramp::Piece::Mode::Hold) p.held = prev;
+      prev = p.mode == Ramp::Piece::Mode::Off ? 0.0 : end_value(p);
+    }
+  };
+  for (auto& l : cfg_.loads) fill_held(l.ramp);
+  for (auto& c : cfg_.contact) {
+    fill_held(c.translation_ramp);
+    fill_held(c.radius_ramp);
+  }
+  cfg_.stepping.end_time = t;
+  cfg_.stepping.num_steps = total;
+}
+
 Config DeckReader::read() {
   std::error_code ec;
   const fs::path abs = fs::absolute(fs::path(file_), ec).lexically_normal();
@@ -1151,6 +1352,11 @@ Config DeckReader::read() {
   if (root.isSublist("Linear Solver")) read_linear(root.sublist("Linear Solver"));
   if (root.isSublist("Output")) read_output(root.sublist("Output"));
   if (root.isSublist("Contact")) read_contact(root.sublist("Contact"));
+  if (root.isSublist("Stages")) read_stages(root.sublist("Stages"), root.isSublist("Stepping") ? &root.sublist("Stepping") : nullptr);
+  const double step = cfg_.stepping.end_time / cfg_.stepping.num_steps;
+  if (cfg_.stages.empty() && cfg_.stepping.min_dt > step)
+    fail("'Stepping->min dt' must not exceed the step 'Stepping->end time' / 'Stepping->steps' = " + num(step) + ", got " +
+         num(cfg_.stepping.min_dt));
   return cfg_;
 }
 

@@ -21,6 +21,18 @@ struct InputError : std::runtime_error {
 struct Ramp {
   enum class Kind { Linear, Constant, Table } kind = Kind::Linear;
   std::vector<double> times, factors;
+  // With "Stages" (set by the deck reader): the factor in each stage (start, end] of the
+  // procedure, replacing the above. Active: the stage's ramp at stage-local time
+  // t - start (`linear`: (t - start) / (end - start)); Hold: `held`, the factor at the
+  // end of the stage before; Off: 0.
+  struct Piece {
+    double start = 0.0, end = 1.0;
+    enum class Mode { Active, Hold, Off } mode = Mode::Active;
+    double held = 0.0;
+    Kind kind = Kind::Linear;
+    std::vector<double> times, factors;
+  };
+  std::vector<Piece> stages;
   double operator()(double t, double end_time) const;  // defined in deck/Config.cpp
 };
 
@@ -90,7 +102,13 @@ struct TimeIntegrationConfig {
 struct SteppingConfig {
   double end_time = 1.0;   // "Stepping"->"end time" > 0
   int num_steps = 1;       // "Stepping"->"steps" >= 1 (initial step = end time / steps)
-  int max_cutbacks = 6;    // "Stepping"->"max cutbacks" >= 0: halvings of a failed step before giving up
+  int max_cutbacks = 6;    // "Stepping"->"max cutbacks" >= 0: halvings of a failed step in a row before giving up
+  double growth = 1.5;     // "Stepping"->"growth" in [1, 4]: step growth per accepted step, up to end time / steps
+  double min_dt = 0.0;     // "Stepping"->"min dt": smallest step (0: 1e-6 x end time / steps, see min_step())
+  int max_steps = 0;       // "Stepping"->"max steps": cap on steps tried (0: 100 x steps + 1000, see step_cap())
+  // The values in force, 0 resolved to the defaults.
+  double min_step() const { return min_dt > 0.0 ? min_dt : 1e-6 * end_time / num_steps; }
+  long step_cap() const { return max_steps > 0 ? max_steps : 100L * num_steps + 1000L; }
 };
 
 struct NewtonConfig {
@@ -152,6 +170,18 @@ struct ContactPairConfig {
   std::string formulation = "auto";       // "formulation": auto | persistence | gap (auto: persistence in dynamics, gap in statics)
 };
 
+// One entry of "Stages" (sublist name = name), in deck order: the interval (start, end]
+// of the procedure, its step count, and which loads and contact pairs are active. The
+// stage ramps are folded into each load's and obstacle's Ramp::stages.
+struct StageConfig {
+  std::string name;
+  double start = 0.0, end = 1.0;     // "duration" or "end time" [s]
+  int num_steps = 1;                 // "steps", or duration / "step" rounded up
+  std::vector<bool> load_active;     // "loads", per Config::loads entry
+  std::vector<bool> contact_active;  // "contact", per Config::contact entry
+  double step() const { return (end - start) / num_steps; }
+};
+
 struct Config {
   std::string deck_path;  // absolute path of the deck file
   ProblemConfig problem;
@@ -166,6 +196,7 @@ struct Config {
   LinearSolverConfig linear;
   OutputConfig output;
   std::vector<ContactPairConfig> contact;  // "Contact": empty = no contact (costs nothing)
+  std::vector<StageConfig> stages;         // "Stages": empty = one interval [0, Stepping->end time]
 
   const MaterialConfig& material(const std::string& name) const;  // throws InputError
 };

@@ -81,7 +81,7 @@ std::vector<ListSpec> build_schema() {
                      "The root `<ParameterList>` (any name) holds only sublists; `Mesh`, `Materials` "
                      "and `Bodies` are required.");
     root.sublists = {"Problem", "Mesh", "Materials", "Bodies", "Boundary Conditions", "Initial Conditions",
-                     "Time Integration", "Stepping", "Newton", "Linear Solver", "Output", "Contact"};
+                     "Time Integration", "Stepping", "Newton", "Linear Solver", "Output", "Contact", "Stages"};
     root.required_sublists = {"Mesh", "Materials", "Bodies"};
     s.push_back(root);
   }
@@ -224,10 +224,25 @@ std::vector<ListSpec> build_schema() {
       {str("scheme", "gonzalez", "Time integration scheme.").one_of({"gonzalez", "midpoint", "newmark", "hht"}),
        dbl("hht alpha", -0.1, "HHT parameter alpha (0: Newmark average acceleration).").ge(-1.0 / 3.0).le(0.0)}));
 
-  s.push_back(list("Stepping", "Stepping", "Load/time stepping.",
-                   {dbl("end time", 1.0, "Final time [s].").gt(0.0),
-                    integer("steps", 1, "Number of steps (initial step = end time / steps).").ge(1),
-                    integer("max cutbacks", 6, "Halvings of a failed step before giving up.").ge(0)}));
+  s.push_back(list(
+      "Stepping", "Stepping",
+      "Load/time stepping. A step whose Newton solve fails is retried from the last converged state with half "
+      "the step; after each accepted step the step grows by `growth` again, up to the deck's step (end time / "
+      "steps). The run stops with exit status 3 when a step would need more than `max cutbacks` halvings in a "
+      "row, a step smaller than `min dt`, or more than `max steps` steps. Rejected steps write no output.",
+      {dbl("end time", 1.0, "Final time [s].").gt(0.0),
+       integer("steps", 1, "Number of steps (initial step = end time / steps).").ge(1),
+       integer("max cutbacks", 6, "Halvings of a failed step in a row before giving up.").ge(0),
+       dbl("growth", 1.5, "Factor by which the step grows after each accepted step until it is the deck's step again.")
+           .ge(1.0)
+           .le(4.0),
+       dbl("min dt", 0.0, "Smallest step [s]: a cut-back below it ends the run (exit 3). 0: 1e-6 x (end time / steps).")
+           .ge(0.0)
+           .dflt_doc("`0` (1e-6 x end time / steps)"),
+       integer("max steps", 0, "Cap on the number of steps tried, accepted and rejected (exit 3 when reached). "
+               "0: 100 x steps + 1000.")
+           .ge(0)
+           .dflt_doc("`0` (100 x steps + 1000)")}));
 
   s.push_back(list(
       "Newton", "Newton",
@@ -344,6 +359,61 @@ std::vector<ListSpec> build_schema() {
            "Active-set parameter c_tau [Pa s/m] of the friction complementarity function, per unit area like `c normal`; "
            "0: automatic (the node's tangent diagonal times dt).")
            .ge(0.0)}));
+  {
+    auto l = list("Stages", "Stages",
+                  "A procedure of consecutive stages (Abaqus steps), run in the order listed; state (displacement, "
+                  "velocity, contact history) carries over. Each stage has a duration and steps, the loads and contact "
+                  "pairs active in it, and optional ramps in stage-local time. Without `Stages` the run is one "
+                  "interval [0, `Stepping->end time`]; with it, `Stepping->end time` and `steps` are not used (the other "
+                  "`Stepping` parameters apply to every stage, `min dt` 0 meaning 1e-6 x each stage's step). "
+                  "Stage names appear in the log and head no file: letters, digits, spaces and `_ . + -` only.");
+    l.named_sublists = "stage";
+    s.push_back(l);
+  }
+  {
+    auto l = list(
+        "Stages/*", "Stages-><stage>",
+        "One stage, the interval (start, end] with start the previous stage's end (0 for the first). An active "
+        "load's factor is its ramp (the stage's `Ramps` entry, else the load's own) at stage-local time t - start, "
+        "`linear` meaning (t - start) / duration. A Dirichlet set that is not active holds its value from the end "
+        "of the stage before (0 before its first stage); a traction, pressure or body force that is not active is "
+        "0. An inactive contact pair enforces nothing (its nodes are free) and its obstacle holds its position and "
+        "radius; an active obstacle moves by its ramps in stage-local time. All stages share `Problem->analysis`.",
+        {dbl("duration", 1.0, "Length of the stage [s].").gt(0.0).dflt_doc("one of `duration`, `end time` is required"),
+         dbl("end time", 1.0, "End of the stage on the procedure's clock [s].").gt(0.0)
+             .dflt_doc("one of `duration`, `end time` is required"),
+         integer("steps", 1, "Number of steps of the stage (initial step = duration / steps).").ge(1),
+         dbl("step", 1.0, "Step size instead of `steps` [s]: steps = duration / step, rounded up.").gt(0.0)
+             .dflt_doc("duration / `steps`"),
+         str("loads", "all", "The `Boundary Conditions` active in the stage: `all`, `none`, or names separated by commas.")
+             .allowed("`all`, `none`, or load names separated by commas"),
+         str("contact", "all", "The `Contact` pairs active in the stage: `all`, `none`, or names separated by commas.")
+             .allowed("`all`, `none`, or pair names separated by commas")});
+    l.sublists = {"Ramps"};
+    s.push_back(l);
+  }
+  {
+    auto l = list("Stages/*/Ramps", "Stages-><stage>->Ramps",
+                  "Ramps of this stage, in stage-local time, that replace a load's `ramp` or an obstacle's "
+                  "`translation ramp` / `radius ramp` (the rigid balloon: insert by translation, inflate and deflate "
+                  "by radius change). One sublist per active load or contact pair, named like it.");
+    l.named_sublists = "load or contact pair";
+    s.push_back(l);
+  }
+  s.push_back(list(
+      "Stages/*/Ramps/*", "Stages-><stage>->Ramps-><load or pair>",
+      "A load takes `ramp` (+ times, factors); a rigid obstacle `translation ramp` and `radius ramp` (+ times, "
+      "factors). Factors multiply the load's values, the obstacle's `translation` and `radius change`; times are "
+      "stage-local [s].",
+      {str("ramp", "linear", "Load: `linear` (stage-local t / duration), `constant`, `table`.").one_of({"linear", "constant", "table"}),
+       arr("ramp times", "`table`: strictly increasing stage-local times [s].").len(2, 0).dflt_doc("required for `table`"),
+       arr("ramp factors", "`table`: factors at the times.").len(2, 0).dflt_doc("required for `table`"),
+       str("translation ramp", "linear", "Obstacle translation: `linear`, `constant`, `table`.").one_of({"linear", "constant", "table"}),
+       arr("translation ramp times", "`table`: strictly increasing stage-local times [s].").len(2, 0).dflt_doc("required for `table`"),
+       arr("translation ramp factors", "`table`: factors at the times.").len(2, 0).dflt_doc("required for `table`"),
+       str("radius ramp", "linear", "Obstacle radius change: `linear`, `constant`, `table`.").one_of({"linear", "constant", "table"}),
+       arr("radius ramp times", "`table`: strictly increasing stage-local times [s].").len(2, 0).dflt_doc("required for `table`"),
+       arr("radius ramp factors", "`table`: factors at the times.").len(2, 0).dflt_doc("required for `table`")}));
   return s;
 }
 

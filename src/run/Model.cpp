@@ -1,0 +1,60 @@
+#include "run/Model.hpp"
+
+#include <cmath>
+
+#include "mesh/MeshComm.hpp"
+
+namespace stentor {
+
+namespace {
+
+std::vector<GId> nearest_nodes(const Mesh& mesh, const std::vector<ProbeConfig>& probes) {
+  std::vector<GId> nodes;
+  for (const auto& p : probes) {
+    GId best = 0;
+    double bd = 1e300;
+    for (std::size_t n = 0; n < mesh.num_nodes(); ++n) {
+      double d = 0.0;
+      for (int k = 0; k < 3; ++k) d += std::pow(mesh.x[3 * n + k] - p.point[static_cast<std::size_t>(k)], 2);
+      if (d < bd) {
+        bd = d;
+        best = static_cast<GId>(n);
+      }
+    }
+    nodes.push_back(best);
+  }
+  return nodes;
+}
+
+}  // namespace
+
+Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), comm(Tpetra::getDefaultComm()) {
+  rank = comm->getRank();
+  nranks = comm->getSize();
+  {
+    Timers::Scope s{timers, "mesh"};
+    mesh = read_mesh_on_root(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
+  }
+  block_mat = block_materials(cfg, mesh);
+  loads = resolve_loads(cfg, mesh);
+  dim = mesh.dim;
+  dynamic = cfg.problem.dynamic();
+  probe_node = nearest_nodes(mesh, cfg.output.probes);
+}
+
+void Model::discretise(Timers& timers) {
+  {
+    Timers::Scope s{timers, "setup"};
+    dist = std::make_unique<Distribution>(mesh, comm);
+    assembler = std::make_unique<Assembler>(mesh, *dist, cfg, loads, block_mat);
+  }
+  linear = std::make_unique<LinearSolver>(cfg.linear, comm);
+  std::vector<double> xyz(3 * static_cast<std::size_t>(dist->num_owned_nodes()));
+  for (la::LO n = 0; n < dist->num_owned_nodes(); ++n)
+    for (int k = 0; k < 3; ++k) xyz[3 * static_cast<std::size_t>(n) + k] = mesh.x[3 * static_cast<std::size_t>(dist->global_node(n)) + k];
+  linear->set_node_coordinates(dim, xyz);
+  contact = Contact::create(cfg, mesh, *dist, *assembler);
+  if (dynamic) integrator = std::make_unique<TimeIntegrator>(cfg, *assembler, *dist, mesh);
+}
+
+}  // namespace stentor

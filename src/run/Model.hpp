@@ -1,0 +1,50 @@
+// What a run computes with, built once from the deck: the mesh and what the deck names
+// in it (materials per block, loads, probe nodes), then the parallel layout, the
+// assembler, the linear solver, contact and the time scheme. Not movable: the assembler
+// and contact keep references to the mesh and the loads.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "assembly/Assembler.hpp"
+#include "bc/Loads.hpp"
+#include "contact/Contact.hpp"
+#include "deck/Config.hpp"
+#include "mesh/Mesh.hpp"
+#include "parallel/Distribution.hpp"
+#include "run/Simulation.hpp"
+#include "run/Timers.hpp"
+#include "run/TimeIntegrator.hpp"
+#include "solver/LinearSolver.hpp"
+
+namespace stentor {
+
+struct Model {
+  // Reads the mesh (rank 0, then broadcast) and resolves the deck's names against it.
+  // Throws InputError naming the parameter.
+  Model(const Config& cfg, const RunOptions& opts, Timers& timers);
+  Model(const Model&) = delete;
+  Model& operator=(const Model&) = delete;
+
+  // Partition, assembler, linear solver (with the node coordinates multigrid needs),
+  // contact pairs, time integrator. Collective.
+  void discretise(Timers& timers);
+
+  const Config& cfg;
+  la::RCP<const la::Comm> comm;
+  int rank = 0, nranks = 1;
+  Mesh mesh;
+  int dim = 0;
+  bool dynamic = false;
+  std::vector<int> block_mat;     // material of each volume block
+  Loads loads;
+  std::vector<GId> probe_node;    // nearest mesh node of each Output->Probes entry
+
+  std::unique_ptr<Distribution> dist;
+  std::unique_ptr<Assembler> assembler;
+  std::unique_ptr<LinearSolver> linear;
+  std::unique_ptr<Contact> contact;            // null without a Contact sublist
+  std::unique_ptr<TimeIntegrator> integrator;  // null in statics
+};
+
+}  // namespace stentor

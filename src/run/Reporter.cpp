@@ -1,0 +1,378 @@
+#include "run/Reporter.hpp"
+
+#include <mpi.h>
+
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+#include "io/Plot.hpp"
+
+namespace stentor {
+
+namespace {
+
+const char* kAxes[3] = {"x", "y", "z"};
+
+std::string fmt(double v, int prec = 4) {
+  std::ostringstream os;
+  os << std::scientific << std::setprecision(prec) << v;
+  return os.str();
+}
+
+// Records (a global id and k values each) of every rank, gathered on rank 0 (empty
+// elsewhere); `from` is the rank each record came from.
+struct Gathered {
+  std::vector<long long> ids;
+  std::vector<double> values;
+  std::vector<int> from;
+};
+Gathered gather_on_root(const std::vector<long long>& ids, const std::vector<double>& values, int k, int nranks) {
+  const int n = static_cast<int>(ids.size());
+  std::vector<int> counts(static_cast<std::size_t>(nranks)), displs(static_cast<std::size_t>(nranks));
+  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  int total = 0;
+  for (int r = 0; r < nranks; ++r) {
+    displs[static_cast<std::size_t>(r)] = total;
+    total += counts[static_cast<std::size_t>(r)];
+  }
+  Gathered g;
+  g.ids.resize(static_cast<std::size_t>(total));
+  g.values.resize(static_cast<std::size_t>(total) * static_cast<std::size_t>(k));
+  MPI_Gatherv(ids.data(), n, MPI_LONG_LONG, g.ids.data(), counts.data(), displs.data(), MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  std::vector<int> counts_k(counts), displs_k(displs);
+  for (auto& c : counts_k) c *= k;
+  for (auto& d : displs_k) d *= k;
+  MPI_Gatherv(values.data(), k * n, MPI_DOUBLE, g.values.data(), counts_k.data(), displs_k.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  for (int r = 0; r < nranks; ++r) g.from.insert(g.from.end(), static_cast<std::size_t>(counts[static_cast<std::size_t>(r)]), r);
+  return g;
+}
+
+// Contact fields on all nodes: status -1 marks nodes that are no slave node (then the
+// other fields are 0); 0 free, 1 inactive, 2 stick, 3 slip.
+// Master surfaces: contact_master_traction = the reaction force on each master node
+// (summed over ranks) divided by its tributary area (zero on other nodes).
+void write_contact_fields(XdmfWriter& xdmf, std::size_t nn, const Gathered& slaves, const Gathered* masters) {
+  constexpr int kv = Contact::kNodalValues;
+  std::vector<double> status(nn, -1.0), gap(nn, 0.0), lambda_n(nn, 0.0), pressure(nn, 0.0), lambda_t(3 * nn, 0.0), slip(3 * nn, 0.0);
+  for (std::size_t i = 0; i < slaves.ids.size(); ++i) {
+    const auto g = static_cast<std::size_t>(slaves.ids[i]);
+    const double* v = &slaves.values[kv * i];
+    status[g] = v[0];
+    gap[g] = v[1];
+    lambda_n[g] = v[2];
+    pressure[g] = v[3];
+    for (int k = 0; k < 3; ++k) {
+      lambda_t[3 * g + k] = v[4 + k];
+      slip[3 * g + k] = v[7 + k];
+    }
+  }
+  xdmf.node_field("contact_status", 1, status);
+  xdmf.node_field("contact_gap", 1, gap);
+  xdmf.node_field("contact_lambda_normal", 1, lambda_n);
+  xdmf.node_field("contact_pressure", 1, pressure);
+  xdmf.node_field("contact_lambda_tangent", 3, lambda_t);
+  xdmf.node_field("contact_slip", 3, slip);
+  if (!masters) return;  // no master surface in the deck
+  constexpr int km = Contact::kMasterValues;
+  std::vector<double> traction(3 * nn, 0.0), area(nn, 0.0);
+  for (std::size_t i = 0; i < masters->ids.size(); ++i) {
+    const auto g = static_cast<std::size_t>(masters->ids[i]);
+    for (int k = 0; k < 3; ++k) traction[3 * g + k] += masters->values[km * i + k];
+    area[g] = masters->values[km * i + 3];
+  }
+  for (std::size_t g = 0; g < nn; ++g)
+    for (int k = 0; k < 3; ++k) traction[3 * g + k] = area[g] > 0.0 ? traction[3 * g + k] / area[g] : 0.0;
+  xdmf.node_field("contact_master_traction", 3, traction);
+}
+
+}  // namespace
+
+Reporter::Reporter(const Model& model, const RunOptions& opts, Timers& timers, std::chrono::steady_clock::time_point start)
+    : m_(model), cfg_(model.cfg), timers_(timers), out_(model.rank == 0 ? std::cout : null_stream_), start_(start) {
+  out_dir_ = opts.output_dir.empty() ? cfg_.output.directory : opts.output_dir;
+}
+
+Reporter::~Reporter() = default;
+
+void Reporter::print_model() {
+  const Mesh& mesh = m_.mesh;
+  out_ << "Stentor: " << (cfg_.problem.title.empty() ? cfg_.deck_path : cfg_.problem.title) << "\n"
+       << "  deck     " << cfg_.deck_path << "\n"
+       << "  mesh     " << mesh.source << ": " << m_.dim << "D, " << mesh.num_nodes() << " nodes, " << mesh.num_volume_cells()
+       << " cells (";
+  for (std::size_t b = 0; b < mesh.volumes.size(); ++b)
+    out_ << (b ? ", " : "") << mesh.volumes[b].name << ": " << mesh.volumes[b].num_cells() << " " << cell_name(mesh.volumes[b].type);
+  out_ << ")\n";
+  out_ << "  parallel " << m_.nranks << " MPI rank(s), Kokkos " << la::ExecSpace::name() << " x " << la::ExecSpace().concurrency()
+       << " thread(s), " << cfg_.problem.assembly << " assembly\n";
+}
+
+void Reporter::print_solvers() {
+  out_ << "  dofs     " << m_.dist->owned_map()->getGlobalNumElements() << "\n"
+       << "  analysis " << (m_.dynamic ? "dynamic: " + m_.integrator->description() : std::string("static (load stepping)")) << "\n"
+       << "  solver   " << m_.linear->description() << "\n";
+  if (m_.contact) {
+    const std::string d = m_.contact->description();  // collective
+    out_ << "  contact  " << d << "\n";
+  }
+}
+
+std::vector<std::string> Reporter::history_columns() const {
+  std::vector<std::string> columns = {"step", "time", "dt", "newton_iterations", "linear_iterations", "cutbacks", "strain_energy"};
+  for (const auto& d : m_.assembler->dirichlet_sets())
+    for (int k = 0; k < m_.dim; ++k) columns.push_back("reaction_" + d.name + "_" + kAxes[k]);
+  for (const auto& p : cfg_.output.probes)
+    for (int k = 0; k < m_.dim; ++k) columns.push_back("u_" + p.name + "_" + kAxes[k]);
+  if (m_.contact)
+    for (const auto& c : m_.contact->history_columns()) columns.push_back(c);
+  if (m_.assembler->has_history()) columns.push_back("plastic_dissipation");  // of the step
+  if (!cfg_.stages.empty()) columns.push_back("stage");
+  return columns;
+}
+
+std::vector<std::string> Reporter::energy_columns() const {
+  std::vector<std::string> cols = {"step", "time", "kinetic", "strain", "total", "external_work", "support_work",
+                                   "dissipation", "balance_residual", "momentum_x", "momentum_y", "momentum_z",
+                                   "angular_momentum_x", "angular_momentum_y", "angular_momentum_z"};
+  if (m_.contact) cols.insert(cols.end(), {"contact_work", "friction_dissipation"});
+  if (m_.assembler->has_history()) cols.push_back("plastic_dissipation");  // cumulative; also in "dissipation"
+  return cols;
+}
+
+void Reporter::open() {
+  int io_error = 0;
+  std::string io_message;
+  if (m_.rank == 0) {
+    try {
+      staging_ = std::make_unique<OutputDir>(out_dir_);
+      const std::string stem = staging_->path() + "/" + cfg_.output.basename;
+      if (cfg_.output.fields) xdmf_ = std::make_unique<XdmfWriter>(staging_->path(), cfg_.output.basename, m_.mesh);
+      history_ = std::make_unique<CsvWriter>(stem + "_history.csv", history_columns());
+      if (m_.dynamic) energy_csv_ = std::make_unique<CsvWriter>(stem + "_energy.csv", energy_columns());
+    } catch (const std::exception& e) {
+      io_error = 1;
+      io_message = e.what();
+    }
+  }
+  Teuchos::broadcast(*m_.comm, 0, &io_error);
+  if (io_error) {
+    if (m_.rank == 0) throw InputError("cannot create output in '" + out_dir_ + "': " + io_message);
+    throw InputError("cannot create output");
+  }
+
+  if (m_.rank == 0) {
+    std::vector<char> used(m_.mesh.num_nodes(), 0);
+    for (const auto& b : m_.mesh.volumes)
+      for (GId n : b.conn) used[static_cast<std::size_t>(n)] = 1;
+    for (std::size_t n = 0; n < m_.mesh.num_nodes(); ++n)
+      if (used[n])
+        for (int k = 0; k < m_.dim; ++k) all_dofs_.push_back(static_cast<la::GO>(n) * m_.dim + k);
+  }
+  gather_map_ = Teuchos::rcp(new la::Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                         Teuchos::ArrayView<const la::GO>(all_dofs_), 0, m_.comm));
+  gather_ = Teuchos::rcp(new la::Import(m_.dist->owned_map(), gather_map_));
+  u_all_ = Teuchos::rcp(new la::Vector(gather_map_));
+}
+
+void Reporter::discard() {
+  if (m_.rank != 0) return;
+  xdmf_.reset();
+  history_.reset();
+  energy_csv_.reset();
+  std::error_code ec;
+  std::filesystem::remove_all(staging_->path(), ec);
+}
+
+void Reporter::write_fields(double t, const la::Vector& u) {
+  Timers::Scope s{timers_, "output"};
+  u_all_->doImport(u, *gather_, Tpetra::INSERT);
+  Assembler::CellFields cf = m_.assembler->cell_fields(u);
+  const std::size_t nx = cf.extra_names.size(), kc = 8 + nx;  // + history fields (plasticity)
+  std::vector<double> packed;  // per local cell: stress (6), von Mises, J, extra
+  for (std::size_t c = 0; c < cf.cell_ids.size(); ++c) {
+    packed.insert(packed.end(), cf.stress.begin() + static_cast<std::ptrdiff_t>(6 * c),
+                  cf.stress.begin() + static_cast<std::ptrdiff_t>(6 * c + 6));
+    packed.push_back(cf.von_mises[c]);
+    packed.push_back(cf.J[c]);
+    packed.insert(packed.end(), cf.extra.begin() + static_cast<std::ptrdiff_t>(nx * c), cf.extra.begin() + static_cast<std::ptrdiff_t>(nx * c + nx));
+  }
+  const Gathered cells = gather_on_root(std::vector<long long>(cf.cell_ids.begin(), cf.cell_ids.end()), packed, static_cast<int>(kc), m_.nranks);
+  Gathered slaves, masters;  // contact fields at slave nodes, reactions at master nodes
+  if (m_.contact) {
+    const Contact::NodalFields nf = m_.contact->nodal_fields();
+    slaves = gather_on_root(nf.nodes, nf.values, Contact::kNodalValues, m_.nranks);
+    const Contact::NodalFields mf = m_.contact->master_fields();
+    masters = gather_on_root(mf.nodes, mf.values, Contact::kMasterValues, m_.nranks);
+  }
+  if (m_.rank != 0 || !xdmf_) return;
+  const std::size_t nc = m_.mesh.num_volume_cells(), nn = m_.mesh.num_nodes();
+  const int dim = m_.dim;
+  std::vector<double> disp(3 * nn, 0.0), stress(6 * nc), vm(nc), J(nc), owner(nc), extra(nx * nc);
+  auto uh = u_all_->getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (std::size_t i = 0; i < all_dofs_.size(); ++i)
+    disp[3 * static_cast<std::size_t>(all_dofs_[i] / dim) + static_cast<std::size_t>(all_dofs_[i] % dim)] = uh(i, 0);
+  for (std::size_t i = 0; i < cells.ids.size(); ++i) {
+    const auto id = static_cast<std::size_t>(cells.ids[i]);
+    for (int k = 0; k < 6; ++k) stress[6 * id + k] = cells.values[kc * i + k];
+    vm[id] = cells.values[kc * i + 6];
+    J[id] = cells.values[kc * i + 7];
+    for (std::size_t k = 0; k < nx; ++k) extra[k * nc + id] = cells.values[kc * i + 8 + k];
+    owner[id] = cells.from[i];
+  }
+  xdmf_->begin_step(t);
+  xdmf_->node_field("displacement", 3, disp);
+  xdmf_->cell_field("cauchy_stress", 6, stress);
+  xdmf_->cell_field("von_mises", 1, vm);
+  xdmf_->cell_field("J", 1, J);
+  xdmf_->cell_field("mpi_rank", 1, owner);
+  for (std::size_t k = 0; k < nx; ++k)
+    xdmf_->cell_field(cf.extra_names[k], 1, std::vector<double>(extra.begin() + static_cast<std::ptrdiff_t>(k * nc), extra.begin() + static_cast<std::ptrdiff_t>((k + 1) * nc)));
+  if (m_.contact) write_contact_fields(*xdmf_, nn, slaves, m_.contact->has_master_surfaces() ? &masters : nullptr);
+  xdmf_->end_step();
+}
+
+void Reporter::energy_row(int step, double t, const EnergyAudit& au, const EnergyTotals& e) {
+  if (m_.rank != 0 || !energy_csv_) return;
+  std::vector<double> row = {double(step), t, au.kinetic, au.strain, au.kinetic + au.strain, e.external, e.support, e.dissipation,
+                             au.balance, au.momentum[0], au.momentum[1], au.momentum[2], au.angular_momentum[0],
+                             au.angular_momentum[1], au.angular_momentum[2]};
+  if (m_.contact) row.insert(row.end(), {e.contact, e.friction});
+  if (m_.assembler->has_history()) row.push_back(e.plastic);
+  energy_csv_->row(row);
+}
+
+std::vector<double> Reporter::probe_values(const la::Vector& u) const {
+  const auto& probes = m_.probe_node;
+  std::vector<double> loc(probes.size() * 3, 0.0), glob(loc.size(), 0.0);
+  auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (std::size_t p = 0; p < probes.size(); ++p)
+    if (m_.dist->owns_node(probes[p]))
+      for (int k = 0; k < m_.dim; ++k) loc[3 * p + k] = uh(m_.dist->local_node(probes[p]) * m_.dim + k, 0);
+  if (!loc.empty()) Teuchos::reduceAll(*m_.comm, Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), glob.data());
+  return glob;
+}
+
+void Reporter::history_row(const RunState& s, const StepRecord& rec, double energy) {
+  const auto pv = probe_values(s.u);
+  if (m_.rank != 0) return;
+  const int dim = m_.dim;
+  std::vector<double> row = {double(s.step), s.t, rec.dt, double(rec.newton.iterations), double(rec.newton.linear_iterations),
+                             double(s.control.total_cuts()), energy};
+  for (const auto& rf : m_.assembler->reactions())
+    for (int k = 0; k < dim; ++k) row.push_back(rf[static_cast<std::size_t>(k)]);
+  for (std::size_t p = 0; p < m_.probe_node.size(); ++p)
+    for (int k = 0; k < dim; ++k) row.push_back(pv[3 * p + k]);
+  if (m_.contact)
+    for (double v : m_.contact->history_values(rec.contact)) row.push_back(v);
+  if (m_.assembler->has_history()) row.push_back(rec.plastic_dissipation);
+  if (!cfg_.stages.empty()) row.push_back(double(s.stage + 1));
+  Timers::Scope sc{timers_, "output"};
+  history_->row(row);
+}
+
+void Reporter::begin_stage(std::size_t k) {
+  const StageConfig& st = cfg_.stages[k];
+  out_ << "stage " << k + 1 << "/" << cfg_.stages.size() << " '" << st.name << "': t " << fmt(st.start, 4) << " -> "
+       << fmt(st.end, 4) << ", " << st.num_steps << " step(s) of " << fmt(st.step(), 3) << "\n";
+}
+
+void Reporter::begin_interval(double t0, double t1) {
+  interval_start_ = std::chrono::steady_clock::now();
+  interval_t0_ = t0;
+  interval_t1_ = t1;
+}
+
+namespace {
+std::string seconds(double s) {
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(s < 10.0 ? 1 : 0) << s << " s";
+  return os.str();
+}
+}  // namespace
+
+void Reporter::step_line(const RunState& s, const StepRecord& rec, double energy) {
+  const NewtonResult& nr = rec.newton;
+  out_ << "  step " << std::setw(4) << s.step << "  t " << fmt(s.t, 4) << "  dt " << fmt(rec.dt, 2) << "  newton " << std::setw(2)
+       << nr.iterations << "  linear " << std::setw(4) << nr.linear_iterations << "  |r| " << fmt(nr.residual, 2) << "  W "
+       << fmt(energy, 6);
+  if (m_.contact) out_ << m_.contact->progress(rec.contact);
+  if (m_.dynamic && rec.nonfinite.empty()) {
+    const EnergyAudit& au = rec.audit;
+    out_ << "  K " << fmt(au.kinetic, 6) << "  E " << fmt(au.kinetic + au.strain, 9) << "  balance " << fmt(au.balance, 2);
+  }
+  // Time left: the wall time per unit of simulated time so far in this interval.
+  const auto now = std::chrono::steady_clock::now();
+  const double wall = std::chrono::duration<double>(now - start_).count();
+  const double spent = std::chrono::duration<double>(now - interval_start_).count();
+  const double done = s.t - interval_t0_, left = std::max(0.0, interval_t1_ - s.t);
+  out_ << "  [";
+  if (!cfg_.stages.empty()) out_ << cfg_.stages[static_cast<std::size_t>(s.stage)].name << ", ";
+  out_ << seconds(wall);
+  if (done > 0.0) out_ << ", ~" << seconds(spent * left / done) << " left";
+  out_ << "]" << std::endl;
+}
+
+void Reporter::cutback_line(const RunState& s, double t_new, const NewtonResult& nr, double dt_new) {
+  out_ << "  step " << s.step + 1 << " t=" << fmt(t_new, 3) << ": " << nr.failure << "; cutting dt to " << fmt(dt_new, 3) << std::endl;
+}
+
+std::vector<double> Reporter::displacement(const la::Vector& u) {
+  std::vector<double> d(3 * m_.mesh.num_nodes(), 0.0);
+  u_all_->doImport(u, *gather_, Tpetra::INSERT);
+  if (m_.rank == 0) {
+    auto uh = u_all_->getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (std::size_t i = 0; i < all_dofs_.size(); ++i)
+      d[3 * static_cast<std::size_t>(all_dofs_[i] / m_.dim) + static_cast<std::size_t>(all_dofs_[i] % m_.dim)] = uh(i, 0);
+  }
+  Teuchos::broadcast(*m_.comm, 0, static_cast<int>(d.size()), d.data());
+  return d;
+}
+
+void Reporter::summary(const RunState& s) {
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (m_.dynamic)
+    out_ << "Energy balance: max |E_{n+1} - E_n - (W_ext + W_sup - D" << (m_.contact ? " + W_contact - D_friction" : "")
+         << ")| per step = " << fmt(s.energy.max_balance, 3) << "\n";
+  out_ << (s.failed ? "FAILED: " + s.failure + "\n" : "") << "Summary: " << s.step << " steps, " << s.control.total_cuts()
+       << " cut-backs, " << s.newton_iterations << " Newton iterations, " << s.linear_iterations << " linear iterations, "
+       << std::fixed << std::setprecision(2) << wall << " s\n";
+  for (const auto& n : timers_.names())
+    out_ << "  " << std::left << std::setw(10) << n << std::right << std::setw(10) << timers_.get(n) << " s\n";
+  out_ << std::defaultfloat;
+}
+
+void Reporter::plots() {
+  const std::string stem = staging_->path() + "/" + cfg_.output.basename;
+  const std::string csv = stem + "_history.csv";
+  std::vector<std::string> rcols;
+  for (const auto& d : m_.assembler->dirichlet_sets())
+    for (int k = 0; k < m_.dim; ++k) rcols.push_back("reaction_" + d.name + "_" + kAxes[k]);
+  if (!rcols.empty()) plot_csv_png(csv, stem + "_reactions.png", "time", rcols, "Reaction forces", "force");
+  if (m_.dynamic) {
+    const std::string ecsv = stem + "_energy.csv";
+    plot_csv_png(ecsv, stem + "_energy.png", "time", {"kinetic", "strain", "total", "dissipation", "external_work"},
+                 "Energy (" + cfg_.time.scheme + ")", "energy");
+    plot_csv_png(ecsv, stem + "_balance.png", "time", {"balance_residual"}, "Energy balance residual per step",
+                 "E_{n+1} - E_n - (W_ext + W_sup - D)");
+  } else {
+    plot_csv_png(csv, stem + "_energy.png", "time", {"strain_energy"}, "Stored energy", "energy");
+  }
+}
+
+void Reporter::finish(bool failed) {
+  if (m_.rank != 0) return;
+  history_.reset();
+  energy_csv_.reset();
+  xdmf_.reset();
+  if (failed) {
+    out_ << "Partial results kept in " << staging_->path() << "; earlier results in " << out_dir_ << " were not touched\n";
+    return;
+  }
+  plots();
+  staging_->commit();
+  out_ << "Results in " << std::filesystem::absolute(out_dir_).string() << "/ (" << cfg_.output.basename << ".xdmf for ParaView, "
+       << cfg_.output.basename << "_history.csv)\n";
+}
+
+}  // namespace stentor

@@ -1,0 +1,84 @@
+// Everything a run tells the user: the header, one progress line per step, the result
+// files (CSV histories, HDF5/XDMF fields, PNG plots, staged in <dir>.partial and moved
+// into place only when the run succeeds) and the summary with the timers.
+// Rank 0 writes; the collective parts (gathers, probes) run on every rank.
+#pragma once
+#include <chrono>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/Csv.hpp"
+#include "io/OutputDir.hpp"
+#include "io/XdmfWriter.hpp"
+#include "run/Model.hpp"
+#include "run/RunState.hpp"
+#include "run/Stepper.hpp"
+
+namespace stentor {
+
+class Reporter {
+ public:
+  // `start`: when the run began (the summary's wall time).
+  Reporter(const Model& model, const RunOptions& opts, Timers& timers, std::chrono::steady_clock::time_point start);
+  ~Reporter();
+
+  // The log: std::cout on rank 0, a sink elsewhere.
+  std::ostream& out() { return out_; }
+
+  void print_model();    // deck, mesh, parallel layout
+  void print_solvers();  // dofs, analysis, solver, contact (collective)
+
+  // Creates <dir>.partial and the result files (collective). Throws InputError when the
+  // folder or a file cannot be created.
+  void open();
+  // Removes <dir>.partial (an input error before the first step: nothing worth keeping).
+  void discard();
+
+  void write_fields(double t, const la::Vector& u);  // collective
+  void energy_row(int step, double t, const EnergyAudit& au, const EnergyTotals& e);
+  // One row of <basename>_history.csv (collective: probes).
+  void history_row(const RunState& s, const StepRecord& rec, double energy);
+  // Stage k of Config::stages begins: its header line.
+  void begin_stage(std::size_t k);
+  // The stepping of [t0, t1] begins: the reference of the time-left estimate.
+  void begin_interval(double t0, double t1);
+  // The progress line of an accepted step (flushed): without energy terms when they are
+  // not finite; then the wall time so far and an estimate of the time left.
+  void step_line(const RunState& s, const StepRecord& rec, double energy);
+  void cutback_line(const RunState& s, double t_new, const NewtonResult& nr, double dt_new);
+
+  // Every rank: the displacement, 3 per mesh node (collective).
+  std::vector<double> displacement(const la::Vector& u);
+  // Energy balance, summary line, timers.
+  void summary(const RunState& s);
+  // Success: plots, then <dir>.partial -> <dir>. Failure: says where the partial results are.
+  void finish(bool failed);
+
+ private:
+  std::vector<double> probe_values(const la::Vector& u) const;  // collective
+  std::vector<std::string> history_columns() const;
+  std::vector<std::string> energy_columns() const;
+  void plots();
+
+  const Model& m_;
+  const Config& cfg_;
+  Timers& timers_;
+  std::ostringstream null_stream_;
+  std::ostream& out_;
+  std::string out_dir_;
+  std::chrono::steady_clock::time_point start_;
+  std::chrono::steady_clock::time_point interval_start_;  // begin_interval()
+  double interval_t0_ = 0.0, interval_t1_ = 1.0;
+  std::unique_ptr<OutputDir> staging_;
+  std::unique_ptr<XdmfWriter> xdmf_;
+  std::unique_ptr<CsvWriter> history_, energy_csv_;
+  // Gather of every used dof on rank 0, in mesh node order.
+  std::vector<la::GO> all_dofs_;
+  la::RCP<const la::Map> gather_map_;
+  la::RCP<la::Import> gather_;
+  la::RCP<la::Vector> u_all_;
+};
+
+}  // namespace stentor

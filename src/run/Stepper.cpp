@@ -1,0 +1,142 @@
+#include "run/Stepper.hpp"
+
+#include <algorithm>
+
+#include <cmath>
+
+namespace stentor {
+
+bool StepSystem::evaluate(const la::Vector& u, la::Vector& r, bool tangent) {
+  Timers::Scope s{timers_, "assembly"};
+  last = a_.assemble(u, input, r, tangent);
+  if (contact) {
+    Timers::Scope sc{timers_, "contact"};
+    auto K = contact->apply(u, r, tangent ? a_.matrix() : la::RCP<la::CrsMatrix>());
+    if (tangent) K_ = K;
+    if (contact_log) *contact_log << contact->iteration_summary() << "\n";
+  }
+  return last.inverted == 0;
+}
+
+Stepper::Stepper(Model& model, Timers& timers, std::ostream* newton_log, std::ostream* contact_log)
+    : m_(model), timers_(timers), system_(*model.assembler, timers), newton_log_(newton_log) {
+  system_.input.end_time = m_.cfg.stepping.end_time;
+  system_.contact_log = contact_log;
+}
+
+EnergyAudit Stepper::initialize_dynamics(RunState& s) { return m_.integrator->initialize(s.u, m_.cfg.stepping.end_time); }
+
+void Stepper::initialize_contact(RunState& s) {
+  m_.contact->initialize(s.u, m_.cfg.stepping.end_time);
+  system_.contact = m_.contact.get();
+}
+
+NewtonResult Stepper::newton(la::Vector& u) {
+  Timers::Scope s{timers_, "newton"};
+  return newton_solve(system_, u, *m_.linear, m_.cfg.newton, newton_log_);
+}
+
+// The initial guess. Statics: extrapolate the last converged increment, so that a
+// prescribed boundary motion is spread into the interior instead of squeezing the
+// boundary layer of cells (which can invert them). Dynamics: u_n.
+void Stepper::predict(RunState& s, double dt, double t_new, bool& predicted) {
+  predicted = false;
+  if (!m_.dynamic && s.step > 0 && s.dt_last > 0.0) {
+    s.u.update(dt / s.dt_last, s.u_prev, -dt / s.dt_last, s.u_before_last, 1.0);
+    predicted = true;
+  }
+  m_.assembler->apply_dirichlet(s.u, t_new, m_.cfg.stepping.end_time);
+}
+
+NewtonResult Stepper::solve(RunState& s, double dt) {
+  const double T = m_.cfg.stepping.end_time;
+  const double t_new = s.t + dt;
+  s.u_prev.update(1.0, s.u, 0.0);
+  if (m_.dynamic) {
+    system_.input = m_.integrator->step_input(s.t, dt, T, s.u_prev);
+  } else {
+    system_.input = Assembler::StepInput{};
+    system_.input.load_time = t_new;
+    system_.input.end_time = T;
+  }
+  if (m_.contact) m_.contact->begin_step(s.t, dt, s.u_prev);
+  bool predicted = false;
+  predict(s, dt, t_new, predicted);
+  NewtonResult nr = newton(s.u);
+  if (predicted && !nr.converged && nr.iterations == 0) {  // an inadmissible guess: retry from u_n
+    s.u.update(1.0, s.u_prev, 0.0);
+    m_.assembler->apply_dirichlet(s.u, t_new, T);
+    nr = newton(s.u);
+  }
+  s.newton_iterations += nr.iterations;
+  s.linear_iterations += nr.linear_iterations;
+  return nr;
+}
+
+double StepSystem::force_scale() const {
+  return std::max({a_.external_force().norm2(), a_.static_residual().norm2(), accepted_ ? scale_sum_ / accepted_ : 0.0});
+}
+
+void StepSystem::record_scale() {
+  const double s = std::max(a_.external_force().norm2(), a_.static_residual().norm2());
+  if (!(s > 0.0) || !std::isfinite(s)) return;
+  scale_sum_ += s;
+  ++accepted_;
+}
+
+void Stepper::reject(RunState& s) {
+  s.u.update(1.0, s.u_prev, 0.0);
+  m_.assembler->rollback_history();  // Gauss-point state: back to the last accepted step
+}
+
+StepRecord Stepper::accept(RunState& s, double dt, const NewtonResult& nr) {
+  StepRecord rec;
+  rec.newton = nr;
+  rec.dt = dt;
+  s.t += dt;
+  ++s.step;
+  s.u_before_last.update(1.0, s.u_prev, 0.0);
+  s.dt_last = dt;
+  system_.record_scale();
+  rec.plastic_dissipation = system_.last.plastic_dissipation;
+  m_.assembler->commit_history();  // Newton's last assemble() was at the accepted u
+  if (m_.contact) rec.contact = m_.contact->accept(s.u);
+  if (!m_.dynamic) {
+    rec.nonfinite = nonfinite(s, nullptr);
+    return rec;
+  }
+  EnergyAudit& au = rec.audit;
+  au = m_.integrator->accept(s.u_prev, s.u, dt, system_.last);
+  EnergyTotals& e = s.energy;
+  e.external += au.external_work;
+  e.support += au.support_work;
+  e.dissipation += au.dissipation;
+  e.plastic += au.plastic_dissipation;
+  if (m_.contact) {
+    // E_{n+1} - E_n = W_ext + W_sup - D + W_contact - D_friction.
+    au.balance -= rec.contact.work - rec.contact.friction_dissipation;
+    e.contact += rec.contact.work;
+    e.friction += rec.contact.friction_dissipation;
+  }
+  rec.nonfinite = nonfinite(s, &au);
+  if (rec.nonfinite.empty()) e.max_balance = std::max(e.max_balance, std::abs(au.balance));
+  return rec;
+}
+
+std::string Stepper::nonfinite(const RunState& s, const EnergyAudit* au) const {
+  if (!std::isfinite(s.u.norm1())) return "displacement";
+  if (!std::isfinite(system_.last.energy)) return "stored energy";
+  for (const auto& rf : m_.assembler->reactions())
+    for (double v : rf)
+      if (!std::isfinite(v)) return "reaction force";
+  if (!au) return "";
+  const EnergyTotals& e = s.energy;
+  const double vals[] = {au->kinetic, au->strain, au->external_work, au->support_work, au->dissipation, au->balance,
+                         au->momentum[0], au->momentum[1], au->momentum[2], au->angular_momentum[0],
+                         au->angular_momentum[1], au->angular_momentum[2], e.external, e.support, e.dissipation};
+  for (double v : vals)
+    if (!std::isfinite(v)) return "energy or momentum";
+  return "";
+}
+
+}  // namespace stentor

@@ -1,0 +1,88 @@
+// One time (or load) step: predictor, Newton on the step's residual, and on success the
+// updates that make the step part of the history (contact history, velocities, the
+// energy audit). Cut-back and output are the driver's and the reporter's business.
+#pragma once
+#include <ostream>
+#include <string>
+
+#include "run/Model.hpp"
+#include "run/RunState.hpp"
+#include "solver/Newton.hpp"
+
+namespace stentor {
+
+// The residual of one step (static equilibrium, or a time scheme's), for Newton.
+class StepSystem : public NewtonSystem {
+ public:
+  StepSystem(Assembler& a, Timers& timers) : a_(a), timers_(timers) {}
+  Assembler::StepInput input;
+  Assembler::Stats last;
+  Contact* contact = nullptr;           // null without a "Contact" sublist
+  std::ostream* contact_log = nullptr;  // --verbose: active/stick/slip sets per evaluation
+  bool evaluate(const la::Vector& u, la::Vector& r, bool tangent) override;
+  // The assembler's tangent, or with contact on master surfaces the coupled one.
+  la::RCP<la::CrsMatrix> matrix() override { return K_.is_null() ? a_.matrix() : K_; }
+  // Newton may stop only once the contact active set did not change in the last evaluation.
+  bool settled() const override { return contact == nullptr || !contact->active_set_changed(); }
+  // |f_ext| and |f_int - f_ext| over all rows (reactions included): the forces in play.
+  // After unloading (a deflated balloon, a body at rest) both are round-off, and so would
+  // be the target: the mean force scale of the accepted steps so far is kept as a floor
+  // (Abaqus' time-averaged force plays the same role).
+  double force_scale() const override;
+  // After an accepted step: its force scale joins the mean.
+  void record_scale();
+
+ private:
+  Assembler& a_;
+  Timers& timers_;
+  la::RCP<la::CrsMatrix> K_;
+  double scale_sum_ = 0.0;
+  long accepted_ = 0;
+};
+
+// What an accepted step produced, for the progress line and the result files.
+struct StepRecord {
+  NewtonResult newton;
+  double dt = 0.0;
+  Contact::StepStats contact;   // contact runs only
+  EnergyAudit audit;            // dynamics only
+  double plastic_dissipation = 0.0;  // of the step (plastic blocks only)
+  std::string nonfinite;        // the first non-finite quantity, or "" (then nothing may be written)
+};
+
+class Stepper {
+ public:
+  // `newton_log`, `contact_log`: --verbose lines (null: none).
+  Stepper(Model& model, Timers& timers, std::ostream* newton_log, std::ostream* contact_log);
+
+  // u_0 (and v_0) from the initial conditions; the audit of the state at t = 0 (dynamics).
+  EnergyAudit initialize_dynamics(RunState& s);
+  // The contact history at t = 0 (d_{-1} = d_0).
+  void initialize_contact(RunState& s);
+
+  // Solves the step s.t -> s.t + dt from u_n = s.u: on return s.u_prev = u_n and s.u holds
+  // Newton's last iterate (u_{n+1} when converged).
+  NewtonResult solve(RunState& s, double dt);
+  // A failed step: back to u_n.
+  void reject(RunState& s);
+  // A converged step becomes u_{n+1}: time, contact history, velocities, energy totals.
+  StepRecord accept(RunState& s, double dt, const NewtonResult& nr);
+
+  // The name of the first non-finite quantity of the state (displacement, stored energy,
+  // reactions, then the audit and the energy totals when given), or "". Global: every
+  // rank gets the same answer.
+  std::string nonfinite(const RunState& s, const EnergyAudit* au) const;
+
+  const Assembler::Stats& last() const { return system_.last; }
+
+ private:
+  void predict(RunState& s, double dt, double t_new, bool& predicted);
+  NewtonResult newton(la::Vector& u);
+
+  Model& m_;
+  Timers& timers_;
+  StepSystem system_;
+  std::ostream* newton_log_;
+};
+
+}  // namespace stentor
