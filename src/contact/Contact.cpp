@@ -107,66 +107,77 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
     }
     pairs_.push_back(std::move(p));
   }
-  const auto& colmap = assembler.matrix()->getColMap();
   std::vector<int> slave_of(mesh.num_nodes(), -1);
-  for (std::size_t ip = 0; ip < pairs_.size(); ++ip) {
-    Pair& p = pairs_[ip];
-    const ContactPairConfig& pc = p.cfg;
-    const std::string where = "'Contact->" + pc.name + "'";
-    if (p.master == nullptr) {
-      if (pc.point_len != dim_)
-        throw InputError(where + "->point must have " + std::to_string(dim_) + " values (the mesh is " + std::to_string(dim_) + "D)");
-      if (pc.obstacle == "plane" && pc.normal_len != dim_)
-        throw InputError(where + "->normal must have " + std::to_string(dim_) + " values (the mesh is " + std::to_string(dim_) + "D)");
-      if (pc.obstacle == "circle" && dim_ != 2) throw InputError(where + "->obstacle = circle is 2D only; use cylinder or sphere in 3D");
-      if ((pc.obstacle == "cylinder" || pc.obstacle == "sphere") && dim_ != 3)
-        throw InputError(where + "->obstacle = " + pc.obstacle + " is 3D only; use circle in 2D");
-    }
-    p.persistence = pc.formulation == "persistence" || (pc.formulation == "auto" && cfg.problem.dynamic());
-    if (pc.formulation == "persistence" && !cfg.problem.dynamic())
-      throw InputError(where + "->formulation = persistence needs a dynamic analysis ('Problem->analysis' = dynamic); use gap in statics");
-    const std::vector<GId> nodes = boundary_nodes(mesh, pc.slave);  // throws InputError naming the group
-    const auto areas = tributary_areas(mesh, pc.slave);
-    long excluded = 0, partial = 0;
-    for (GId g : nodes) {
-      const auto gi = static_cast<std::size_t>(g);
-      if (is_master[gi])
-        throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave +
-                         "' also lies on a master surface; a node may be a slave or a master node, not both");
-      if (slave_of[gi] >= 0)
-        throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' is also a slave node of 'Contact->" +
-                         pairs_[static_cast<std::size_t>(slave_of[gi])].cfg.name + "'; a node may belong to one contact pair only");
-      slave_of[gi] = static_cast<int>(ip);
-      if (!dist.owns_node(g)) continue;
-      const la::LO l = dist.local_node(g);
-      Slave nd;
-      int nfixed = 0;
-      for (int c = 0; c < dim_; ++c) nfixed += nd.fixed[c] = assembler.is_dirichlet(l * dim_ + c);
-      if (nfixed == dim_) {
-        ++excluded;
-        continue;
-      }
-      partial += nfixed > 0;
-      nd.lid = l;
-      nd.gid = g;
-      auto it = areas.find(g);
-      nd.area = it == areas.end() ? 0.0 : it->second;
-      for (int c = 0; c < 3; ++c) nd.X[c] = mesh.x[3 * gi + static_cast<std::size_t>(c)];
-      for (int c = 0; c < dim_; ++c) nd.col[static_cast<std::size_t>(c)] = colmap->getLocalElement(static_cast<la::GO>(g) * dim_ + c);
-      p.nodes.push_back(nd);
-    }
-    p.out.resize(p.nodes.size());
-    Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &excluded, &p.excluded);
-    Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &partial, &p.partial);
-    long mine = static_cast<long>(p.nodes.size()), usable = 0;
-    Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &mine, &usable);
-    if (usable == 0)
-      throw InputError(where + "->slave: none of the " + std::to_string(nodes.size()) + " nodes of group '" + pc.slave +
-                       "' can touch anything: every one has all its components prescribed by a Dirichlet condition");
-  }
-  if (!has_master_) return;
+  for (std::size_t ip = 0; ip < pairs_.size(); ++ip) setup_slaves(ip, cfg, mesh, assembler, is_master, slave_of);
+  if (has_master_) setup_master_maps(mesh, is_master, assembler);
+}
 
-  // Replicated master dofs: import of displacements, export (ADD) of reactions.
+// Pair ip's slave nodes owned here (checks: the mesh dimension of an obstacle, a node in
+// one pair only and not on a master surface, at least one usable node over all ranks).
+void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, const Assembler& assembler, const std::vector<char>& is_master,
+                           std::vector<int>& slave_of) {
+  const Distribution& dist = dist_;
+  const auto& colmap = assembler.matrix()->getColMap();
+  Pair& p = pairs_[ip];
+  const ContactPairConfig& pc = p.cfg;
+  const std::string where = "'Contact->" + pc.name + "'";
+  if (p.master == nullptr) {
+    if (pc.point_len != dim_)
+      throw InputError(where + "->point must have " + std::to_string(dim_) + " values (the mesh is " + std::to_string(dim_) + "D)");
+    if (pc.obstacle == "plane" && pc.normal_len != dim_)
+      throw InputError(where + "->normal must have " + std::to_string(dim_) + " values (the mesh is " + std::to_string(dim_) + "D)");
+    if (pc.obstacle == "circle" && dim_ != 2) throw InputError(where + "->obstacle = circle is 2D only; use cylinder or sphere in 3D");
+    if ((pc.obstacle == "cylinder" || pc.obstacle == "sphere") && dim_ != 3)
+      throw InputError(where + "->obstacle = " + pc.obstacle + " is 3D only; use circle in 2D");
+  }
+  p.persistence = pc.formulation == "persistence" || (pc.formulation == "auto" && cfg.problem.dynamic());
+  if (pc.formulation == "persistence" && !cfg.problem.dynamic())
+    throw InputError(where + "->formulation = persistence needs a dynamic analysis ('Problem->analysis' = dynamic); use gap in statics");
+  const std::vector<GId> nodes = boundary_nodes(mesh, pc.slave);  // throws InputError naming the group
+  const auto areas = tributary_areas(mesh, pc.slave);
+  long excluded = 0, partial = 0;
+  for (GId g : nodes) {
+    const auto gi = static_cast<std::size_t>(g);
+    if (is_master[gi])
+      throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave +
+                       "' also lies on a master surface; a node may be a slave or a master node, not both");
+    if (slave_of[gi] >= 0)
+      throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' is also a slave node of 'Contact->" +
+                       pairs_[static_cast<std::size_t>(slave_of[gi])].cfg.name + "'; a node may belong to one contact pair only");
+    slave_of[gi] = static_cast<int>(ip);
+    if (!dist.owns_node(g)) continue;
+    const la::LO l = dist.local_node(g);
+    Slave nd;
+    int nfixed = 0;
+    for (int c = 0; c < dim_; ++c) nfixed += nd.fixed[c] = assembler.is_dirichlet(l * dim_ + c);
+    if (nfixed == dim_) {
+      ++excluded;
+      continue;
+    }
+    partial += nfixed > 0;
+    nd.lid = l;
+    nd.gid = g;
+    auto it = areas.find(g);
+    nd.area = it == areas.end() ? 0.0 : it->second;
+    for (int c = 0; c < 3; ++c) nd.X[c] = mesh.x[3 * gi + static_cast<std::size_t>(c)];
+    for (int c = 0; c < dim_; ++c) nd.col[static_cast<std::size_t>(c)] = colmap->getLocalElement(static_cast<la::GO>(g) * dim_ + c);
+    p.nodes.push_back(nd);
+  }
+  p.out.resize(p.nodes.size());
+  Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &excluded, &p.excluded);
+  Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &partial, &p.partial);
+  long mine = static_cast<long>(p.nodes.size()), usable = 0;
+  Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &mine, &usable);
+  if (usable == 0)
+    throw InputError(where + "->slave: none of the " + std::to_string(nodes.size()) + " nodes of group '" + pc.slave +
+                     "' can touch anything: every one has all its components prescribed by a Dirichlet condition");
+}
+
+// Replicated master dofs: import of displacements, export (ADD) of reactions, prescribed
+// master dofs, tributary areas.
+void Contact::setup_master_maps(const Mesh& mesh, const std::vector<char>& is_master, const Assembler& assembler) {
+  const Distribution& dist = dist_;
+
   master_pos_.assign(mesh.num_nodes(), -1);
   for (std::size_t g = 0; g < mesh.num_nodes(); ++g)
     if (is_master[g]) {
@@ -204,6 +215,7 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
         if (pos >= 0) master_area_[static_cast<std::size_t>(pos)] = a;
       }
 }
+
 
 std::string Contact::description() const {
   std::ostringstream os;

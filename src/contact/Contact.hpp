@@ -126,6 +126,9 @@ class Contact {
     long partial = 0;                       // slave nodes with some prescribed components (kept), global
     bool active = true;                     // set_active_pairs()
   };
+  void setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, const Assembler& assembler, const std::vector<char>& is_master,
+                    std::vector<int>& slave_of);
+  void setup_master_maps(const Mesh& mesh, const std::vector<char>& is_master, const Assembler& assembler);
   contact::Obstacle obstacle(const Pair& p, double t) const;
   std::array<double, 3> translation(const Pair& p, double t) const;
   // Positions of the master nodes at u (3 per master node; imports u's master dofs).
