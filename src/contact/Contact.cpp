@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "contact/MasterSurface.hpp"
+#include "fem/Quadrature.hpp"
 #include "fem/Shape.hpp"
 #include "mesh/MeshQuery.hpp"
 
@@ -19,7 +20,7 @@ namespace {
 
 const char* kAxes[3] = {"x", "y", "z"};
 
-double dot3(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+using contact::dot3;
 
 // Tributary (lumped) reference area of each node of a boundary group: the row sums of the
 // facet mass matrix scaled diagonally (HRZ), so quadratic facets get positive areas.
@@ -28,29 +29,15 @@ std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group
   for (const CellBlock* b : boundary_blocks(mesh, group)) {
     if (cell_dim(b->type) != mesh.dim - 1) continue;
     const int nn = b->nodes_per_cell;
-    // 3x3 (or 3-point) Gauss rule on the reference facet.
-    std::vector<std::array<double, 3>> qp;
-    std::vector<double> qw;
-    const double g[3] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
-    if (mesh.dim == 2) {
-      for (int i = 0; i < 3; ++i) qp.push_back({g[i], 0, 0}), qw.push_back(w[i]);
-    } else if (b->type == CellType::Quad4 || b->type == CellType::Quad8) {
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) qp.push_back({g[i], g[j], 0}), qw.push_back(w[i] * w[j]);
-    } else {  // triangle: degree-4 rule would be overkill; 6-point degree 4 via collapsed Gauss
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-          const double a = 0.5 * (1 + g[i]), c = 0.5 * (1 + g[j]);
-          qp.push_back({a * (1 - c), c, 0});
-          qw.push_back(w[i] * w[j] * 0.25 * (1 - c));
-        }
-    }
+    // Degree 4: N_a^2 of a quadratic facet, exactly (3 Gauss points per direction, 6 on a triangle).
+    double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
+    const int nq = quadrature(b->type, 4, qp, qw);
     for (std::size_t f = 0; f < b->num_cells(); ++f) {
       std::vector<double> m2(static_cast<std::size_t>(nn), 0.0);
       double A = 0.0;
-      for (std::size_t q = 0; q < qp.size(); ++q) {
+      for (int q = 0; q < nq; ++q) {
         double N[kMaxCellNodes], dN[kMaxCellNodes][3];
-        shape_functions(b->type, qp[q].data(), N, dN);
+        shape_functions(b->type, qp[q], N, dN);
         double t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0};
         for (int a = 0; a < nn; ++a)
           for (int c = 0; c < 3; ++c) {
@@ -281,8 +268,7 @@ void Contact::initialize(const la::Vector& u0, double end_time) {
       for (int c = 0; c < dim_; ++c) x[c] += uh(nd.lid * dim_ + c, 0);
       double n[3];
       if (p.master) {
-        const auto hit = p.master->closest(dim_, x, master_x_);
-        nd.facet = hit.facet, nd.xi[0] = hit.xi[0], nd.xi[1] = hit.xi[1], nd.inside = hit.inside;
+        locate(p, nd, x);
         double rel[3];
         nd.d_n = facet_gap(p, nd, x, n, rel);
       } else {
@@ -310,6 +296,15 @@ void Contact::begin_step(double t_n, double dt, const la::Vector& u_n) {
   for (auto& p : pairs_)
     for (auto& nd : p.nodes)
       for (int c = 0; c < 3; ++c) nd.x_n[c] = nd.X[c] + (c < dim_ ? uh(nd.lid * dim_ + c, 0) : 0.0);
+}
+
+// The closest facet of the pair's master surface to x (current positions), recorded in nd
+// (facet -1: none within the search radius). Thread-safe for distinct nodes.
+void Contact::locate(const Pair& p, Slave& nd, const double* x) const {
+  const auto hit = p.master->closest(dim_, x, master_x_);
+  nd.facet = hit.facet;
+  nd.xi[0] = hit.xi[0], nd.xi[1] = hit.xi[1];
+  nd.inside = hit.inside;
 }
 
 // Gap, normal and relative displacement of slave node nd at x against its facet (double);
@@ -401,10 +396,8 @@ void Contact::evaluate_nodes(const la::Vector& u, la::Vector& r) {
           // the persistence condition itself decides whether it separates).
           if (pp->persistence && !nd.was_active && nd.d_n + lf * (nd.d_n - nd.d_prev) > gap_tol) return;
           if (pp->master) {
-            const auto hit = pp->master->closest(dim, x, master_x_);
-            nd.facet = hit.facet;
-            if (hit.facet < 0) return;
-            nd.xi[0] = hit.xi[0], nd.xi[1] = hit.xi[1], nd.inside = hit.inside;
+            locate(*pp, nd, x);
+            if (nd.facet < 0) return;
           }
           contact::NodeInput in;
           node_input(*pp, nd, x, in);
@@ -700,11 +693,7 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
       double d = 0.0, rel[3] = {0, 0, 0};
       if (p.master) {
         // Active nodes keep the facet of their last evaluation; others look again.
-        if (nd.state < contact::Stick) {
-          const auto hit = p.master->closest(dim_, x, master_x_);
-          nd.facet = hit.facet;
-          nd.xi[0] = hit.xi[0], nd.xi[1] = hit.xi[1], nd.inside = hit.inside;
-        }
+        if (nd.state < contact::Stick) locate(p, nd, x);
         d = facet_gap(p, nd, x, n, rel);
       } else {
         d = contact::rigid_gap(ob, x, n);

@@ -54,7 +54,7 @@ Gathered gather_on_root(const std::vector<long long>& ids, const std::vector<dou
 // (summed over ranks) divided by its tributary area (zero on other nodes).
 void write_contact_fields(XdmfWriter& xdmf, std::size_t nn, const Gathered& slaves, const Gathered* masters) {
   constexpr int kv = Contact::kNodalValues;
-  std::vector<double> status(nn, -1.0), gap(nn, 0.0), lambda_n(nn, 0.0), pressure(nn, 0.0), lambda_t(3 * nn, 0.0), slip(3 * nn, 0.0);
+  std::vector<double> status(nn, double(contact::NotSlave)), gap(nn, 0.0), lambda_n(nn, 0.0), pressure(nn, 0.0), lambda_t(3 * nn, 0.0), slip(3 * nn, 0.0);
   for (std::size_t i = 0; i < slaves.ids.size(); ++i) {
     const auto g = static_cast<std::size_t>(slaves.ids[i]);
     const double* v = &slaves.values[kv * i];

@@ -1,7 +1,6 @@
 #include "run/Stepper.hpp"
 
 #include <algorithm>
-
 #include <cmath>
 
 namespace stentor {
@@ -73,12 +72,12 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
   return nr;
 }
 
-double StepSystem::force_scale() const {
-  return std::max({a_.external_force().norm2(), a_.static_residual().norm2(), accepted_ ? scale_sum_ / accepted_ : 0.0});
-}
+double StepSystem::current_scale() const { return std::max(a_.external_force().norm2(), a_.static_residual().norm2()); }
+
+double StepSystem::force_scale() const { return std::max(current_scale(), accepted_ ? scale_sum_ / accepted_ : 0.0); }
 
 void StepSystem::record_scale() {
-  const double s = std::max(a_.external_force().norm2(), a_.static_residual().norm2());
+  const double s = current_scale();
   if (!(s > 0.0) || !std::isfinite(s)) return;
   scale_sum_ += s;
   ++accepted_;

@@ -36,6 +36,7 @@ class StepSystem : public NewtonSystem {
   Assembler& a_;
   Timers& timers_;
   la::RCP<la::CrsMatrix> K_;
+  double current_scale() const;  // max(|f_ext|, |f_int - f_ext|) of the last evaluate()
   double scale_sum_ = 0.0;
   long accepted_ = 0;
 };

@@ -19,23 +19,15 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 
-#include "assembly/Assembler.hpp"
-#include "bc/Loads.hpp"
-#include "contact/Contact.hpp"
-#include "deck/Config.hpp"
-#include "mesh/MeshComm.hpp"
-#include "parallel/Distribution.hpp"
-#include "solver/LinearSolver.hpp"
-#include "solver/Newton.hpp"
-#include "run/Simulation.hpp"
 #include "CsvSeries.hpp"
-#include <filesystem>
-#include <fstream>
-#include <iostream>
+#include "run/Model.hpp"
+#include "run/Simulation.hpp"
+#include "solver/Newton.hpp"
 
 using namespace stentor;
 
@@ -43,21 +35,18 @@ namespace {
 
 const std::string kInputs = std::string(STENTOR_SOURCE_DIR) + "/inputs/";
 
+// The run's own set-up (mesh, loads, partition, assembler, linear solver, contact).
 struct Rig {
   Config cfg;
-  Mesh mesh;
-  std::vector<int> block_mat;
-  Loads loads;
-  std::unique_ptr<Distribution> dist;
-  std::unique_ptr<Assembler> assembler;
-  std::unique_ptr<Contact> contact;
-  explicit Rig(const Config& c) : cfg(c) {
-    mesh = read_mesh_on_root(cfg.mesh, MPI_COMM_WORLD, true, false);
-    block_mat = block_materials(cfg, mesh);
-    loads = resolve_loads(cfg, mesh);
-    dist = std::make_unique<Distribution>(mesh, Tpetra::getDefaultComm());
-    assembler = std::make_unique<Assembler>(mesh, *dist, cfg, loads, block_mat);
-    contact = Contact::create(cfg, mesh, *dist, *assembler);
+  Timers timers;
+  Model m;
+  Mesh& mesh;
+  std::unique_ptr<Distribution>& dist;
+  std::unique_ptr<Assembler>& assembler;
+  std::unique_ptr<Contact>& contact;
+  explicit Rig(const Config& c)
+      : cfg(c), m(cfg, RunOptions{}, timers), mesh(m.mesh), dist(m.dist), assembler(m.assembler), contact(m.contact) {
+    m.discretise(timers);
   }
   // Contact-modified residual (and tangent when asked).
   la::RCP<la::CrsMatrix> eval(const la::Vector& u, la::Vector& r, bool tangent) {
@@ -86,15 +75,6 @@ double fd_error(Rig& rig, const la::Vector& u, std::mt19937& gen) {
   EXPECT_FALSE(rig.contact->active_set_changed()) << "the active set changed within the difference";
   rp.update(-1.0 / (2 * h), rm, 1.0 / (2 * h));
   rp.update(-1.0, Kv, 1.0);
-  if (std::getenv("STENTOR_FD_DEBUG")) {
-    auto eh = rp.getLocalViewHost(Tpetra::Access::ReadOnly);
-    auto kh = Kv.getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (std::size_t i = 0; i < eh.extent(0); ++i)
-      if (std::abs(eh(i, 0)) > 1e-6 * Kv.normInf()) {
-        const auto g = rig.dist->global_node(static_cast<la::LO>(i / 2));
-        std::printf("dof %zu node %lld (%g, %g) comp %zu: Kv %g err %g\n", i, g, rig.mesh.x[3 * g], rig.mesh.x[3 * g + 1], i % 2, kh(i, 0), eh(i, 0));
-      }
-  }
   return rp.normInf() / Kv.normInf();
 }
 
@@ -419,9 +399,8 @@ TEST(DeformableContact, MasterTractionEqualsThePressure) {
   la::Vector u(rig.dist->owned_map());
   rig.contact->initialize(u, 1.0);
   rig.contact->begin_step(0.0, 1.0, u);
-  LinearSolver lin(rig.cfg.linear, Tpetra::getDefaultComm());
   RigSystem sys(rig);
-  ASSERT_TRUE(newton_solve(sys, u, lin, rig.cfg.newton, nullptr).converged);
+  ASSERT_TRUE(newton_solve(sys, u, *rig.m.linear, rig.cfg.newton, nullptr).converged);
   const auto mf = rig.contact->master_fields();
   ASSERT_EQ(mf.nodes.size(), 5u);
   double fy = 0.0, worst = 0.0;
