@@ -230,7 +230,8 @@ std::array<double, 3> Contact::translation(const Pair& p, double t) const {
 contact::Obstacle Contact::obstacle(const Pair& p, double t) const {
   contact::Obstacle o;
   const auto& c = p.cfg;
-  o.kind = c.obstacle == "plane" ? 0 : (c.obstacle == "cylinder" ? 2 : 1);
+  o.kind = c.obstacle == "plane" ? 0 : c.obstacle == "cylinder" ? 2 : c.obstacle == "capsule" ? 3 : 1;
+  o.length = c.length;
   const auto w = translation(p, t), w0 = translation(p, t0_);
   for (int k = 0; k < 3; ++k) {
     const auto kk = static_cast<std::size_t>(k);

@@ -47,9 +47,10 @@ enum State : int { NotSlave = -1, Free = 0, Inactive = 1, Stick = 2, Slip = 3 };
 
 // A rigid analytic obstacle at the end of the step (translation and radius applied).
 struct Obstacle {
-  int kind = 0;  // 0 plane, 1 circle / sphere, 2 cylinder
+  int kind = 0;  // 0 plane, 1 circle / sphere, 2 cylinder, 3 capsule
   double point[3] = {0, 0, 0}, normal[3] = {0, 0, 0}, axis[3] = {0, 0, 0};
   double radius = 0.0;
+  double length = 0.0;    // capsule: the axis segment runs from point to point + length axis
   bool inside = false;    // body inside the curved obstacle
   double dw[3] = {0, 0, 0};  // translation over the step
 };
@@ -63,8 +64,14 @@ KOKKOS_INLINE_FUNCTION T rigid_gap(const Obstacle& o, const T x[3], T n[3]) {
     for (int k = 0; k < 3; ++k) n[k] = T(o.normal[k]);
     return n[0] * r[0] + n[1] * r[1] + n[2] * r[2];
   }
-  if (o.kind == 2) {
-    const T a = r[0] * o.axis[0] + r[1] * o.axis[1] + r[2] * o.axis[2];
+  if (o.kind == 2 || o.kind == 3) {
+    // Cylinder: distance from the axis line. Capsule: from the closest point of the axis
+    // segment (clamped to its ends, whose neighbourhoods are spherical / circular caps).
+    T a = r[0] * o.axis[0] + r[1] * o.axis[1] + r[2] * o.axis[2];
+    if (o.kind == 3) {
+      if (value(a) < 0.0) a = T(0.0);
+      if (value(a) > o.length) a = T(o.length);
+    }
     for (int k = 0; k < 3; ++k) r[k] = r[k] - a * o.axis[k];
   }
   const T rho = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);

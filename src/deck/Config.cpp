@@ -239,6 +239,8 @@ class DeckReader {
                                 const std::vector<std::string>& names, const std::string& what) const;
   void read_stage_ramps(const ParameterList& sub, const std::string& path, std::size_t k);
   void read_contact_obstacle(const ParameterList& sub, const std::string& path, const ListSpec& ls, ContactPairConfig& c);
+  void read_stent_metrics(const ParameterList& sub);
+  void read_obstacle_axis(const ParameterList& sub, const std::string& path, const ListSpec& ls, ContactPairConfig& c);
   void check_dim_length(const std::vector<double>& v, const std::string& path) const;
   void check_safe_name(const std::string& text, const std::string& path, const std::string& what) const;
   void unit_direction(std::array<double, 3>& v, const std::string& path) const;
@@ -771,10 +773,36 @@ Ramp DeckReader::read_ramp(const ParameterList& pl, const std::string& path, con
   return r;
 }
 
+// "axis" (cylinder: 3 values; capsule: one per dimension) and "length" (capsule).
+void DeckReader::read_obstacle_axis(const ParameterList& sub, const std::string& path, const ListSpec& ls, ContactPairConfig& c) {
+  const bool cyl = c.obstacle == "cylinder", cap = c.obstacle == "capsule";
+  if (!cyl && !cap) {
+    if (sub.isParameter("axis")) fail(quoted(path + "->axis") + " is only used by cylinder and capsule obstacles");
+    if (sub.isParameter("length")) fail(quoted(path + "->length") + " is only used by a capsule obstacle");
+    return;
+  }
+  if (!sub.isParameter("axis"))
+    fail("missing required parameter " + quoted(path + "->axis") + " (Array(double), " + (cyl ? "3 values" : "one value per dimension") +
+         ") for a " + c.obstacle + " obstacle");
+  const auto a = get_array(sub, ls, "axis");
+  c.axis_len = static_cast<int>(a.size());
+  if (cyl && a.size() != 3) fail(quoted(path + "->axis") + " must have 3 values for a cylinder obstacle, got " + std::to_string(a.size()));
+  if (cap && c.axis_len != c.point_len)
+    fail(quoted(path + "->axis") + " must have as many values as 'point' (" + std::to_string(c.point_len) + ")");
+  for (std::size_t k = 0; k < a.size(); ++k) c.axis[k] = a[k];
+  unit_direction(c.axis, path + "->axis");
+  if (cyl) {
+    if (sub.isParameter("length")) fail(quoted(path + "->length") + " is only used by a capsule obstacle");
+    return;
+  }
+  if (!sub.isParameter("length")) fail("missing required parameter " + quoted(path + "->length") + " (double, >= 0) for a capsule obstacle");
+  c.length = get_double(sub, ls, "length");
+}
+
 void DeckReader::read_contact_obstacle(const ParameterList& sub, const std::string& path, const ListSpec& ls, ContactPairConfig& c) {
   c.obstacle = get_string(sub, ls, "obstacle");
-  if (c.obstacle != "plane" && c.obstacle != "circle" && c.obstacle != "cylinder" && c.obstacle != "sphere")
-    fail(quoted(path + "->obstacle") + " must be one of 'plane', 'circle', 'cylinder', 'sphere', got '" + c.obstacle + "'");
+  if (c.obstacle != "plane" && c.obstacle != "circle" && c.obstacle != "cylinder" && c.obstacle != "sphere" && c.obstacle != "capsule")
+    fail(quoted(path + "->obstacle") + " must be one of 'plane', 'circle', 'cylinder', 'sphere', 'capsule', got '" + c.obstacle + "'");
   const bool curved = c.obstacle != "plane";
   auto vec = [&](const std::string& key, std::array<double, 3>& out, int& len) {
     const auto v = get_array(sub, ls, key);
@@ -791,7 +819,7 @@ void DeckReader::read_contact_obstacle(const ParameterList& sub, const std::stri
     unit_direction(c.normal, path + "->normal");
     if (c.normal_len != c.point_len)
       fail(quoted(path + "->normal") + " must have as many values as 'point' (" + std::to_string(c.point_len) + ")");
-    for (const char* k : {"radius", "radius change", "axis", "side"})
+    for (const char* k : {"radius", "radius change", "axis", "side", "length"})
       if (sub.isParameter(k)) fail(quoted(path + "->" + k) + " is not used by a plane obstacle");
   } else {
     if (!sub.isParameter("radius"))
@@ -803,15 +831,7 @@ void DeckReader::read_contact_obstacle(const ParameterList& sub, const std::stri
       fail(quoted(path + "->obstacle") + " = circle is 2D only; use cylinder or sphere in 3D");
     if ((c.obstacle == "cylinder" || c.obstacle == "sphere") && (dim == 2 || c.point_len == 2))
       fail(quoted(path + "->obstacle") + " = " + c.obstacle + " is 3D only; use circle in 2D");
-    if (c.obstacle == "cylinder") {
-      if (!sub.isParameter("axis")) fail("missing required parameter " + quoted(path + "->axis") + " (Array(double), 3 values) for a cylinder obstacle");
-      const auto a = get_array(sub, ls, "axis");
-      c.axis_len = static_cast<int>(a.size());
-      for (std::size_t k = 0; k < 3; ++k) c.axis[k] = a[k];
-      unit_direction(c.axis, path + "->axis");
-    } else if (sub.isParameter("axis")) {
-      fail(quoted(path + "->axis") + " is only used by a cylinder obstacle");
-    }
+    read_obstacle_axis(sub, path, ls, c);
   }
   int tl = 0;
   if (sub.isParameter("translation")) {
@@ -848,7 +868,7 @@ void DeckReader::read_contact(const ParameterList& pl) {
       c.master = get_string(sub, ls, "master");
       if (c.master.empty()) fail(quoted(path + "->master") + " must name a boundary physical group");
       if (c.master == c.slave) fail(quoted(path + "->master") + " names the slave group '" + c.slave + "'; self-contact is not supported");
-      for (const char* k : {"point", "normal", "axis", "radius", "side", "translation", "translation ramp", "translation ramp times",
+      for (const char* k : {"point", "normal", "axis", "length", "radius", "side", "translation", "translation ramp", "translation ramp times",
                             "translation ramp factors", "radius change", "radius ramp", "radius ramp times", "radius ramp factors"})
         if (sub.isParameter(k)) fail(quoted(path + "->" + k) + " describes a rigid obstacle; a pair with 'master' has none");
     } else {
@@ -1120,6 +1140,28 @@ void DeckReader::read_output(const ParameterList& pl) {
       o.probes.push_back(p);
     }
   }
+  if (pl.isSublist("Stent Metrics")) read_stent_metrics(pl.sublist("Stent Metrics"));
+}
+
+void DeckReader::read_stent_metrics(const ParameterList& sub) {
+  const std::string path = "Output->Stent Metrics";
+  const ListSpec& ls = deck_list_spec("Output/Stent Metrics");
+  check_list(sub, path, {&ls});
+  require(sub, path, {&ls});
+  StentMetricsConfig& m = cfg_.output.metrics;
+  m.enabled = true;
+  const auto p = get_array(sub, ls, "axis point");
+  check_dim_length(p, path + "->axis point");
+  for (std::size_t c = 0; c < p.size(); ++c) m.axis_point[c] = p[c];
+  const auto a = get_array(sub, ls, "axis");
+  for (std::size_t c = 0; c < 3; ++c) m.axis[c] = a[c];
+  unit_direction(m.axis, path + "->axis");
+  m.stent = get_string(sub, ls, "stent");
+  m.lumen = get_string(sub, ls, "lumen");
+  m.artery = get_string(sub, ls, "artery");
+  for (const std::string* g : {&m.stent, &m.lumen, &m.artery})
+    if (g->empty()) fail(quoted(path) + ": 'stent', 'lumen' and 'artery' must name physical groups");
+  m.end_fraction = get_double(sub, ls, "end fraction");
 }
 
 // ------------------------------------------------------------------------------------

@@ -139,12 +139,22 @@ struct ProbeConfig {
   std::array<double, 3> point{};     // "point": reference coordinates; the nearest node is probed
 };
 
+// "Output"->"Stent Metrics" (enabled = the sublist is present).
+struct StentMetricsConfig {
+  bool enabled = false;
+  std::array<double, 3> axis_point{};  // "axis point"
+  std::array<double, 3> axis{};        // "axis" (normalized here)
+  std::string stent, lumen, artery;    // boundary, boundary, volume group names
+  double end_fraction = 0.2;           // "end fraction"
+};
+
 struct OutputConfig {
   std::string directory = "results";  // "Output"->"directory" (relative to the working dir); --output overrides
   std::string basename = "stentor";   // "Output"->"basename": file name stem
   int every = 1;                      // "Output"->"every": write fields every N converged steps (and the last)
   bool fields = true;                 // "Output"->"fields": HDF5/XDMF output on/off
   std::vector<ProbeConfig> probes;    // "Output"->"Probes"
+  StentMetricsConfig metrics;         // "Output"->"Stent Metrics"
 };
 
 // One node-to-rigid-obstacle contact pair: sublist of "Contact" (name = name).
@@ -153,12 +163,13 @@ struct OutputConfig {
 struct ContactPairConfig {
   std::string name;
   std::string slave;                      // "slave": boundary physical group whose nodes are the slave nodes
-  std::string obstacle;                   // "obstacle": plane | circle (2D) | cylinder (3D) | sphere (3D); empty with a master
+  std::string obstacle;                   // "obstacle": plane | circle (2D) | cylinder (3D) | sphere (3D) | capsule; empty with a master
   std::string master;                     // "master": boundary group of a deformable body (node-to-segment); empty with an obstacle
   std::array<double, 3> point{};          // "point": plane point / circle, sphere centre / cylinder axis point
   std::array<double, 3> normal{};         // "normal": plane outward normal (normalized here; the body lies on its side)
-  std::array<double, 3> axis{};           // "axis": cylinder axis direction (normalized here)
-  double radius = 0.0;                    // "radius" (circle, cylinder, sphere)
+  std::array<double, 3> axis{};           // "axis": cylinder / capsule axis direction (normalized here)
+  double radius = 0.0;                    // "radius" (circle, cylinder, sphere, capsule)
+  double length = 0.0;                    // "length": capsule axis segment from point to point + length axis [m]
   std::string side = "outside";           // "side": outside (body outside the obstacle) | inside (body inside)
   int point_len = 0, normal_len = 0, axis_len = 0;  // lengths as given (checked against the mesh dimension at run time)
   std::array<double, 3> translation{};    // "translation" [m], times translation_ramp(t)

@@ -288,9 +288,36 @@ std::vector<ListSpec> build_schema() {
                    str("basename", "stentor", "File name stem.").allowed("letters, digits, spaces, `_ . + -`"),
                    integer("every", 1, "Write fields every N converged steps (and the last).").ge(1),
                    boolean("fields", true, "HDF5/XDMF field output on/off.")});
-    l.sublists = {"Probes"};
+    l.sublists = {"Probes", "Stent Metrics"};
     s.push_back(l);
   }
+  s.push_back(list(
+      "Output/Stent Metrics", "Output->Stent Metrics",
+      "Stent and artery metrics (docs/scenes/README.md, S4) after every accepted step in <basename>_metrics.csv and at "
+      "the end of each stage in <basename>_stages.csv and the log. Radii are distances of the current node positions "
+      "from the vessel axis (the line through `axis point` along `axis`). With the axis in the model (2D axial section, "
+      "3D) the stent's axial extent gives dogboning and foreshortening; with the axis normal to a 2D model (a "
+      "cross-section) the lumen area is that of the `lumen` curve (star-shaped about the axis point).",
+      {arr("axis point", "A point of the vessel axis [m] (one value per dimension).").req().len(2, 3),
+       arr("axis", "Direction of the vessel axis (3 values, normalized): in the plane for an axial section, (0, 0, 1) "
+                   "for a 2D cross-section.")
+           .req()
+           .len(3, 3),
+       str("stent", "", "Boundary group of the stent surface that faces the lumen: its radius is the stent radius.")
+           .req()
+           .allowed("physical group name"),
+       str("lumen", "", "Boundary group of the artery's inner surface (axial section: measured over the stent's "
+                        "reference axial span).")
+           .req()
+           .allowed("physical group name"),
+       str("artery", "", "Volume group (body) of the artery wall: maximum von Mises and circumferential Cauchy "
+                         "stress (circumferential direction: axis x radial at the cell's reference centroid).")
+           .req()
+           .allowed("physical group name"),
+       dbl("end fraction", 0.2, "Dogboning: the stent's ends are its nodes within this fraction of its reference "
+                                "length from either end, its middle those within this fraction around the centre.")
+           .gt(0.0)
+           .le(0.5)}));
   {
     auto l = list("Output/Probes", "Output->Probes", "Points whose displacement history is recorded. Probe names "
                   "head CSV columns: letters, digits, spaces and `_ . + -` only.");
@@ -315,20 +342,26 @@ std::vector<ListSpec> build_schema() {
       "another deformable body (`master`, node-to-segment: the reaction acts on the master facet's nodes). Signed gap "
       "d >= 0 on the body's side.",
       {str("slave", "", "Mesh physical group (boundary) whose nodes may touch the obstacle.").req().allowed("physical group name"),
-       str("obstacle", "", "Rigid obstacle shape: `circle` (2D), `cylinder` (3D, infinite), `sphere` (3D), `plane`.")
-           .allowed("`plane`, `circle`, `cylinder`, `sphere`")
+       str("obstacle", "",
+           "Rigid obstacle shape: `circle` (2D), `cylinder` (3D, infinite), `sphere` (3D), `plane`, `capsule` (2D or "
+           "3D: the points within `radius` of the segment from `point` to `point` + `length` `axis`; a balloon: in 2D "
+           "its axial section, a stadium).")
+           .allowed("`plane`, `circle`, `cylinder`, `sphere`, `capsule`")
            .dflt_doc("one of `obstacle`, `master` is required"),
        str("master", "",
            "Boundary physical group (line2/line3 facets in 2D, tri3/tri6/quad4 in 3D) of another deformable body: the "
            "master surface. The slave nodes' contact forces act on it, distributed by the facet shape functions.")
            .allowed("physical group name")
            .dflt_doc("one of `obstacle`, `master` is required"),
-       arr("point", "A point of the plane; the centre of a circle/sphere; a point of the cylinder axis [m].")
+       arr("point", "A point of the plane; the centre of a circle/sphere; a point of the cylinder axis; the capsule segment's start [m].")
            .len(2, 3)
            .dflt_doc("required for `obstacle`"),
        arr("normal", "Plane: normal pointing to the body's side (normalized).").len(2, 3).dflt_doc("required for `plane`"),
-       arr("axis", "Cylinder: axis direction (normalized).").len(3, 3).dflt_doc("required for `cylinder`"),
-       dbl("radius", 1.0, "Radius of circle, cylinder, sphere [m].").gt(0.0).dflt_doc("required for curved obstacles"),
+       arr("axis", "Cylinder, capsule: axis direction (normalized); 3 values for a cylinder, one per dimension for a capsule.")
+           .len(2, 3)
+           .dflt_doc("required for `cylinder`, `capsule`"),
+       dbl("length", 0.0, "Capsule: length of the axis segment [m] (0: a circle or sphere).").ge(0.0).dflt_doc("required for `capsule`"),
+       dbl("radius", 1.0, "Radius of circle, cylinder, sphere, capsule [m].").gt(0.0).dflt_doc("required for curved obstacles"),
        str("side", "outside",
            "`outside`: the body is outside the obstacle (a rod, a balloon); `inside`: the body is inside (a tube wall).")
            .one_of({"outside", "inside"}),

@@ -141,12 +141,14 @@ std::vector<std::string> Reporter::energy_columns() const {
 }
 
 void Reporter::open() {
+  if (cfg_.output.metrics.enabled) metrics_ = std::make_unique<MetricsReport>(m_);  // before any file: bad group names
   int io_error = 0;
   std::string io_message;
   if (m_.rank == 0) {
     try {
       staging_ = std::make_unique<OutputDir>(out_dir_);
       const std::string stem = staging_->path() + "/" + cfg_.output.basename;
+      if (metrics_) metrics_->open(stem);
       if (cfg_.output.fields) xdmf_ = std::make_unique<XdmfWriter>(staging_->path(), cfg_.output.basename, m_.mesh);
       history_ = std::make_unique<CsvWriter>(stem + "_history.csv", history_columns());
       if (m_.dynamic) energy_csv_ = std::make_unique<CsvWriter>(stem + "_energy.csv", energy_columns());
@@ -233,6 +235,7 @@ void Reporter::write_fields(double t, const la::Vector& u) {
 }
 
 void Reporter::energy_row(int step, double t, const EnergyAudit& au, const EnergyTotals& e) {
+  total_energy_ = au.kinetic + au.strain;
   if (m_.rank != 0 || !energy_csv_) return;
   std::vector<double> row = {double(step), t, au.kinetic, au.strain, au.kinetic + au.strain, e.external, e.support, e.dissipation,
                              au.balance, au.momentum[0], au.momentum[1], au.momentum[2], au.angular_momentum[0],
@@ -253,7 +256,21 @@ std::vector<double> Reporter::probe_values(const la::Vector& u) const {
   return glob;
 }
 
+void Reporter::initial_metrics(const RunState& s) {
+  if (!metrics_) return;
+  Timers::Scope sc{timers_, "output"};
+  metrics_->step(s, s.u, m_.dynamic ? total_energy_ : 0.0);
+}
+
+void Reporter::end_stage(const RunState& s, const std::string& name) {
+  if (metrics_) metrics_->end_stage(s, name, out_);
+}
+
 void Reporter::history_row(const RunState& s, const StepRecord& rec, double energy) {
+  if (metrics_) {
+    Timers::Scope sc{timers_, "output"};
+    metrics_->step(s, s.u, m_.dynamic ? total_energy_ : energy);
+  }
   const auto pv = probe_values(s.u);
   if (m_.rank != 0) return;
   const int dim = m_.dim;
@@ -358,6 +375,12 @@ void Reporter::plots() {
   } else {
     plot_csv_png(csv, stem + "_energy.png", "time", {"strain_energy"}, "Stored energy", "energy");
   }
+  if (metrics_) {
+    const std::string mcsv = stem + "_metrics.csv";
+    plot_csv_png(mcsv, stem + "_radii.png", "time", metrics_->radius_columns(), "Lumen and stent radii", "radius [m]");
+    plot_csv_png(mcsv, stem + "_stresses.png", "time", metrics_->stress_columns(), "Artery wall stress, contact pressure",
+                 "stress [Pa]");
+  }
 }
 
 void Reporter::finish(bool failed) {
@@ -365,6 +388,7 @@ void Reporter::finish(bool failed) {
   history_.reset();
   energy_csv_.reset();
   xdmf_.reset();
+  if (metrics_) metrics_->close();
   if (failed) {
     out_ << "Partial results kept in " << staging_->path() << "; earlier results in " << out_dir_ << " were not touched\n";
     return;

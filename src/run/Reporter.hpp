@@ -12,6 +12,7 @@
 #include "io/Csv.hpp"
 #include "io/OutputDir.hpp"
 #include "io/XdmfWriter.hpp"
+#include "run/MetricsReport.hpp"
 #include "run/Model.hpp"
 #include "run/RunState.hpp"
 #include "run/Stepper.hpp"
@@ -40,8 +41,12 @@ class Reporter {
   void energy_row(int step, double t, const EnergyAudit& au, const EnergyTotals& e);
   // One row of <basename>_history.csv (collective: probes).
   void history_row(const RunState& s, const StepRecord& rec, double energy);
+  // The stent metrics (Output->Stent Metrics) at t = 0 (collective; nothing without them).
+  void initial_metrics(const RunState& s);
   // Stage k of Config::stages begins: its header line.
   void begin_stage(std::size_t k);
+  // A stage (or, without stages, the run) ended at s: its stent metrics row and lines.
+  void end_stage(const RunState& s, const std::string& name);
   // The stepping of [t0, t1] begins: the reference of the time-left estimate.
   void begin_interval(double t0, double t1);
   // The progress line of an accepted step (flushed): without energy terms when they are
@@ -74,6 +79,8 @@ class Reporter {
   std::unique_ptr<OutputDir> staging_;
   std::unique_ptr<XdmfWriter> xdmf_;
   std::unique_ptr<CsvWriter> history_, energy_csv_;
+  std::unique_ptr<MetricsReport> metrics_;  // null without Output->Stent Metrics
+  double total_energy_ = 0.0;               // kinetic + strain of the last energy_row
   // Gather of every used dof on rank 0, in mesh node order.
   std::vector<la::GO> all_dofs_;
   la::RCP<const la::Map> gather_map_;

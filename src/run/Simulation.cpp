@@ -48,6 +48,7 @@ void initialize(Run& r) {
     r.reporter.energy_row(0, 0.0, au0, r.state.energy);
   }
   if (m.contact) r.stepper.initialize_contact(r.state);
+  r.reporter.initial_metrics(r.state);
   if (m.cfg.output.fields) r.reporter.write_fields(0.0, r.state.u);
 }
 
@@ -136,6 +137,7 @@ bool run_stages(Run& r) {
     if (r.model.contact) r.model.contact->set_active_pairs(stage.contact_active);
     r.reporter.begin_stage(k);
     if (!run_interval(r, stage.end)) return false;
+    r.reporter.end_stage(s, stage.name);
   }
   return true;
 }
@@ -180,9 +182,9 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
 
   initialize(run);
   reporter.begin_interval(0.0, cfg.stepping.end_time);
-  if (cfg.stages.empty())
-    run_interval(run, cfg.stepping.end_time);
-  else
+  if (cfg.stages.empty()) {
+    if (run_interval(run, cfg.stepping.end_time)) reporter.end_stage(state, "the run");
+  } else
     run_stages(run);
 
   if (result) fill_result(run, *result);

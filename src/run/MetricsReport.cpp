@@ -1,0 +1,94 @@
+#include "run/MetricsReport.hpp"
+
+#include <algorithm>
+#include <iomanip>
+
+namespace stentor {
+
+MetricsReport::MetricsReport(const Model& model) : m_(model), metrics_(model), names_(metrics_.columns()) {}
+
+int MetricsReport::col(const std::string& name) const {
+  return static_cast<int>(std::find(names_.begin(), names_.end(), name) - names_.begin());
+}
+
+void MetricsReport::open(const std::string& stem) {
+  if (m_.rank != 0) return;
+  std::vector<std::string> c = {"step", "time", "stage"};
+  c.insert(c.end(), names_.begin(), names_.end());
+  steps_csv_ = std::make_unique<CsvWriter>(stem + "_metrics.csv", c);
+  std::vector<std::string> s = {"stage", "time"};
+  s.insert(s.end(), names_.begin(), names_.end());
+  s.insert(s.end(), {"lumen_gain", "stent_radius_max", "radial_recoil", "stage_contact_pressure_max",
+                     "stage_artery_von_mises_max", "stage_artery_hoop_stress_max", "stage_delta_energy",
+                     "stage_external_work", "stage_dissipation", "stage_contact_work", "stage_friction_dissipation"});
+  stages_csv_ = std::make_unique<CsvWriter>(stem + "_stages.csv", s);
+}
+
+void MetricsReport::step(const RunState& s, const la::Vector& u, double E) {
+  now_ = metrics_.evaluate(u);
+  E_ = E;
+  if (!started_) {
+    first_ = now_;
+    stage_max_ = now_;
+    stage_e0_ = s.energy;
+    stage_E0_ = E;
+    started_ = true;
+  }
+  for (std::size_t k = 0; k < now_.size(); ++k) stage_max_[k] = std::max(stage_max_[k], now_[k]);
+  stent_r_max_ = std::max(stent_r_max_, now_[static_cast<std::size_t>(col("stent_radius_mean"))]);
+  if (!steps_csv_) return;
+  std::vector<double> row = {double(s.step), s.t, double(s.stage + 1)};
+  row.insert(row.end(), now_.begin(), now_.end());
+  steps_csv_->row(row);
+}
+
+void MetricsReport::end_stage(const RunState& s, const std::string& name, std::ostream& log) {
+  if (!started_) return;
+  const auto at = [&](const std::vector<double>& v, const char* c) { return v[static_cast<std::size_t>(col(c))]; };
+  const double lumen0 = at(first_, "lumen_radius_mean"), lumen = at(now_, "lumen_radius_mean");
+  const double gain = lumen0 > 0.0 ? (lumen - lumen0) / lumen0 : 0.0;
+  const double rs = at(now_, "stent_radius_mean");
+  const double recoil = stent_r_max_ > 0.0 ? (stent_r_max_ - rs) / stent_r_max_ : 0.0;
+  const EnergyTotals& e = s.energy;
+  const double dE = E_ - stage_E0_, wext = e.external + e.support - stage_e0_.external - stage_e0_.support;
+  const double diss = e.dissipation - stage_e0_.dissipation, wc = e.contact - stage_e0_.contact;
+  const double fric = e.friction - stage_e0_.friction;
+  const double pmax = at(stage_max_, "contact_pressure_max"), vm = at(stage_max_, "artery_von_mises_max");
+  const double hoop = at(stage_max_, "artery_hoop_stress_max");
+  if (stages_csv_) {
+    std::vector<double> row = {double(s.stage + 1), s.t};
+    row.insert(row.end(), now_.begin(), now_.end());
+    row.insert(row.end(), {gain, stent_r_max_, recoil, pmax, vm, hoop, dE, wext, diss, wc, fric});
+    stages_csv_->row(row);
+  }
+  log << std::scientific << std::setprecision(4) << "  metrics at the end of '" << name << "': lumen radius " << lumen
+      << " (gain " << std::fixed << std::setprecision(2) << 100.0 * gain << "%), stent radius " << std::scientific
+      << std::setprecision(4) << rs << " (max " << stent_r_max_ << ", recoil " << std::fixed << std::setprecision(2)
+      << 100.0 * recoil << "%)";
+  if (metrics_.axial())
+    log << ", dogboning " << 100.0 * at(now_, "dogboning") << "%, foreshortening " << 100.0 * at(now_, "foreshortening") << "%";
+  log << std::scientific << std::setprecision(3) << "\n  stage maxima: contact pressure " << pmax << " Pa, wall von Mises "
+      << vm << " Pa, wall hoop stress " << hoop << " Pa; energy: dE " << dE << ", W_ext " << wext << ", W_contact " << wc
+      << ", D_visc " << diss << ", D_fric " << fric << "\n"
+      << std::defaultfloat;
+  stage_max_ = now_;
+  stage_e0_ = e;
+  stage_E0_ = E_;
+}
+
+void MetricsReport::close() {
+  steps_csv_.reset();
+  stages_csv_.reset();
+}
+
+std::vector<std::string> MetricsReport::radius_columns() const {
+  std::vector<std::string> c = {"lumen_radius_mean", "lumen_radius_min", "stent_radius_mean"};
+  if (metrics_.axial()) c.insert(c.end(), {"stent_radius_middle", "stent_radius_ends"});
+  return c;
+}
+
+std::vector<std::string> MetricsReport::stress_columns() const {
+  return {"artery_von_mises_max", "artery_hoop_stress_max", "contact_pressure_max"};
+}
+
+}  // namespace stentor

@@ -1,0 +1,46 @@
+// The stent metrics of a run (Output->Stent Metrics) as files: one row per accepted step
+// in <basename>_metrics.csv, one row per stage in <basename>_stages.csv (the metrics at
+// the stage's end, the lumen gain and radial recoil so far, the stage's largest stresses
+// and contact pressure, and its energy terms), and a paragraph in the log per stage.
+#pragma once
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "io/Csv.hpp"
+#include "run/RunState.hpp"
+#include "run/StentMetrics.hpp"
+
+namespace stentor {
+
+class MetricsReport {
+ public:
+  explicit MetricsReport(const Model& model);  // throws InputError (groups)
+  // Rank 0: creates <stem>_metrics.csv and <stem>_stages.csv.
+  void open(const std::string& stem);
+  // After step s (and at t = 0): the metrics at u; E = kinetic + strain energy (collective).
+  void step(const RunState& s, const la::Vector& u, double E);
+  // The stage (or the whole run) that ends at s: its row and log paragraph (rank 0).
+  void end_stage(const RunState& s, const std::string& name, std::ostream& log);
+  void close();
+  // Columns of <stem>_metrics.csv worth a plot: radii; stresses and pressure.
+  std::vector<std::string> radius_columns() const;
+  std::vector<std::string> stress_columns() const;
+
+ private:
+  int col(const std::string& name) const;
+
+  const Model& m_;
+  StentMetrics metrics_;
+  std::vector<std::string> names_;
+  std::unique_ptr<CsvWriter> steps_csv_, stages_csv_;
+  std::vector<double> now_, first_;      // the last row's metrics, the t = 0 ones
+  std::vector<double> stage_max_;        // this stage's maxima of each metric
+  double stent_r_max_ = 0.0;             // largest stent radius so far
+  EnergyTotals stage_e0_;                // totals when the stage began
+  double stage_E0_ = 0.0, E_ = 0.0;      // energy when the stage began, now
+  bool started_ = false;
+};
+
+}  // namespace stentor
