@@ -284,7 +284,10 @@ std::vector<ListSpec> build_schema() {
 
   {
     auto l = list("Output", "Output", "Result files.",
-                  {str("directory", "results", "Output folder (relative to the working directory); `--output` overrides."),
+                  {str("directory", "results/{deck}", "Output folder (relative to the working directory); `{deck}` stands for "
+                      "the deck's file name without `.xml`, so each deck has its own folder by default; `--output` "
+                      "overrides. A run writes only into a new or empty folder or a Stentor results folder, never "
+                      "into the deck's own folder."),
                    str("basename", "stentor", "File name stem.").allowed("letters, digits, spaces, `_ . + -`"),
                    integer("every", 1, "Write fields every N converged steps (and the last).").ge(1),
                    boolean("fields", true, "HDF5/XDMF field output on/off.")});
