@@ -139,8 +139,13 @@ int main(int argc, char** argv) {
   } catch (const stentor::InputError& e) {
     return fail_all_ranks(rank, size, 2, std::string("stentor: error: ") + e.what() + "\n");
   } catch (const stentor::WriteError& e) {
-    return fail_all_ranks(rank, size, 3, std::string("stentor: error: ") + e.what() +
-                                             "; the run stopped (results written so far are kept in the .partial folder)\n");
+    const int code = fail_all_ranks(rank, size, 3, std::string("stentor: error: ") + e.what() +
+                                                       "; the run stopped (results written so far are kept in the .partial folder)\n");
+    // No MPI_Finalize: it shuts HDF5 down, and HDF5 1.10 crashes (SIGSEGV) closing a file
+    // whose last write failed. Nothing is left to write.
+    stentor::log_copy::stop();
+    std::fflush(nullptr);
+    std::_Exit(code);
   } catch (const std::bad_alloc&) {
     return fail_all_ranks(rank, size, 1, "stentor: out of memory on rank " + std::to_string(rank) + "\n");
   } catch (const std::exception& e) {

@@ -220,9 +220,10 @@ void OutputDir::copy_in(const std::string& file, const std::string& name) {
   check_write(!ec, "copying " + file + " to", to.string());
 }
 
-// The manifest, written to a temporary file and renamed over the old one (atomic).
+// The manifest, written to a temporary file in the staging folder and renamed over the
+// old one (atomic; a failed write leaves <final> as it was).
 void OutputDir::write_manifest(const std::vector<std::string>& names) const {
-  const std::string path = final_ + "/" + kManifest, tmp = path + ".tmp";
+  const std::string path = final_ + "/" + kManifest, tmp = staging_ + "/" + kManifest + ".tmp";
   {
     std::ofstream out(tmp, std::ios::trunc);
     out << "# Stentor results folder: the files below were written by one run (" << (deck_.empty() ? "" : "deck " + deck_ + ", ")
@@ -230,12 +231,19 @@ void OutputDir::write_manifest(const std::vector<std::string>& names) const {
         << "# The next Stentor run into this folder replaces them; it never touches a file not listed here.\n";
     for (const auto& n : names) out << n << "\n";
     out.flush();
-    check_write(static_cast<bool>(out), "writing", tmp);
+    try {
+      check_write(static_cast<bool>(out), "writing", tmp);
+    } catch (const WriteError&) {
+      std::error_code ec;
+      fs::remove(tmp, ec);  // the folder as it was
+      throw;
+    }
   }
   std::error_code ec;
   fs::rename(tmp, path, ec);
   errno = ec.value();
-  check_write(!ec, "renaming " + tmp + " to", path);
+  if (ec) fs::remove(tmp, ec);
+  check_write(errno == 0, "renaming " + tmp + " to", path);
 }
 
 void OutputDir::commit() {

@@ -13,7 +13,14 @@ void throw_write_error(const std::string& what, const std::string& path, int err
 
 bool write_fails_for_test(const std::string& path) {
   const char* v = std::getenv("STENTOR_TEST_FAIL_WRITE");
-  return v && *v && std::filesystem::path(path).filename() == v;
+  if (!v || !*v) return false;
+  const std::string spec = v;
+  const std::size_t colon = spec.rfind(':');
+  const std::string name = spec.substr(0, colon);
+  const long from = colon == std::string::npos ? 1 : std::atol(spec.c_str() + colon + 1);
+  if (std::filesystem::path(path).filename() != name) return false;
+  static long checks = 0;  // of that one file (the hook names one)
+  return ++checks >= from;
 }
 
 void check_write(bool ok, const std::string& what, const std::string& path) {

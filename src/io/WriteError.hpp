@@ -14,9 +14,10 @@ struct WriteError : std::runtime_error {
 // Throws WriteError "<what> <path> failed: <strerror(err)>".
 [[noreturn]] void throw_write_error(const std::string& what, const std::string& path, int err);
 
-// Test hook (documented in tests/cli/CMakeLists.txt): with STENTOR_TEST_FAIL_WRITE=NAME,
-// every write check of a file named NAME (the name without its folder) reports a failure
-// with errno ENOSPC, as on a full disk. Returns whether this path is that file.
+// Test hook (documented in tests/cli/CMakeLists.txt): with STENTOR_TEST_FAIL_WRITE=NAME[:N]
+// the N-th (default 1st) and every later write check of a file named NAME (the name
+// without its folder) in this process report a failure with errno ENOSPC, as on a disk
+// that fills up. Returns whether this check of `path` is such a failure.
 bool write_fails_for_test(const std::string& path);
 
 // Throws WriteError (as above) when `ok` is false (errno then says why) or the test hook
