@@ -231,7 +231,8 @@ std::vector<ListSpec> build_schema() {
       "steps). The run stops with exit status 3 when a step would need more than `max cutbacks` halvings in a "
       "row, a step smaller than `min dt`, or more than `max steps` steps. Rejected steps write no output.",
       {dbl("end time", 1.0, "Final time [s].").gt(0.0),
-       integer("steps", 1, "Number of steps (initial step = end time / steps).").ge(1),
+       integer("steps", 1, "Number of steps (initial step = end time / steps, which must be at least 1e-300 and "
+               "1e-12 x end time).").ge(1),
        integer("max cutbacks", 6, "Halvings of a failed step in a row before giving up.").ge(0),
        dbl("growth", 1.5, "Factor by which the step grows after each accepted step until it is the deck's step again.")
            .ge(1.0)
