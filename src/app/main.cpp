@@ -3,6 +3,7 @@
 #include <mpi.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -12,6 +13,8 @@
 #include <thread>
 
 #include "deck/Config.hpp"
+#include "io/LogCopy.hpp"
+#include "io/WriteError.hpp"
 #include "run/Simulation.hpp"
 
 namespace {
@@ -25,10 +28,13 @@ const char* kUsage =
     "options:\n"
     "  --check        validate the deck and its mesh (groups, materials, loads), run nothing\n"
     "  --output DIR   write results to DIR (overrides Output->directory)\n"
+    "  --overwrite    write into DIR even when it is not empty and holds no Stentor results\n"
+    "                 (files with the names of the results are replaced, no other file)\n"
     "  --verbose      print every Newton iteration\n"
     "  --help         this text\n"
     "\n"
-    "exit status: 0 success, 1 internal error, 2 invalid input, 3 the solve failed;\n"
+    "exit status: 0 success, 1 internal error, 2 invalid input (or an output folder that\n"
+    "may not be used), 3 the solve or writing a result file failed;\n"
     "under MPI an error on any one rank ends every rank with that status\n";
 
 // A communicator of its own for agreeing on failures (duplicated at start-up, so that
@@ -81,8 +87,16 @@ int main(int argc, char** argv) {
   // The log is line-buffered even when redirected to a file: a killed batch job keeps
   // every line written so far (the progress line is also flushed every step).
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  // A file size limit (ulimit -f) makes a write fail with EFBIG, reported like a full
+  // disk, instead of killing the process with SIGXFSZ.
+  std::signal(SIGXFSZ, SIG_IGN);
   Tpetra::ScopeGuard guard(&argc, &argv);
   const int rank = Tpetra::getDefaultComm()->getRank();
+  // Rank 0's log, copied into the results (<basename>.log) once the folder exists.
+  struct LogCopyGuard {
+    explicit LogCopyGuard(bool on) { if (on) stentor::log_copy::start(); }
+    ~LogCopyGuard() { stentor::log_copy::stop(); }
+  } log_copy_guard(rank == 0);
   MPI_Comm_dup(MPI_COMM_WORLD, &g_fail_comm);
   stentor::RunOptions opts;
   std::string deck;
@@ -93,6 +107,8 @@ int main(int argc, char** argv) {
       return 0;
     } else if (a == "--check") {
       opts.check_only = true;
+    } else if (a == "--overwrite") {
+      opts.overwrite = true;
     } else if (a == "--verbose" || a == "-v") {
       opts.verbose = true;
     } else if (a == "--output" || a == "-o") {
@@ -122,6 +138,14 @@ int main(int argc, char** argv) {
     return stentor::run_simulation(cfg, opts);
   } catch (const stentor::InputError& e) {
     return fail_all_ranks(rank, size, 2, std::string("stentor: error: ") + e.what() + "\n");
+  } catch (const stentor::WriteError& e) {
+    const int code = fail_all_ranks(rank, size, 3, std::string("stentor: error: ") + e.what() +
+                                                       "; the run stopped (results written so far are kept in the .partial folder)\n");
+    // No MPI_Finalize: it shuts HDF5 down, and HDF5 1.10 crashes (SIGSEGV) closing a file
+    // whose last write failed. Nothing is left to write.
+    stentor::log_copy::stop();
+    std::fflush(nullptr);
+    std::_Exit(code);
   } catch (const std::bad_alloc&) {
     return fail_all_ranks(rank, size, 1, "stentor: out of memory on rank " + std::to_string(rank) + "\n");
   } catch (const std::exception& e) {

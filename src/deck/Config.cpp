@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <sstream>
@@ -189,6 +190,55 @@ std::string check_xml_value(const std::string& type, const std::string& value) {
   return "";
 }
 
+// The deepest element nesting of an XML text, and the line where it is first exceeded
+// (> limit). Teuchos converts nested lists recursively, so a deck nesting thousands of
+// sublists would overflow the stack: the raw text is scanned, without recursion, before
+// Teuchos reads it. Comments, CDATA, processing instructions and <!DOCTYPE ...> are
+// skipped; quoted attribute values may hold '>'.
+struct Nesting {
+  int depth = 0;
+  int line = 0;  // line of the first element deeper than the limit (0: none)
+};
+Nesting xml_nesting(const std::string& text, int limit) {
+  Nesting n;
+  int depth = 0, line = 1;
+  const std::size_t size = text.size();
+  auto skip_to = [&](std::size_t from, const char* end) {
+    const std::size_t e = text.find(end, from);
+    const std::size_t stop = e == std::string::npos ? size : e + std::char_traits<char>::length(end);
+    line += static_cast<int>(std::count(text.begin() + static_cast<std::ptrdiff_t>(from), text.begin() + static_cast<std::ptrdiff_t>(stop), '\n'));
+    return stop;
+  };
+  std::size_t i = 0;
+  while (i < size) {
+    const char c = text[i];
+    if (c != '<') {
+      if (c == '\n') ++line;
+      ++i;
+      continue;
+    }
+    if (text.compare(i, 4, "<!--") == 0) { i = skip_to(i, "-->"); continue; }
+    if (text.compare(i, 9, "<![CDATA[") == 0) { i = skip_to(i, "]]>"); continue; }
+    if (text.compare(i, 2, "<?") == 0) { i = skip_to(i, "?>"); continue; }
+    if (text.compare(i, 2, "<!") == 0) { i = skip_to(i, text.find('[', i) < text.find('>', i) ? "]>" : ">"); continue; }
+    const bool closing = text.compare(i, 2, "</") == 0;
+    char quote = 0, prev = 0;
+    std::size_t j = i + 1;
+    for (; j < size && (quote || text[j] != '>'); ++j) {  // to the tag's '>', quotes respected
+      if (text[j] == '\n') ++line;
+      if (quote) { if (text[j] == quote) quote = 0; }
+      else if (text[j] == '"' || text[j] == '\'') quote = text[j];
+      if (!std::isspace(static_cast<unsigned char>(text[j]))) prev = text[j];
+    }
+    if (closing) --depth;
+    else if (prev != '/') ++depth;  // not <x/>
+    n.depth = std::max(n.depth, depth);
+    if (depth > limit && !n.line) n.line = line;
+    i = j + 1;
+  }
+  return n;
+}
+
 class DeckReader {
  public:
   explicit DeckReader(std::string file) : file_(std::move(file)) {}
@@ -201,6 +251,8 @@ class DeckReader {
   std::string file_;  // as given by the user: every message starts with it
   Config cfg_;
 
+  // ---- pass 0: the raw text (nesting depth, before Teuchos recurses over it) ----
+  void check_nesting() const;
   // ---- pass 1: the raw XML tree (before Teuchos converts and merges values) ----
   void check_xml(const XMLObject& x, const std::string& path, bool passthrough) const;
 
@@ -242,9 +294,27 @@ class DeckReader {
   void read_stent_metrics(const ParameterList& sub);
   void read_obstacle_axis(const ParameterList& sub, const std::string& path, const ListSpec& ls, ContactPairConfig& c);
   void check_dim_length(const std::vector<double>& v, const std::string& path) const;
+  void check_step(double step, double end, const std::string& what) const;
   void check_safe_name(const std::string& text, const std::string& path, const std::string& what) const;
   void unit_direction(std::array<double, 3>& v, const std::string& path) const;
 };
+
+// ------------------------------------------------------------------------------------
+// Pass 0: raw text. A Stentor deck nests 5 levels (Linear Solver->MueLu->... sublists
+// a few more); kMaxNesting leaves ample room and stays far from the stack's limit.
+
+constexpr int kMaxNesting = 64;
+
+void DeckReader::check_nesting() const {
+  std::ifstream in(cfg_.deck_path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) fail("cannot read the deck (" + cfg_.deck_path + ")");
+  const Nesting n = xml_nesting(text.str(), kMaxNesting);
+  if (n.line)
+    fail("line " + std::to_string(n.line) + ": elements nested " + std::to_string(n.depth) + " deep; a deck nests at most " +
+         std::to_string(kMaxNesting) + " levels of <ParameterList>");
+}
 
 // ------------------------------------------------------------------------------------
 // Pass 1: raw XML.
@@ -611,6 +681,16 @@ void DeckReader::check_dim_length(const std::vector<double>& v, const std::strin
 // Names that end up in output file names, CSV column headers and plot labels (loads,
 // probes, contact pairs, the basename) are restricted to a character set that no shell,
 // gnuplot or file system interprets: letters, digits, space and _ . + -
+// A step the time loop can take: t + step > t up to the interval's end `end`, with a
+// margin (step >= 1e-12 x end), and far from underflow (step >= 1e-300), so that its
+// halvings and the default min dt (1e-6 x step) are positive normal numbers. A step of
+// 4.9e-324 (a denormal) would be 0 after one halving and the time would never advance.
+void DeckReader::check_step(double step, double end, const std::string& what) const {
+  if (step >= 1e-300 && step >= 1e-12 * std::abs(end)) return;
+  fail(what + " = " + num(step) + " is too small: it must be at least 1e-300 and 1e-12 x the end time " + num(end) +
+       " (else the time cannot advance); use a larger end time or fewer steps");
+}
+
 void DeckReader::check_safe_name(const std::string& text, const std::string& path, const std::string& what) const {
   for (const char c : text) {
     const auto u = static_cast<unsigned char>(c);
@@ -1294,6 +1374,7 @@ void DeckReader::read_stages(const ParameterList& pl, const ParameterList* stepp
       if (n > 1e7) fail(quoted(path + "->step") + " gives more than 1e7 steps");
       st.num_steps = std::max(1, static_cast<int>(n));
     }
+    check_step(st.step(), st.end, "the step of stage " + quoted(path));
     if (cfg_.stepping.min_dt > st.step())
       fail("'Stepping->min dt' = " + num(cfg_.stepping.min_dt) + " exceeds the step " + num(st.step()) + " of stage " + quoted(path));
     st.load_active = read_active(sub, path, "loads", load_names, "load");
@@ -1345,6 +1426,7 @@ Config DeckReader::read() {
   if (!fs::exists(abs, ec)) fail("cannot read the deck: no such file (" + cfg_.deck_path + ")");
   if (!fs::is_regular_file(abs, ec)) fail("cannot read the deck: not a regular file (" + cfg_.deck_path + ")");
 
+  check_nesting();
   XMLObject xml;
   try {
     xml = Teuchos::FileInputSource(cfg_.deck_path).getObject();
@@ -1395,7 +1477,15 @@ Config DeckReader::read() {
   if (root.isSublist("Output")) read_output(root.sublist("Output"));
   if (root.isSublist("Contact")) read_contact(root.sublist("Contact"));
   if (root.isSublist("Stages")) read_stages(root.sublist("Stages"), root.isSublist("Stepping") ? &root.sublist("Stepping") : nullptr);
+  // "{deck}" in Output->directory (the default results/{deck}): the deck's file name
+  // without its extension, so that two decks never share a result folder by default.
+  const std::string stem = fs::path(cfg_.deck_path).stem().string();
+  std::string& dir = cfg_.output.directory;
+  for (std::size_t at = dir.find("{deck}"); at != std::string::npos; at = dir.find("{deck}", at + stem.size()))
+    dir.replace(at, 6, stem);
   const double step = cfg_.stepping.end_time / cfg_.stepping.num_steps;
+  if (cfg_.stages.empty())
+    check_step(step, cfg_.stepping.end_time, "the step 'Stepping->end time' / 'Stepping->steps'");
   if (cfg_.stages.empty() && cfg_.stepping.min_dt > step)
     fail("'Stepping->min dt' must not exceed the step 'Stepping->end time' / 'Stepping->steps' = " + num(step) + ", got " +
          num(cfg_.stepping.min_dt));

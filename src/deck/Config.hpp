@@ -149,7 +149,8 @@ struct StentMetricsConfig {
 };
 
 struct OutputConfig {
-  std::string directory = "results";  // "Output"->"directory" (relative to the working dir); --output overrides
+  std::string directory = "results/{deck}";  // "Output"->"directory" (relative to the working dir, "{deck}" replaced
+                                             // by the deck's file name stem when read); --output overrides
   std::string basename = "stentor";   // "Output"->"basename": file name stem
   int every = 1;                      // "Output"->"every": write fields every N converged steps (and the last)
   bool fields = true;                 // "Output"->"fields": HDF5/XDMF output on/off

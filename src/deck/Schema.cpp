@@ -231,7 +231,8 @@ std::vector<ListSpec> build_schema() {
       "steps). The run stops with exit status 3 when a step would need more than `max cutbacks` halvings in a "
       "row, a step smaller than `min dt`, or more than `max steps` steps. Rejected steps write no output.",
       {dbl("end time", 1.0, "Final time [s].").gt(0.0),
-       integer("steps", 1, "Number of steps (initial step = end time / steps).").ge(1),
+       integer("steps", 1, "Number of steps (initial step = end time / steps, which must be at least 1e-300 and "
+               "1e-12 x end time).").ge(1),
        integer("max cutbacks", 6, "Halvings of a failed step in a row before giving up.").ge(0),
        dbl("growth", 1.5, "Factor by which the step grows after each accepted step until it is the deck's step again.")
            .ge(1.0)
@@ -284,7 +285,10 @@ std::vector<ListSpec> build_schema() {
 
   {
     auto l = list("Output", "Output", "Result files.",
-                  {str("directory", "results", "Output folder (relative to the working directory); `--output` overrides."),
+                  {str("directory", "results/{deck}", "Output folder (relative to the working directory); `{deck}` stands for "
+                      "the deck's file name without `.xml`, so each deck has its own folder by default; `--output` "
+                      "overrides. A run writes only into a new or empty folder or a Stentor results folder, never "
+                      "into the deck's own folder."),
                    str("basename", "stentor", "File name stem.").allowed("letters, digits, spaces, `_ . + -`"),
                    integer("every", 1, "Write fields every N converged steps (and the last).").ge(1),
                    boolean("fields", true, "HDF5/XDMF field output on/off.")});

@@ -4,6 +4,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "io/WriteError.hpp"
+
 namespace stentor {
 
 namespace {
@@ -33,9 +35,8 @@ CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns)
     header += csv_quote(columns_[i]);
   }
   header += '\n';
-  if (std::fputs(header.c_str(), file_.get()) < 0 || std::fflush(file_.get()) != 0)
-    throw std::runtime_error("CsvWriter: writing the header of " + path_ + " failed: " +
-                             std::strerror(errno));
+  check_write(std::fputs(header.c_str(), file_.get()) >= 0 && std::fflush(file_.get()) == 0,
+              "CsvWriter: writing the header of", path_);
 }
 
 void CsvWriter::row(const std::vector<double>& values) {
@@ -51,9 +52,8 @@ void CsvWriter::row(const std::vector<double>& values) {
     line += buf;
   }
   line += '\n';
-  if (std::fputs(line.c_str(), file_.get()) < 0 || std::fflush(file_.get()) != 0)
-    throw std::runtime_error("CsvWriter: writing a row to " + path_ + " failed: " +
-                             std::strerror(errno));
+  check_write(std::fputs(line.c_str(), file_.get()) >= 0 && std::fflush(file_.get()) == 0,
+              "CsvWriter: writing a row to", path_);
 }
 
 }  // namespace stentor

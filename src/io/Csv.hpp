@@ -14,7 +14,8 @@ class CsvWriter {
   // Creates (truncates) `path` and writes the header. Column names containing ',', '"'
   // or line breaks are quoted (RFC 4180). Throws std::runtime_error naming the file.
   CsvWriter(const std::string& path, std::vector<std::string> columns);
-  // Throws std::runtime_error if values.size() != number of columns, or on a write error.
+  // Throws std::runtime_error if values.size() != number of columns, WriteError (naming
+  // the file and the reason, e.g. "No space left on device") on a write error.
   void row(const std::vector<double>& values);
 
   const std::string& path() const { return path_; }

@@ -18,6 +18,8 @@
 
 extern char** environ;
 
+#include "io/WriteError.hpp"
+
 namespace stentor {
 
 namespace {
@@ -185,7 +187,7 @@ bool plot_csv_png(const std::string& csv, const std::string& png, const std::str
       std::ofstream out(script);
       out << gp.str();
       out.flush();
-      if (!out) return warn("cannot write " + script.string());
+      check_write(static_cast<bool>(out), "writing the plot script", script.string());
     }
 
     std::error_code ec;
@@ -217,6 +219,8 @@ bool plot_csv_png(const std::string& csv, const std::string& png, const std::str
     if (!fs::exists(png_abs, ec) || fs::file_size(png_abs, ec) == 0)
       return warn("gnuplot wrote no " + png);
     return true;
+  } catch (const WriteError&) {
+    throw;  // the disk is full (or the like): the run stops
   } catch (const std::exception& e) {
     return warn(e.what());
   } catch (...) {

@@ -14,8 +14,9 @@ namespace stentor {
 // single-quoted string, where gnuplot expands nothing (no `command` substitution, no
 // escapes): text from the deck is never interpreted. gnuplot gets 60 s per plot, then is
 // killed.
-// Never throws: returns false when gnuplot is not installed, the CSV cannot be read, a
-// column is missing, or gnuplot fails, times out or produces no PNG; the run can go on without plots.
+// Returns false when gnuplot is not installed, the CSV cannot be read, a column is missing,
+// or gnuplot fails, times out or produces no PNG; the run can go on without plots. Throws
+// only WriteError, when the script itself cannot be written (a full disk: the run stops).
 bool plot_csv_png(const std::string& csv, const std::string& png, const std::string& xcol,
                   const std::vector<std::string>& ycols, const std::string& title,
                   const std::string& ylabel);

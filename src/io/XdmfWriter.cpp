@@ -3,12 +3,15 @@
 #include <hdf5.h>
 
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 #include <stdexcept>
+
+#include "io/WriteError.hpp"
 
 namespace stentor {
 
@@ -115,9 +118,41 @@ std::string fmt_double(double v) {
   return buf;
 }
 
+// The innermost message of HDF5's error stack: for a failed write the system's reason
+// ("No space left on device", "File too large"), else HDF5's own description.
+std::string h5_reason() {
+  std::string desc;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD,
+           [](unsigned, const H5E_error2_t* e, void* out) -> herr_t {
+             if (e->desc) *static_cast<std::string*>(out) = e->desc;
+             return 0;
+           },
+           &desc);
+  const std::string key = "error message = '";
+  const std::size_t at = desc.find(key);
+  if (at != std::string::npos) {
+    const std::size_t end = desc.find('\'', at + key.size());
+    return desc.substr(at + key.size(), end == std::string::npos ? std::string::npos : end - at - key.size());
+  }
+  return desc.empty() ? "HDF5 error" : desc;
+}
+
+// While a writer exists HDF5 prints no error stack of its own: the writer reports the
+// reason in its exception (h5_reason) instead.
+struct QuietH5Errors {
+  H5E_auto2_t func = nullptr;
+  void* data = nullptr;
+  QuietH5Errors() {
+    H5Eget_auto2(H5E_DEFAULT, &func, &data);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~QuietH5Errors() { H5Eset_auto2(H5E_DEFAULT, func, data); }
+};
+
 }  // namespace
 
 struct XdmfWriter::Impl {
+  QuietH5Errors quiet;  // first: restored after the handles below are closed
   struct Block {
     std::string grid_name;     // unique within a step
     const char* topology = nullptr;
@@ -150,13 +185,12 @@ struct XdmfWriter::Impl {
   [[noreturn]] void fail(const std::string& what) const {
     throw std::runtime_error("XdmfWriter: " + what + " (file " + h5_path + ")");
   }
+  // A failed HDF5 call is a failed write of the results (disk full, quota, ...).
   hid_t check(hid_t id, const std::string& what) const {
-    if (id < 0) fail(what + " failed");
+    if (id < 0) throw WriteError("XdmfWriter: " + what + " in " + h5_path + " failed: " + h5_reason());
     return id;
   }
-  void check_status(herr_t s, const std::string& what) const {
-    if (s < 0) fail(what + " failed");
-  }
+  void check_status(herr_t s, const std::string& what) const { check(s, what); }
 
   // Creates dataset `name` under `loc` and writes `data` (may be empty).
   void write_dataset(hid_t loc, const std::string& name, hid_t type, int rank, const hsize_t* dims,
@@ -307,16 +341,15 @@ struct XdmfWriter::Impl {
     const std::string tmp = xdmf_path + ".tmp";
     {
       std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      if (!out) throw std::runtime_error("XdmfWriter: cannot open " + tmp + " for writing");
+      check_write(static_cast<bool>(out), "XdmfWriter: opening", tmp);
       out << xdmf_text();
       out.flush();
-      if (!out) throw std::runtime_error("XdmfWriter: writing " + tmp + " failed");
+      check_write(static_cast<bool>(out), "XdmfWriter: writing", tmp);
     }
     std::error_code ec;
     fs::rename(tmp, xdmf_path, ec);
-    if (ec)
-      throw std::runtime_error("XdmfWriter: renaming " + tmp + " to " + xdmf_path +
-                               " failed: " + ec.message());
+    errno = ec.value();
+    check_write(!ec, "XdmfWriter: renaming " + tmp + " to", xdmf_path);
   }
 };
 
@@ -416,6 +449,7 @@ void XdmfWriter::end_step() {
   m.check_status(m.step_group.close(), "closing group " + m.current.group);
   m.in_step = false;
   m.check_status(H5Fflush(m.file.get(), H5F_SCOPE_GLOBAL), "H5Fflush");
+  check_write(true, "XdmfWriter: writing step " + std::to_string(m.steps.size()) + " to", m.h5_path);  // test hook
   m.steps.push_back(std::move(m.current));
   m.current = Impl::Step{};
   m.write_xdmf();

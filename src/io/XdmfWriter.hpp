@@ -24,7 +24,8 @@
 //   Rewritten (write to .tmp + rename) by every end_step() after the .h5 was flushed, so
 //   the pair is consistent whenever end_step() has returned.
 //
-// Every failure throws std::runtime_error naming the file.
+// Every failure throws std::runtime_error naming the file; a failed write (any failed
+// HDF5 call, the .xdmf) throws WriteError with the reason (e.g. "No space left on device").
 #pragma once
 #include <memory>
 #include <string>

@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <iostream>
 
+#include "io/LogCopy.hpp"
 #include "io/Plot.hpp"
 
 namespace stentor {
@@ -91,6 +92,7 @@ void write_contact_fields(XdmfWriter& xdmf, std::size_t nn, const Gathered& slav
 Reporter::Reporter(const Model& model, const RunOptions& opts, Timers& timers, std::chrono::steady_clock::time_point start)
     : m_(model), cfg_(model.cfg), timers_(timers), out_(model.rank == 0 ? std::cout : null_stream_), start_(start) {
   out_dir_ = opts.output_dir.empty() ? cfg_.output.directory : opts.output_dir;
+  overwrite_ = opts.overwrite;
 }
 
 Reporter::~Reporter() = default;
@@ -146,8 +148,12 @@ void Reporter::open() {
   std::string io_message;
   if (m_.rank == 0) {
     try {
-      staging_ = std::make_unique<OutputDir>(out_dir_);
+      const OutputDir::Options o{{cfg_.deck_path, cfg_.mesh.file}, cfg_.output.basename, cfg_.deck_path, overwrite_};
+      staging_ = std::make_unique<OutputDir>(out_dir_, o);
       const std::string stem = staging_->path() + "/" + cfg_.output.basename;
+      staging_->copy_in(cfg_.deck_path, cfg_.output.basename + "_deck.xml");
+      log_copy::attach(stem + ".log");
+      if (!staging_->notice().empty()) out_ << "  output   " << staging_->notice() << "\n";
       if (metrics_) metrics_->open(stem);
       if (cfg_.output.fields) xdmf_ = std::make_unique<XdmfWriter>(staging_->path(), cfg_.output.basename, m_.mesh);
       history_ = std::make_unique<CsvWriter>(stem + "_history.csv", history_columns());
@@ -182,8 +188,7 @@ void Reporter::discard() {
   xdmf_.reset();
   history_.reset();
   energy_csv_.reset();
-  std::error_code ec;
-  std::filesystem::remove_all(staging_->path(), ec);
+  staging_->discard();
 }
 
 void Reporter::write_fields(double t, const la::Vector& u) {
@@ -286,6 +291,7 @@ void Reporter::history_row(const RunState& s, const StepRecord& rec, double ener
   if (!cfg_.stages.empty()) row.push_back(double(s.stage + 1));
   Timers::Scope sc{timers_, "output"};
   history_->row(row);
+  log_copy::check();  // a failed write of the log copy stops the run like any other
 }
 
 void Reporter::begin_stage(std::size_t k) {
@@ -394,6 +400,7 @@ void Reporter::finish(bool failed) {
     return;
   }
   plots();
+  log_copy::check();
   staging_->commit();
   out_ << "Results in " << std::filesystem::absolute(out_dir_).string() << "/ (" << cfg_.output.basename << ".xdmf for ParaView, "
        << cfg_.output.basename << "_history.csv)\n";

@@ -31,10 +31,12 @@ class Reporter {
   void print_model();    // deck, mesh, parallel layout
   void print_solvers();  // dofs, analysis, solver, contact (collective)
 
-  // Creates <dir>.partial and the result files (collective). Throws InputError when the
-  // folder or a file cannot be created.
+  // Checks and locks the output folder, creates <dir>.partial, the result files, a copy
+  // of the deck and of the log (collective; io/OutputDir.hpp). Throws InputError when the
+  // folder may not be used or a file cannot be created.
   void open();
-  // Removes <dir>.partial (an input error before the first step: nothing worth keeping).
+  // Removes <dir>.partial and the lock (an input error before the first step: nothing
+  // worth keeping).
   void discard();
 
   void write_fields(double t, const la::Vector& u);  // collective
@@ -73,6 +75,7 @@ class Reporter {
   std::ostringstream null_stream_;
   std::ostream& out_;
   std::string out_dir_;
+  bool overwrite_ = false;  // RunOptions::overwrite
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point interval_start_;  // begin_interval()
   double interval_t0_ = 0.0, interval_t1_ = 1.0;

@@ -16,6 +16,7 @@ struct RunOptions {
   std::string output_dir;   // overrides Output->directory when not empty
   bool verbose = false;     // per-Newton-iteration lines
   bool check_only = false;  // validate deck + mesh + groups, then stop
+  bool overwrite = false;   // write into a non-empty output folder that is not Stentor's (see io/OutputDir.hpp)
 };
 
 // What a run leaves in memory, for tests and programs that embed Stentor.
@@ -29,7 +30,7 @@ struct RunResult {
 };
 
 // Exit status: 0 success, 2 bad input (InputError thrown), 3 the solve failed
-// (results written so far stay in <output>.partial).
+// (results written so far stay in <output>.partial; a failed write throws WriteError).
 int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result = nullptr);
 
 }  // namespace stentor

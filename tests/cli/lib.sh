@@ -12,13 +12,15 @@ snapshot() {
   (cd "$1" && find . -printf '%p %y %s %T@\n' | LC_ALL=C sort && find . -type f -print0 | LC_ALL=C sort -z | xargs -0 -r md5sum)
 }
 
-# make_results DIR: a results folder from an earlier run (a marker and a fake CSV).
+# make_results DIR: a results folder from an earlier run (its manifest listing a fake
+# CSV) holding a file of the user's (MARKER, not listed).
 make_results() {
   rm -rf "$1" "$1.partial" "$1.old"
   mkdir -p "$1"
   echo "earlier results: must survive" > "$1/MARKER"
   printf 'step,time\n1,1\n' > "$1/old_history.csv"
-  touch -d '2020-01-01 00:00:00' "$1/MARKER" "$1/old_history.csv" "$1"
+  printf '# Stentor results folder (made by tests/cli/lib.sh)\nold_history.csv\n' > "$1/stentor-manifest.txt"
+  touch -d '2020-01-01 00:00:00' "$1/MARKER" "$1/old_history.csv" "$1/stentor-manifest.txt" "$1"
 }
 
 # check_results_untouched DIR SNAPSHOT_FILE

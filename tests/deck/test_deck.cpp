@@ -294,7 +294,8 @@ TEST_F(Deck, MinimalDeckGetsTheStructDefaults) {
   EXPECT_EQ(c.linear.overlap, d.linear.overlap);
   EXPECT_EQ(c.linear.subdomain_solver, d.linear.subdomain_solver);
   EXPECT_EQ(c.linear.fill_level, d.linear.fill_level);
-  EXPECT_EQ(c.output.directory, d.output.directory);
+  EXPECT_EQ(d.output.directory, "results/{deck}");  // per deck: {deck} is the deck's file name stem
+  EXPECT_EQ(c.output.directory, "results/" + std::filesystem::path(c.deck_path).stem().string());
   EXPECT_EQ(c.output.basename, d.output.basename);
   EXPECT_EQ(c.output.every, d.output.every);
   EXPECT_EQ(c.output.fields, d.output.fields);

@@ -1,5 +1,6 @@
 // Result output: XDMF/HDF5 writer, CSV time series, staged output directory, gnuplot PNGs.
 #include <gtest/gtest.h>
+#include <unistd.h>
 #include <hdf5.h>
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -662,11 +664,13 @@ TEST(OutputDir, CommitReplacesAndFailureKeepsEarlierResults) {
   EXPECT_FALSE(fs::exists(fs::path(fin) / "c.txt"));
   EXPECT_EQ(slurp(fs::path(fin + ".partial") / "c.txt"), "broken");
 
-  // The next run starts from a clean staging directory.
+  // The next run starts from a clean staging directory (but for its lock) and says
+  // that it took over the failed run's folder.
   {
     OutputDir d(fin);
     EXPECT_FALSE(fs::exists(fs::path(d.path()) / "c.txt"));
-    EXPECT_TRUE(fs::is_empty(d.path()));
+    EXPECT_EQ(std::distance(fs::directory_iterator(d.path()), fs::directory_iterator()), 1);
+    EXPECT_NE(d.notice().find("took over " + fin + ".partial from an earlier run"), std::string::npos) << d.notice();
   }
   // Nested final directories are created.
   {
@@ -675,6 +679,72 @@ TEST(OutputDir, CommitReplacesAndFailureKeepsEarlierResults) {
     d.commit();
   }
   EXPECT_TRUE(fs::exists(base / "x" / "y" / "z" / "f"));
+}
+
+// The user's files: a foreign non-empty folder is refused (unless overwrite), the
+// inputs never lie in the output folder, only the files the manifest lists are replaced.
+TEST(OutputDir, NeverTouchesFilesItDidNotWrite) {
+  const fs::path base = scratch("outdir_safe");
+  const std::string fin = (base / "r").string();
+  fs::create_directories(fin);
+  std::ofstream(fs::path(fin) / "user.txt") << "mine";
+  EXPECT_THROW(OutputDir d(fin), std::runtime_error);
+  EXPECT_FALSE(fs::exists(fin + ".partial"));
+  OutputDir::Options o;
+  o.inputs = {fin + "/deck.xml"};
+  o.overwrite = true;
+  EXPECT_THROW(OutputDir d(fin, o), std::runtime_error);  // the deck's folder, even with overwrite
+  o.inputs.clear();
+  {
+    OutputDir d(fin, o);
+    std::ofstream(fs::path(d.path()) / "a.csv") << "new";
+    d.copy_in((fs::path(fin) / "user.txt").string(), "copy.txt");
+    d.commit();
+  }
+  EXPECT_EQ(slurp(fs::path(fin) / "user.txt"), "mine");
+  EXPECT_EQ(slurp(fs::path(fin) / "copy.txt"), "mine");
+  // Now a Stentor folder: no overwrite needed; a result name the manifest does not list is
+  // refused at once when it starts with the run's prefix.
+  std::ofstream(fs::path(fin) / "stentor_x.csv") << "the user's";
+  OutputDir::Options p;
+  p.prefix = "stentor";
+  EXPECT_THROW(OutputDir d(fin, p), std::runtime_error);
+  {
+    OutputDir d(fin);
+    std::ofstream(fs::path(d.path()) / "b.csv") << "b";
+    d.commit();
+  }
+  EXPECT_FALSE(fs::exists(fs::path(fin) / "a.csv"));  // listed by the earlier run: replaced
+  EXPECT_FALSE(fs::exists(fs::path(fin) / "copy.txt"));
+  EXPECT_EQ(slurp(fs::path(fin) / "b.csv"), "b");
+  EXPECT_EQ(slurp(fs::path(fin) / "user.txt"), "mine");
+  EXPECT_EQ(slurp(fs::path(fin) / "stentor_x.csv"), "the user's");
+}
+
+// A second OutputDir on the same folder while the first holds it is refused, naming it.
+TEST(OutputDir, LockRefusesASecondRun) {
+  const fs::path base = scratch("outdir_lock");
+  const std::string fin = (base / "r").string();
+  OutputDir::Options o;
+  o.deck = "first.xml";
+  auto first = std::make_unique<OutputDir>(fin, o);
+  try {
+    OutputDir second(fin);
+    ADD_FAILURE() << "second OutputDir not refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("another run is writing into '" + fin + "': pid " + std::to_string(::getpid())),
+              std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("deck first.xml"), std::string::npos) << e.what();
+  }
+  first.reset();  // released: the next one takes it over
+  OutputDir third(fin);
+  EXPECT_NE(third.notice().find("took over"), std::string::npos);
+  // A staging folder that is not Stentor's is never emptied.
+  third.discard();
+  fs::create_directories(fin + ".partial");
+  std::ofstream(fs::path(fin + ".partial") / "keep") << "k";
+  EXPECT_THROW(OutputDir d(fin), std::runtime_error);
+  EXPECT_EQ(slurp(fs::path(fin + ".partial") / "keep"), "k");
 }
 
 // ---------------------------------------------------------------------------------------
