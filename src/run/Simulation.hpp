@@ -16,6 +16,7 @@ struct RunOptions {
   std::string output_dir;   // overrides Output->directory when not empty
   bool verbose = false;     // per-Newton-iteration lines
   bool check_only = false;  // validate deck + mesh + groups, then stop
+  std::string restart_file; // continue from this checkpoint (Output->checkpoint every) instead of t = 0
 };
 
 // What a run leaves in memory, for tests and programs that embed Stentor.
