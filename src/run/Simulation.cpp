@@ -45,7 +45,12 @@ void checkpoint(Run& r) {
 // the new output folder.
 void resume(Run& r, const Restart& rs) {
   RunState& s = r.state;
-  restore(rs, r.model, r.stepper, s);
+  try {
+    restore(rs, r.model, r.stepper, s);
+  } catch (const InputError&) {
+    r.reporter.discard();  // nothing of this run was written yet
+    throw;
+  }
   r.reporter.out() << "  restart  from " << rs.path << ": step " << s.step << ", t = " << s.t
                    << (r.model.cfg.stages.empty() ? std::string() : ", stage " + r.model.cfg.stages[static_cast<std::size_t>(s.stage)].name)
                    << ", next dt " << s.control.dt() << "\n";
