@@ -30,6 +30,7 @@ const char* kUsage =
     "  --output DIR   write results to DIR (overrides Output->directory)\n"
     "  --overwrite    write into DIR even when it is not empty and holds no Stentor results\n"
     "                 (files with the names of the results are replaced, no other file)\n"
+    "  --restart FILE continue from checkpoint FILE (Output->checkpoint every), on any number of ranks\n"
     "  --verbose      print every Newton iteration\n"
     "  --help         this text\n"
     "\n"
@@ -117,6 +118,12 @@ int main(int argc, char** argv) {
         return 2;
       }
       opts.output_dir = argv[++i];
+    } else if (a == "--restart") {
+      if (i + 1 >= argc) {
+        if (rank == 0) std::cerr << "stentor: error: --restart needs a checkpoint file\n" << kUsage;
+        return 2;
+      }
+      opts.restart_file = argv[++i];
     } else if (!a.empty() && a[0] == '-') {
       if (rank == 0) std::cerr << "stentor: error: unknown option '" << a << "'\n" << kUsage;
       return 2;

@@ -281,6 +281,36 @@ void Contact::initialize(const la::Vector& u0, double end_time) {
   }
 }
 
+Contact::NodalFields Contact::step_history(std::size_t pair) const {
+  NodalFields h;
+  for (const auto& nd : pairs_[pair].nodes) {
+    h.nodes.push_back(nd.gid);
+    h.values.insert(h.values.end(), {nd.d_n, nd.d_prev, nd.was_active ? 1.0 : 0.0, double(nd.prev_state), double(nd.prev_facet), nd.scale,
+                                         double(nd.facet)});
+  }
+  return h;
+}
+
+long Contact::restore_step_history(std::size_t pair, const NodalFields& sorted) {
+  long missing = 0;
+  for (auto& nd : pairs_[pair].nodes) {
+    const auto it = std::lower_bound(sorted.nodes.begin(), sorted.nodes.end(), static_cast<long long>(nd.gid));
+    if (it == sorted.nodes.end() || *it != nd.gid) {
+      ++missing;
+      continue;
+    }
+    const double* v = &sorted.values[static_cast<std::size_t>(it - sorted.nodes.begin()) * kHistoryValues];
+    nd.d_n = v[0];
+    nd.d_prev = v[1];
+    nd.was_active = v[2] != 0.0;
+    nd.state = nd.prev_state = static_cast<int>(v[3]);
+    nd.prev_facet = static_cast<int>(v[4]);
+    nd.scale = v[5];
+    nd.facet = static_cast<int>(v[6]);
+  }
+  return missing;
+}
+
 void Contact::set_active_pairs(const std::vector<bool>& active) {
   for (std::size_t i = 0; i < pairs_.size() && i < active.size(); ++i) pairs_[i].active = active[i];
 }

@@ -89,6 +89,23 @@ class Contact {
   bool has_master_surfaces() const { return has_master_; }
   NodalFields master_fields() const;
 
+  // Restart (src/run/Restart.cpp): what one step hands to the next besides u, per owned
+  // slave node of a pair (kHistoryValues values: d_n, d_{n-1}, active at the end of the
+  // last step, state and master facet of the last evaluation, which the next active-set
+  // change test compares with, the stiffness scale s_p, and the master facet found after
+  // the step), and the size of the last
+  // accepted step (leapfrog factor). initialize() sets everything else that lasts (end
+  // time, master positions), begin_step() the rest.
+  static constexpr int kHistoryValues = 7;
+  std::size_t num_pairs() const { return pairs_.size(); }
+  const std::string& pair_name(std::size_t pair) const { return pairs_[pair].cfg.name; }
+  NodalFields step_history(std::size_t pair) const;
+  // From records sorted by node id (of any ranks: a whole checkpoint table). Returns the
+  // number of this rank's slave nodes without a record (left as initialize() set them).
+  long restore_step_history(std::size_t pair, const NodalFields& sorted);
+  double last_step() const { return dt_last_; }
+  void set_last_step(double dt) { dt_last_ = dt; }
+
   std::vector<std::string> history_columns() const;
   std::vector<double> history_values(const StepStats& s) const;
   std::string progress(const StepStats& s) const;

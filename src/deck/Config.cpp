@@ -1196,6 +1196,7 @@ void DeckReader::read_output(const ParameterList& pl) {
   o.basename = get_string(pl, ls, "basename");
   o.every = get_int(pl, ls, "every");
   o.fields = get_bool(pl, ls, "fields");
+  o.checkpoint_every = get_int(pl, ls, "checkpoint every");
   if (o.directory.empty()) fail("'Output->directory' must not be empty");
   if (o.basename.empty()) fail("'Output->basename' must not be empty");
   if (o.basename.find('/') != std::string::npos)

@@ -154,6 +154,7 @@ struct OutputConfig {
   std::string basename = "stentor";   // "Output"->"basename": file name stem
   int every = 1;                      // "Output"->"every": write fields every N converged steps (and the last)
   bool fields = true;                 // "Output"->"fields": HDF5/XDMF output on/off
+  int checkpoint_every = 0;           // "Output"->"checkpoint every": checkpoint every N accepted steps (0: none)
   std::vector<ProbeConfig> probes;    // "Output"->"Probes"
   StentMetricsConfig metrics;         // "Output"->"Stent Metrics"
 };

@@ -291,7 +291,13 @@ std::vector<ListSpec> build_schema() {
                       "into the deck's own folder."),
                    str("basename", "stentor", "File name stem.").allowed("letters, digits, spaces, `_ . + -`"),
                    integer("every", 1, "Write fields every N converged steps (and the last).").ge(1),
-                   boolean("fields", true, "HDF5/XDMF field output on/off.")});
+                   boolean("fields", true, "HDF5/XDMF field output on/off."),
+                   integer("checkpoint every", 0,
+                           "Write a checkpoint (the whole state, `<basename>_checkpoint.h5` in the output folder, "
+                           "the one before kept as `<basename>_checkpoint.prev.h5`) every N accepted steps and at the "
+                           "end of the run (and of each stage); `stentor --restart FILE DECK` continues from it. "
+                           "0: no checkpoints.")
+                       .ge(0)});
     l.sublists = {"Probes", "Stent Metrics"};
     s.push_back(l);
   }

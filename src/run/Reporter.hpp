@@ -63,6 +63,13 @@ class Reporter {
   // Success: plots, then <dir>.partial -> <dir>. Failure: says where the partial results are.
   void finish(bool failed);
 
+  // Restart (run/Restart.cpp), rank 0 after open(): the staging folder and the CSV files
+  // (null elsewhere; the energy file in dynamics only).
+  std::string staging_path() const { return staging_ ? staging_->path() : std::string(); }
+  const std::string& basename() const { return cfg_.output.basename; }
+  CsvWriter* history_csv() { return history_.get(); }
+  CsvWriter* energy_csv() { return energy_csv_.get(); }
+
  private:
   std::vector<double> probe_values(const la::Vector& u) const;  // collective
   std::vector<std::string> history_columns() const;

@@ -40,6 +40,16 @@ class StepControl {
     dt_ = std::min(target_, growth_ * dt_);
     consecutive_ = 0;
   }
+  // Restart: the controller's state (growth and the cut-back limit come from the deck).
+  struct Saved {
+    double target, dt, min_dt;
+    int consecutive, total;
+  };
+  Saved saved() const { return {target_, dt_, min_dt_, consecutive_, total_}; }
+  void restore(const Saved& v) {
+    target_ = v.target, dt_ = v.dt, min_dt_ = v.min_dt;
+    consecutive_ = v.consecutive, total_ = v.total;
+  }
   double dt() const { return dt_; }
   double target() const { return target_; }
   double min_dt() const { return min_dt_; }

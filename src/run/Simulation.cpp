@@ -3,7 +3,9 @@
 //                    interval, report;
 //   run_stages       with "Stages": each stage's step and contact pairs, then its interval;
 //   run_interval     the time loop: try a step, cut it back on failure, accept it;
-//   accept_step      make a converged step part of the history and write it out.
+//   accept_step      make a converged step part of the history and write it out
+//                    (and, every Output->checkpoint every steps, a checkpoint);
+//   resume           with --restart: the state from a checkpoint instead of t = 0.
 // The pieces live in their own files: Model (mesh, loads, assembler, solvers), RunState
 // (u, time, step control, energy totals), Stepper (predictor, Newton, accept) and
 // Reporter (progress lines, CSV/HDF5/XDMF, summary, plots).
@@ -16,6 +18,7 @@
 
 #include "run/Model.hpp"
 #include "run/Reporter.hpp"
+#include "run/Restart.hpp"
 #include "run/RunState.hpp"
 #include "run/Stepper.hpp"
 
@@ -28,7 +31,34 @@ struct Run {
   Stepper& stepper;
   Reporter& reporter;
   RunState& state;
+  Timers& timers;
+  std::string checkpoint;  // rank 0: the checkpoint file ("" elsewhere)
 };
+
+void checkpoint(Run& r) {
+  Timers::Scope t{r.timers, "checkpoint"};
+  write_checkpoint(r.model, r.stepper, r.state, r.checkpoint, r.reporter.out());
+}
+
+// --restart: the state of the checkpoint, the interrupted run's CSV rows up to it, the
+// fields at its time (the first frame of the new XDMF file), and at once a checkpoint in
+// the new output folder.
+void resume(Run& r, const Restart& rs) {
+  RunState& s = r.state;
+  try {
+    restore(rs, r.model, r.stepper, s);
+  } catch (const InputError&) {
+    r.reporter.discard();  // nothing of this run was written yet
+    throw;
+  }
+  r.reporter.out() << "  restart  from " << rs.path << ": step " << s.step << ", t = " << s.t
+                   << (r.model.cfg.stages.empty() ? std::string() : ", stage " + r.model.cfg.stages[static_cast<std::size_t>(s.stage)].name)
+                   << ", next dt " << s.control.dt() << "\n";
+  if (r.model.rank == 0) carry_rows(rs, r.reporter, r.reporter.out());
+  r.reporter.initial_metrics(s);  // stent metrics restart here: gains and recoil count from the checkpoint
+  if (r.model.cfg.output.fields) r.reporter.write_fields(s.t, s.u);
+  if (r.model.cfg.output.checkpoint_every > 0) checkpoint(r);
+}
 
 // u_0, v_0 and the contact history at t = 0; the fields at t = 0.
 void initialize(Run& r) {
@@ -74,6 +104,7 @@ bool accept_step(Run& r, double dt, const NewtonResult& nr, double end) {
   const auto& out = r.model.cfg.output;
   if (out.fields && (s.step % out.every == 0 || last)) r.reporter.write_fields(s.t, s.u);
   s.control.accepted();
+  if (out.checkpoint_every > 0 && (s.step % out.checkpoint_every == 0 || last)) checkpoint(r);
   return true;
 }
 
@@ -125,15 +156,17 @@ bool run_interval(Run& r, double end) {
 }
 
 // The stages in order, each with its own step and its contact pairs; the state carries
-// over. False when a stage fails.
-bool run_stages(Run& r) {
+// over. `resumed`: from the checkpoint's stage, whose step control the checkpoint holds.
+// False when a stage fails.
+bool run_stages(Run& r, bool resumed) {
   const SteppingConfig& st = r.model.cfg.stepping;
   const auto& stages = r.model.cfg.stages;
-  for (std::size_t k = 0; k < stages.size(); ++k) {
+  for (std::size_t k = resumed ? static_cast<std::size_t>(r.state.stage) : 0; k < stages.size(); ++k) {
     const StageConfig& stage = stages[k];
     RunState& s = r.state;
+    if (!resumed || static_cast<int>(k) != s.stage)
+      s.control.restart(stage.step(), st.min_dt > 0.0 ? st.min_dt : 1e-6 * stage.step());
     s.stage = static_cast<int>(k);
-    s.control.restart(stage.step(), st.min_dt > 0.0 ? st.min_dt : 1e-6 * stage.step());
     if (r.model.contact) r.model.contact->set_active_pairs(stage.contact_active);
     r.reporter.begin_stage(k);
     if (!run_interval(r, stage.end)) return false;
@@ -170,6 +203,9 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   }
   model.discretise(timers);
   reporter.print_solvers();
+  const bool restarting = !opts.restart_file.empty();
+  Restart restart;
+  if (restarting) restart = read_restart(opts.restart_file, model, opts, reporter.out());  // before open(): it may move <dir>.partial
   reporter.open();
 
   const bool verbose0 = opts.verbose && model.rank == 0;
@@ -178,14 +214,18 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   Stepper stepper(model, timers, verbose0 ? &std::cout : nullptr, contact_log);
   const SteppingConfig& st = cfg.stepping;
   RunState state(model.dist->owned_map(), StepControl(st.end_time / st.num_steps, st.max_cutbacks, st.growth, st.min_step()));
-  Run run{model, stepper, reporter, state};
+  Run run{model, stepper, reporter, state, timers, checkpoint_path(reporter, model)};
 
-  initialize(run);
-  reporter.begin_interval(0.0, cfg.stepping.end_time);
+  if (restarting)
+    resume(run, restart);
+  else
+    initialize(run);
+  reporter.begin_interval(state.t, cfg.stepping.end_time);
   if (cfg.stages.empty()) {
     if (run_interval(run, cfg.stepping.end_time)) reporter.end_stage(state, "the run");
-  } else
-    run_stages(run);
+  } else {
+    run_stages(run, restarting);
+  }
 
   if (result) fill_result(run, *result);
   reporter.summary(state);

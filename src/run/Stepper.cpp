@@ -30,6 +30,11 @@ void Stepper::initialize_contact(RunState& s) {
   system_.contact = m_.contact.get();
 }
 
+void Stepper::attach_contact(const RunState& s) {
+  m_.contact->initialize(s.u, m_.cfg.stepping.end_time);
+  system_.contact = m_.contact.get();
+}
+
 NewtonResult Stepper::newton(la::Vector& u) {
   Timers::Scope s{timers_, "newton"};
   return newton_solve(system_, u, *m_.linear, m_.cfg.newton, newton_log_);

@@ -4,6 +4,7 @@
 #pragma once
 #include <ostream>
 #include <string>
+#include <utility>
 
 #include "run/Model.hpp"
 #include "run/RunState.hpp"
@@ -31,6 +32,9 @@ class StepSystem : public NewtonSystem {
   double force_scale() const override;
   // After an accepted step: its force scale joins the mean.
   void record_scale();
+  // Restart: the sum and count behind that mean.
+  std::pair<double, long> scale_history() const { return {scale_sum_, accepted_}; }
+  void restore_scale_history(double sum, long count) { scale_sum_ = sum, accepted_ = count; }
 
  private:
   Assembler& a_;
@@ -75,6 +79,12 @@ class Stepper {
   std::string nonfinite(const RunState& s, const EnergyAudit* au) const;
 
   const Assembler::Stats& last() const { return system_.last; }
+  // Restart: Newton's force-scale history (see StepSystem::force_scale).
+  std::pair<double, long> scale_history() const { return system_.scale_history(); }
+  void restore_scale_history(double sum, long count) { system_.restore_scale_history(sum, count); }
+  // Restart: contact takes part from now on, its history set by the caller (initialize()
+  // at u, instead of initialize_contact's t = 0 history).
+  void attach_contact(const RunState& s);
 
  private:
   void predict(RunState& s, double dt, double t_new, bool& predicted);

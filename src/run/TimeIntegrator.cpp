@@ -26,6 +26,10 @@ std::string TimeIntegrator::description() const {
   return os.str();
 }
 
+std::vector<std::pair<std::string, la::Vector*>> TimeIntegrator::carried() {
+  return {{"velocity", v_.get()}, {"acceleration", a_.get()}, {"static_residual_n", r_static_n_.get()}, {"external_force_n", f_ext_n_.get()}};
+}
+
 EnergyAudit TimeIntegrator::initialize(la::Vector& u0, double end_time) {
   const int dim = dist_.dim();
   const auto& ic = cfg_.initial;

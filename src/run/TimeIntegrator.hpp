@@ -16,6 +16,8 @@
 #pragma once
 #include <array>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "assembly/Assembler.hpp"
 #include "deck/Config.hpp"
@@ -47,6 +49,12 @@ class TimeIntegrator {
   EnergyAudit accept(const la::Vector& u_n, const la::Vector& u_np1, double dt, const Assembler::Stats& last);
 
   const la::Vector& velocity() const { return *v_; }
+  // Restart: the vectors the scheme carries from step to step (v_n; a_n, the static
+  // residual and external force at t_n for newmark/hht), by name, and E_n. Restoring them
+  // replaces initialize().
+  std::vector<std::pair<std::string, la::Vector*>> carried();
+  double energy_n() const { return energy_n_; }
+  void set_energy_n(double e) { energy_n_ = e; }
   bool midpoint_family() const { return scheme_ == "gonzalez" || scheme_ == "midpoint"; }
   std::string description() const;
 

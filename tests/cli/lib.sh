@@ -38,3 +38,12 @@ export OMPI_MCA_rmaps_base_oversubscribe=1
 mpi_flags() {
   if "$1" --version 2>&1 | grep -q "Open MPI\|OpenRTE"; then echo "--oversubscribe"; fi
 }
+
+# deck_copy DECK OUT [SED_ARGS...]: a copy of DECK at OUT, edited by sed, whose relative
+# mesh path still resolves (made absolute against DECK's folder).
+deck_copy() {
+  local deck=$1 out=$2 dir
+  shift 2
+  dir=$(cd "$(dirname "$deck")" && pwd)
+  sed -e "s#\(name=\"file\" type=\"string\" value=\"\)\([^/\"][^\"]*\)\"#\1$dir/\2\"#" "$@" "$deck" > "$out"
+}

@@ -1,0 +1,62 @@
+// Checkpoint files: the state a run needs to continue, as plain named data in HDF5.
+//
+// What the data mean is the run's business (src/run/Restart.cpp); this layer only stores
+// named scalars and named tables whose rows are keyed by a global id (node id, cell id),
+// so that a file written on R ranks can be read back on any other number of ranks.
+//
+// <file>.h5
+//   attributes of /      format = "stentor checkpoint", version = 1
+//   /reals, /ints, /strings   one attribute per named scalar (double, int64, string)
+//   /tables/<name>/ids        n int64, sorted ascending
+//   /tables/<name>/values     n x ncols doubles (row i belongs to ids[i])
+//
+// Writing is atomic: the file is written as <file>.tmp, flushed to disk, and renamed over
+// <file>; the file it replaces is kept as <stem>.prev.h5 (hard link + rename), so at every
+// instant <file> is either absent (before the first checkpoint) or complete.
+// Serial: use on one rank (the caller gathers and broadcasts).
+#pragma once
+#include <map>
+#include <string>
+#include <vector>
+
+namespace stentor {
+
+struct CheckpointTable {
+  int ncols = 0;
+  std::vector<long long> ids;   // sorted ascending (sort_rows() makes them so)
+  std::vector<double> values;   // ids.size() x ncols, row-major
+  // Sorts the rows by id (stable for equal ids).
+  void sort_rows();
+  // Row of `id`, or nullptr when absent (binary search).
+  const double* find(long long id) const;
+};
+
+struct CheckpointData {
+  std::map<std::string, double> reals;
+  std::map<std::string, long long> ints;
+  std::map<std::string, std::string> strings;
+  std::map<std::string, CheckpointTable> tables;
+
+  // Accessors that throw std::runtime_error("missing '<name>'") when absent.
+  double real(const std::string& name) const;
+  long long integer(const std::string& name) const;
+  const std::string& string(const std::string& name) const;
+  const CheckpointTable& table(const std::string& name) const;
+};
+
+// Writes `data` to `path` atomically (see above). Throws std::runtime_error naming the file.
+// Test hook: with STENTOR_TEST_KILL_CHECKPOINT=N in the environment, the process kills
+// itself with SIGKILL in the middle of writing its N-th checkpoint (after the tables, before
+// the temporary file is closed and renamed), as a crash or `kill -9` would.
+void write_checkpoint_file(const std::string& path, const CheckpointData& data);
+// Reads a checkpoint file. Throws std::runtime_error (starting with `path`) when the file
+// is missing, unreadable or not a Stentor checkpoint.
+CheckpointData read_checkpoint_file(const std::string& path);
+// Where write_checkpoint_file keeps the checkpoint it replaced.
+std::string previous_checkpoint_path(const std::string& path);
+
+// Byte image of the data (for broadcasting it to other ranks) and back.
+std::vector<char> pack_checkpoint(const CheckpointData& data);
+CheckpointData unpack_checkpoint(const std::vector<char>& bytes);
+
+}  // namespace stentor
