@@ -40,7 +40,7 @@ if [ "${S4_SKIP_RUNS:-0}" != 1 ]; then
 fi
 
 python3 - "$RUNS" "$DOCS" $NAMES <<'PY'
-import csv, os, statistics, sys
+import csv, os, re, statistics, sys
 runs, docs, names = sys.argv[1], sys.argv[2], sys.argv[3:]
 def read(path):
     if not os.path.exists(path):
@@ -66,8 +66,10 @@ for n in names:
         lines.append("| %s | no output | | | | | %s |" % (n, t)); continue
     series[n] = (e["time"][1:], [e["total"][i + 1] - e["total"][i] for i in range(len(e["total"]) - 1)], e)
     nw = h["newton_iterations"]
-    lines.append("| %s | %s | %d | %d | %g / %d | %.2e | %s |" % (n, "yes" if done else "no (t = %.4g)" % h["time"][-1], len(nw),
-                 int(h["cutbacks"][-1]), statistics.median(nw), max(nw), max(abs(x) for x in e["balance_residual"]), t))
+    m = re.search(r"Summary: (\d+) steps, (\d+) cut-backs", log)
+    cuts = int(m.group(2)) if m else int(h["cutbacks"][-1])
+    lines.append("| %s | %s | %d | %d | %g / %d | %.2e | %s |" % (n, "yes" if done else "no (stopped at t = %.4g)" % h["time"][-1], len(nw),
+                 cuts, statistics.median(nw), max(nw), max(abs(x) for x in e["balance_residual"]), t))
     for i in range(len(s["stage"]) if s else 0):
         g = lambda k: s[k][i]
         stage_lines.append("| %s | %d | %.4f | %.2f %% | %.4f | %.2f %% | %.2f %% | %.2f %% | %.3g | %.3g | %.3g | %.4g | %.4g | %.3g | %.3g |" % (
@@ -92,7 +94,7 @@ for n in $NAMES; do
   plots="$plots${plots:+, }\"$DOCS/s4_denergy.csv\" index $i using 1:2 with linespoints pt 7 ps 0.4 title \"${n#s4_}\""
   i=$((i + 1))
 done
-m2=$(ls -d "$RUNS"/s4_mu0.2 "$RUNS"/s4_mu0.2.partial 2>/dev/null | head -1)
+m2=$(ls -d "$RUNS"/s4_mu0.2 "$RUNS"/s4_mu0.2.partial 2>/dev/null | head -1 || true)
 gnuplot <<GP
 set terminal pngcairo size 960,560 noenhanced
 set datafile separator ","
