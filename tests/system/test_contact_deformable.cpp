@@ -1,7 +1,8 @@
 // Contact between deformable bodies (node-to-segment, docs/contact.md):
 //  1. The contact tangent K' = Q K + G against central finite differences of the
 //     contact-modified residual, for frictionless, sticking and sliding nodes on a
-//     non-matching interface (the active set is frozen across the differences).
+//     non-matching interface (the active set is frozen across the differences), with the
+//     gap and the persistence condition, and with a rigid capsule pressing the same body.
 //  2. Contact patch test (two blocks, uniform pressure), 2D and 3D (hex, symmetry planes):
 //     matching interface meshes give the homogeneous solution to round-off; non-matching
 //     ones (node-to-segment, one pass) transmit the total force exactly, with a measured
@@ -127,6 +128,48 @@ std::array<int, 4> check_tangent(double mu, const std::string& formulation, doub
 TEST(DeformableContact, TangentMatchesFiniteDifferencesFrictionless) {
   const auto n = check_tangent(0.0, "gap", 0.0, 1.0);
   EXPECT_EQ(n[3], 6);  // all six slave nodes active (frictionless nodes count as slip)
+}
+
+// Persistence (dynamics): the condition on n . (relative displacement) and its tangent.
+TEST(DeformableContact, TangentMatchesFiniteDifferencesPersistence) {
+  Config cfg = patch_deck(0.3, "persistence");
+  cfg.problem.analysis = "dynamic";
+  Rig rig(cfg);
+  std::mt19937 gen(11);
+  la::Vector u0(rig.dist->owned_map());
+  rig.contact->initialize(u0, 1.0);
+  rig.contact->begin_step(0.0, 0.02, u0);
+  const la::Vector u = penetrated_state(rig, 2e-4, gen);
+  for (int k = 0; k < 3; ++k) EXPECT_LT(fd_error(rig, u, gen), 1e-6);
+  EXPECT_EQ(states(rig)[2] + states(rig)[3], 6);
+}
+
+// A rigid capsule (a balloon) pressing the upper block's top while its bottom touches
+// the lower block: a rigid pair (rows rewritten in place) and a master surface (K' = Q K
+// + G) on the same body, both active.
+TEST(DeformableContact, TangentWithRigidCapsuleAndMasterSurfaceOnOneBody) {
+  Config cfg = patch_deck(0.0, "gap");
+  ContactPairConfig c;
+  c.name = "balloon";
+  c.slave = "upper_top";
+  c.obstacle = "capsule";
+  c.point = {-0.5, 1.297, 0.0};  // the top moves to y = 0.998: 1e-3 into the capsule
+  c.point_len = 2;
+  c.axis = {1.0, 0.0, 0.0};
+  c.axis_len = 2;
+  c.length = 2.0;
+  c.radius = 0.3;
+  c.formulation = "gap";
+  c.c_normal = 1e12;
+  cfg.contact.push_back(c);
+  Rig rig(cfg);
+  std::mt19937 gen(7);
+  la::Vector u0(rig.dist->owned_map());
+  rig.contact->initialize(u0, 1.0);
+  rig.contact->begin_step(0.0, 1.0, u0);
+  const la::Vector u = penetrated_state(rig, 1e-4, gen);
+  for (int k = 0; k < 3; ++k) EXPECT_LT(fd_error(rig, u, gen), 1e-6);
+  EXPECT_EQ(states(rig)[3], 12);  // six slave nodes per pair, all active
 }
 
 TEST(DeformableContact, TangentMatchesFiniteDifferencesSlip) {
