@@ -691,21 +691,26 @@ la::RCP<la::CrsMatrix> Contact::apply(const la::Vector& u, la::Vector& r, const 
 std::string Contact::iteration_summary() const {
   std::vector<long> loc, glob;
   for (const auto& p : pairs_) {
-    long a = 0, st = 0, sl = 0;
+    long a = 0, st = 0, sl = 0, ends = 0;
     for (const auto& nd : p.nodes) {
       a += nd.state >= contact::Stick;
       st += nd.state == contact::Stick;
       sl += nd.state == contact::Slip;
+      ends += p.master && nd.state >= contact::Stick && !nd.inside;
     }
-    loc.insert(loc.end(), {a, st, sl});
+    loc.insert(loc.end(), {a, st, sl, ends});
   }
   glob.resize(loc.size());
   Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), glob.data());
   std::ostringstream os;
   os << "      contact";
-  for (std::size_t i = 0; i < pairs_.size(); ++i)
-    os << "  " << pairs_[i].cfg.name << ": active " << glob[3 * i] << " (stick " << glob[3 * i + 1] << ", slip " << glob[3 * i + 2] << ")"
-       << (changed_ ? "" : ", settled");
+  for (std::size_t i = 0; i < pairs_.size(); ++i) {
+    os << "  " << pairs_[i].cfg.name << ": active " << glob[4 * i] << " (stick " << glob[4 * i + 1] << ", slip " << glob[4 * i + 2] << ")";
+    // Nodes whose closest point is held at a facet's end (outside every facet, e.g. over a
+    // concave kink): their conditions are not smooth there.
+    if (glob[4 * i + 3] > 0) os << " [" << glob[4 * i + 3] << " projected past a facet end]";
+    os << (changed_ ? "" : ", settled");
+  }
   return os.str();
 }
 
