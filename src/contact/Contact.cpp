@@ -245,6 +245,13 @@ contact::Obstacle Contact::obstacle(const Pair& p, double t) const {
   return o;
 }
 
+std::vector<contact::Obstacle> Contact::rigid_obstacles(double t) const {
+  std::vector<contact::Obstacle> out;
+  for (const auto& p : pairs_)
+    if (!p.master) out.push_back(obstacle(p, t));
+  return out;
+}
+
 void Contact::update_master_positions(const la::Vector& u, std::vector<double>& xm) const {
   master_u_->doImport(u, *master_import_, Tpetra::INSERT);
   auto mh = master_u_->getLocalViewHost(Tpetra::Access::ReadOnly);

@@ -87,6 +87,8 @@ class Contact {
   // node may come from several ranks: sum the forces, keep the area.
   static constexpr int kMasterValues = 4;
   bool has_master_surfaces() const { return has_master_; }
+  // The rigid obstacles at time t (position and radius), in deck order (for drawing).
+  std::vector<contact::Obstacle> rigid_obstacles(double t) const;
   NodalFields master_fields() const;
 
   // Restart (src/run/Restart.cpp): what one step hands to the next besides u, per owned

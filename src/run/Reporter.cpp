@@ -2,6 +2,8 @@
 
 #include <mpi.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -156,6 +158,15 @@ void Reporter::open() {
       if (!staging_->notice().empty()) out_ << "  output   " << staging_->notice() << "\n";
       if (metrics_) metrics_->open(stem);
       if (cfg_.output.fields) xdmf_ = std::make_unique<XdmfWriter>(staging_->path(), cfg_.output.basename, m_.mesh);
+      const bool rigid = std::any_of(cfg_.contact.begin(), cfg_.contact.end(), [](const ContactPairConfig& c) { return !c.obstacle.empty(); });
+      if (cfg_.output.fields && m_.contact && rigid) {
+        std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300}, c{};
+        for (std::size_t n = 0; n < m_.mesh.num_nodes(); ++n)
+          for (std::size_t k = 0; k < 3; ++k) lo[k] = std::min(lo[k], m_.mesh.x[3 * n + k]), hi[k] = std::max(hi[k], m_.mesh.x[3 * n + k]);
+        double ext = 0.0;
+        for (std::size_t k = 0; k < 3; ++k) c[k] = 0.5 * (lo[k] + hi[k]), ext += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+        obstacles_ = std::make_unique<ObstacleVtkWriter>(staging_->path(), cfg_.output.basename, m_.dim, std::sqrt(ext), c);
+      }
       history_ = std::make_unique<CsvWriter>(stem + "_history.csv", history_columns());
       if (m_.dynamic) energy_csv_ = std::make_unique<CsvWriter>(stem + "_energy.csv", energy_columns());
     } catch (const std::exception& e) {
@@ -237,6 +248,22 @@ void Reporter::write_fields(double t, const la::Vector& u) {
     xdmf_->cell_field(cf.extra_names[k], 1, std::vector<double>(extra.begin() + static_cast<std::ptrdiff_t>(k * nc), extra.begin() + static_cast<std::ptrdiff_t>((k + 1) * nc)));
   if (m_.contact) write_contact_fields(*xdmf_, nn, slaves, m_.contact->has_master_surfaces() ? &masters : nullptr);
   xdmf_->end_step();
+  write_obstacles(t);
+}
+
+// The rigid obstacles at t as <basename>_obstacles_<k>.vtp (rank 0, with the fields).
+void Reporter::write_obstacles(double t) {
+  if (!obstacles_) return;
+  std::vector<ObstacleShape> shapes;
+  for (const contact::Obstacle& o : m_.contact->rigid_obstacles(t)) {
+    ObstacleShape s;
+    s.kind = o.kind;
+    for (std::size_t k = 0; k < 3; ++k) s.point[k] = o.point[k], s.normal[k] = o.normal[k], s.axis[k] = o.axis[k];
+    s.radius = o.radius;
+    s.length = o.length;
+    shapes.push_back(s);
+  }
+  obstacles_->write(t, shapes);
 }
 
 void Reporter::energy_row(int step, double t, const EnergyAudit& au, const EnergyTotals& e) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io/Csv.hpp"
+#include "io/ObstacleVtk.hpp"
 #include "io/OutputDir.hpp"
 #include "io/XdmfWriter.hpp"
 #include "run/MetricsReport.hpp"
@@ -90,6 +91,8 @@ class Reporter {
   std::unique_ptr<XdmfWriter> xdmf_;
   std::unique_ptr<CsvWriter> history_, energy_csv_;
   std::unique_ptr<MetricsReport> metrics_;  // null without Output->Stent Metrics
+  std::unique_ptr<ObstacleVtkWriter> obstacles_;  // rank 0, fields on and rigid obstacles present
+  void write_obstacles(double t);
   double total_energy_ = 0.0;               // kinetic + strain of the last energy_row
   // Gather of every used dof on rank 0, in mesh node order.
   std::vector<la::GO> all_dofs_;

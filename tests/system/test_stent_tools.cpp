@@ -4,7 +4,10 @@
 //     numbers, used by the contact tangent) against central differences.
 //  2. A capsule of length 0 is a circle: the staged rigid-balloon deck gives the same
 //     results with either (to 1e-12).
-//  3. Metrics of an artery cross-section under lumen pressure (inputs/artery_ring.xml at
+//  3. Obstacles drawn for ParaView: every sampled point of a capsule (2D stadium, 3D
+//     surface) lies at the radius from its segment; the staged balloon run writes one
+//     .vtp per field output, listed in the .pvd, with the balloon at its radius then.
+//  4. Metrics of an artery cross-section under lumen pressure (inputs/artery_ring.xml at
 //     1 kPa, linear regime) against independent calculations: mean and smallest lumen
 //     radius and the lumen area from the mesh and the final displacement (recomputed
 //     here, area by the shoelace formula over the lumen nodes sorted by angle); the
@@ -14,11 +17,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "CsvSeries.hpp"
 #include "contact/NodeLaw.hpp"
+#include "io/ObstacleVtk.hpp"
 #include "mesh/MeshQuery.hpp"
 #include "run/Simulation.hpp"
 
@@ -55,7 +61,40 @@ double expected_gap(const contact::Obstacle& o, const double x[3], double n[3]) 
   return d - o.radius;
 }
 
+// The points of a .vtp written by ObstacleVtkWriter.
+std::vector<std::array<double, 3>> vtp_points(const fs::path& file) {
+  std::ifstream f(file);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string t = ss.str();
+  const auto a = t.find("format=\"ascii\">", t.find("<Points>")) + 15, b = t.find("</DataArray></Points>");
+  std::istringstream in(t.substr(a, b - a));
+  std::vector<std::array<double, 3>> pts;
+  std::array<double, 3> x{};
+  while (in >> x[0] >> x[1] >> x[2]) pts.push_back(x);
+  return pts;
+}
+
 }  // namespace
+
+TEST(StentTools, ObstacleSurfacesLieOnTheObstacle) {
+  for (int dim : {2, 3}) {
+    const contact::Obstacle o = capsule(dim);
+    ObstacleShape s;
+    s.kind = 3;
+    for (int k = 0; k < 3; ++k) s.point[k] = o.point[k], s.axis[k] = o.axis[k];
+    s.radius = o.radius;
+    s.length = o.length;
+    const ObstacleSurface surf = sample_obstacle(s, dim, 10.0, {0, 0, 0});
+    ASSERT_GT(surf.points.size(), 60u);
+    for (const auto& x : surf.points) {
+      double n[3];
+      EXPECT_NEAR(contact::rigid_gap(o, x.data(), n), 0.0, 1e-12) << "dim " << dim;
+    }
+    for (const auto& c : surf.cells)
+      for (int k : c) EXPECT_LT(static_cast<std::size_t>(k), surf.points.size());
+  }
+}
 
 TEST(StentTools, CapsuleGapNormalAndDerivative) {
   for (int dim : {2, 3}) {
@@ -108,6 +147,19 @@ TEST(StentTools, CapsuleOfLengthZeroIsACircle) {
   }
   EXPECT_GT(std::abs(ha["contact_balloon_force_y"].at(3)), 0.0) << "the balloon never touched the block";
   EXPECT_NEAR(ha["contact_balloon_force_y"].at(3), hb["contact_balloon_force_y"].at(3), 1e-9 * std::abs(ha["contact_balloon_force_y"].at(3)));
+
+  // The balloon for ParaView: 1 + 8 outputs (t = 0 and every step); at t = 1 (output 4,
+  // end of inflation) its radius is 0.45 + 0.15 about (0.5, -0.5).
+  std::ifstream pvd(kDir / "capsule" / "balloon_stages_obstacles.pvd");
+  std::stringstream ss;
+  ss << pvd.rdbuf();
+  std::size_t n = 0;
+  for (std::size_t at = ss.str().find("<DataSet"); at != std::string::npos; at = ss.str().find("<DataSet", at + 1)) ++n;
+  EXPECT_EQ(n, ha.rows() + 1);
+  EXPECT_NE(ss.str().find("timestep=\"1\" file=\"balloon_stages_obstacles_4.vtp\""), std::string::npos);
+  const auto pts = vtp_points(kDir / "capsule" / "balloon_stages_obstacles_4.vtp");
+  ASSERT_GT(pts.size(), 60u);
+  for (const auto& x : pts) EXPECT_NEAR(std::hypot(x[0] - 0.5, x[1] + 0.5), 0.6, 1e-12);
 }
 
 TEST(StentTools, MetricsOfAPressurisedArteryRing) {
