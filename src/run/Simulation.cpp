@@ -20,6 +20,7 @@
 #include "run/Reporter.hpp"
 #include "run/Restart.hpp"
 #include "run/RunState.hpp"
+#include "run/StentMetrics.hpp"
 #include "run/Stepper.hpp"
 
 namespace stentor {
@@ -197,6 +198,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   Reporter reporter(model, opts, timers, start);
   reporter.print_model();
   if (opts.check_only) {
+    if (cfg.output.metrics.enabled) StentMetrics groups(model);  // the names it measures exist (throws InputError)
     reporter.out() << "deck and mesh are valid: " << cfg.bodies.size() << " bodies, " << cfg.materials.size() << " materials, "
                    << cfg.loads.size() << " boundary conditions\n";
     return 0;
