@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "mesh/GeoScreen.hpp"
+#include "mesh/MshScreen.hpp"
 
 namespace stentor {
 namespace {
@@ -256,6 +257,7 @@ Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
   }
 
   if (!is_msh) screen_geo_file(file);  // before gmsh runs any of it
+  if (is_msh) screen_msh_file(file);   // counts gmsh would trust (a crash, a hang)
   GmshSession session(verbose);
   gmsh_call(session, file, "read the file", [&] { gmsh::open(file); });
 
