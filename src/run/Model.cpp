@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "mesh/MeshComm.hpp"
+#include "mesh/MeshQuery.hpp"
 
 namespace stentor {
 
@@ -26,6 +27,22 @@ std::vector<GId> nearest_nodes(const Mesh& mesh, const std::vector<ProbeConfig>&
   return nodes;
 }
 
+// Every contact pair's slave and master name a boundary group of the mesh (so that
+// `--check` finds a misspelled group as the run would).
+void check_contact_groups(const Config& cfg, const Mesh& mesh) {
+  auto require = [&](const std::string& pair, const char* key, const std::string& group) {
+    if (group.empty() || has_boundary_group(mesh, group)) return;
+    std::string list;
+    for (const auto& n : mesh.boundary_group_names()) list += (list.empty() ? "" : ", ") + n;
+    throw InputError("'Contact->" + pair + "->" + key + "' = '" + group + "': no boundary group of that name in " + mesh.source +
+                     " (available: " + list + ")");
+  };
+  for (const auto& c : cfg.contact) {
+    require(c.name, "slave", c.slave);
+    require(c.name, "master", c.master);
+  }
+}
+
 }  // namespace
 
 Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), comm(Tpetra::getDefaultComm()) {
@@ -40,6 +57,7 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
   dim = mesh.dim;
   dynamic = cfg.problem.dynamic();
   probe_node = nearest_nodes(mesh, cfg.output.probes);
+  check_contact_groups(cfg, mesh);
 }
 
 void Model::discretise(Timers& timers) {
