@@ -109,18 +109,23 @@ std::array<int, 4> states(const Rig& rig) {
   return n;
 }
 
-// FD check at a penetrated, sheared state; returns the state counts.
-std::array<int, 4> check_tangent(double mu, const std::string& formulation, double shift, double dt) {
-  Rig rig(patch_deck(mu, formulation));
-  std::mt19937 gen(7);
+// FD check of the deck's contact at a penetrated, sheared state after the step
+// t = 0 -> dt from rest; returns the state counts.
+std::array<int, 4> check_tangent(const Config& cfg, double shift, double dt, unsigned seed = 7) {
+  Rig rig(cfg);
+  std::mt19937 gen(seed);
   la::Vector u0(rig.dist->owned_map());
   rig.contact->initialize(u0, 1.0);
   rig.contact->begin_step(0.0, dt, u0);
   const la::Vector u = penetrated_state(rig, shift, gen);
-  for (int k = 0; k < 3; ++k) EXPECT_LT(fd_error(rig, u, gen), 1e-6) << "mu " << mu << ", " << formulation << ", shift " << shift;
+  for (int k = 0; k < 3; ++k)
+    EXPECT_LT(fd_error(rig, u, gen), 1e-6) << "mu " << cfg.contact[0].friction << ", " << cfg.contact[0].formulation << ", shift " << shift;
   const auto n = states(rig);
   std::printf("states free %d inactive %d stick %d slip %d\n", n[0], n[1], n[2], n[3]);
   return n;
+}
+std::array<int, 4> check_tangent(double mu, const std::string& formulation, double shift, double dt) {
+  return check_tangent(patch_deck(mu, formulation), shift, dt);
 }
 
 }  // namespace
@@ -134,14 +139,8 @@ TEST(DeformableContact, TangentMatchesFiniteDifferencesFrictionless) {
 TEST(DeformableContact, TangentMatchesFiniteDifferencesPersistence) {
   Config cfg = patch_deck(0.3, "persistence");
   cfg.problem.analysis = "dynamic";
-  Rig rig(cfg);
-  std::mt19937 gen(11);
-  la::Vector u0(rig.dist->owned_map());
-  rig.contact->initialize(u0, 1.0);
-  rig.contact->begin_step(0.0, 0.02, u0);
-  const la::Vector u = penetrated_state(rig, 2e-4, gen);
-  for (int k = 0; k < 3; ++k) EXPECT_LT(fd_error(rig, u, gen), 1e-6);
-  EXPECT_EQ(states(rig)[2] + states(rig)[3], 6);
+  const auto n = check_tangent(cfg, 2e-4, 0.02, 11);
+  EXPECT_EQ(n[2] + n[3], 6);
 }
 
 // A rigid capsule (a balloon) pressing the upper block's top while its bottom touches
@@ -162,14 +161,8 @@ TEST(DeformableContact, TangentWithRigidCapsuleAndMasterSurfaceOnOneBody) {
   c.formulation = "gap";
   c.c_normal = 1e12;
   cfg.contact.push_back(c);
-  Rig rig(cfg);
-  std::mt19937 gen(7);
-  la::Vector u0(rig.dist->owned_map());
-  rig.contact->initialize(u0, 1.0);
-  rig.contact->begin_step(0.0, 1.0, u0);
-  const la::Vector u = penetrated_state(rig, 1e-4, gen);
-  for (int k = 0; k < 3; ++k) EXPECT_LT(fd_error(rig, u, gen), 1e-6);
-  EXPECT_EQ(states(rig)[3], 12);  // six slave nodes per pair, all active
+  const auto n = check_tangent(cfg, 1e-4, 1.0);
+  EXPECT_EQ(n[3], 12);  // six slave nodes per pair, all active
 }
 
 TEST(DeformableContact, TangentMatchesFiniteDifferencesSlip) {
