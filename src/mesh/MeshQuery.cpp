@@ -21,8 +21,8 @@ std::vector<const CellBlock*> blocks_named(const std::vector<CellBlock>& blocks,
   return out;
 }
 
-[[noreturn]] void not_found(const Mesh& m, const std::string& group, bool boundary) {
-  std::string msg = "physical group '" + group + "' not found in mesh " + m.source + "; available " +
+[[noreturn]] void not_found(const Mesh& m, const std::string& group, bool boundary, const std::string& prefix = "") {
+  std::string msg = prefix + "physical group '" + group + "' not found in mesh " + m.source + "; available " +
                     (boundary ? "boundary" : "volume") + " groups: " +
                     join(boundary ? m.boundary_group_names() : m.volume_group_names());
   const bool other = boundary ? has_volume_group(m, group) : has_boundary_group(m, group);
@@ -39,6 +39,11 @@ std::vector<GId> nodes_of(const std::vector<const CellBlock*>& blocks) {
 }
 
 }  // namespace
+
+void require_group(const Mesh& m, const std::string& group, bool boundary, const std::string& parameter) {
+  if (boundary ? has_boundary_group(m, group) : has_volume_group(m, group)) return;
+  not_found(m, group, boundary, "'" + parameter + "' = '" + group + "': ");
+}
 
 bool has_volume_group(const Mesh& m, const std::string& group) { return !blocks_named(m.volumes, group).empty(); }
 bool has_boundary_group(const Mesh& m, const std::string& group) {

@@ -16,6 +16,10 @@ bool has_boundary_group(const Mesh& m, const std::string& group);
 std::vector<const CellBlock*> volume_blocks(const Mesh& m, const std::string& group);
 std::vector<const CellBlock*> boundary_blocks(const Mesh& m, const std::string& group);
 
+// Throws InputError "'<parameter>' = '<group>': physical group ... not found ...;
+// available ... groups: ..." unless the mesh has the named boundary (or volume) group.
+void require_group(const Mesh& m, const std::string& group, bool boundary, const std::string& parameter);
+
 // Sorted, unique node ids of all cells of the named boundary group (facets,
 // edges or points); throws InputError if the group is missing.
 std::vector<GId> boundary_nodes(const Mesh& m, const std::string& group);

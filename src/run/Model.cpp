@@ -30,16 +30,9 @@ std::vector<GId> nearest_nodes(const Mesh& mesh, const std::vector<ProbeConfig>&
 // Every contact pair's slave and master name a boundary group of the mesh (so that
 // `--check` finds a misspelled group as the run would).
 void check_contact_groups(const Config& cfg, const Mesh& mesh) {
-  auto require = [&](const std::string& pair, const char* key, const std::string& group) {
-    if (group.empty() || has_boundary_group(mesh, group)) return;
-    std::string list;
-    for (const auto& n : mesh.boundary_group_names()) list += (list.empty() ? "" : ", ") + n;
-    throw InputError("'Contact->" + pair + "->" + key + "' = '" + group + "': no boundary group of that name in " + mesh.source +
-                     " (available: " + list + ")");
-  };
   for (const auto& c : cfg.contact) {
-    require(c.name, "slave", c.slave);
-    require(c.name, "master", c.master);
+    require_group(mesh, c.slave, true, "Contact->" + c.name + "->slave");
+    if (!c.master.empty()) require_group(mesh, c.master, true, "Contact->" + c.name + "->master");
   }
 }
 

@@ -11,24 +11,15 @@ namespace {
 
 const char* kPath = "Output->Stent Metrics->";
 
-void require_group(const Mesh& mesh, bool boundary, const std::string& name, const std::string& key) {
-  const bool ok = boundary ? has_boundary_group(mesh, name) : has_volume_group(mesh, name);
-  if (ok) return;
-  std::string list;
-  for (const auto& n : boundary ? mesh.boundary_group_names() : mesh.volume_group_names()) list += (list.empty() ? "" : ", ") + n;
-  throw InputError(std::string("'") + kPath + key + "' = '" + name + "': no " + (boundary ? "boundary" : "volume") +
-                   " group of that name in " + mesh.source + " (available: " + list + ")");
-}
-
 double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
 }  // namespace
 
 StentMetrics::StentMetrics(const Model& model) : m_(model), c_(model.cfg.output.metrics) {
   const Mesh& mesh = m_.mesh;
-  require_group(mesh, true, c_.stent, "stent");
-  require_group(mesh, true, c_.lumen, "lumen");
-  require_group(mesh, false, c_.artery, "artery");
+  require_group(mesh, c_.stent, true, std::string(kPath) + "stent");
+  require_group(mesh, c_.lumen, true, std::string(kPath) + "lumen");
+  require_group(mesh, c_.artery, false, std::string(kPath) + "artery");
   if (m_.dim == 2) {
     const bool in_plane = c_.axis[2] == 0.0, normal = std::abs(c_.axis[2]) == 1.0;
     if (!in_plane && !normal)
