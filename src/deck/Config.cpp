@@ -1150,6 +1150,7 @@ void DeckReader::read_newton(const ParameterList& pl) {
   n.increment_tolerance = get_double(pl, ls, "increment tolerance");
   n.line_search = get_bool(pl, ls, "line search");
   n.line_search_max = get_int(pl, ls, "line search max halvings");
+  n.line_search_watchdog = get_int(pl, ls, "line search watchdog");
 }
 
 void DeckReader::read_linear(const ParameterList& pl) {

@@ -118,6 +118,7 @@ struct NewtonConfig {
   double increment_tolerance = 1e-10;  // "increment tolerance": ||du|| <= tol * ||u|| (with residual small)
   bool line_search = true;             // "line search": backtracking on ||r||
   int line_search_max = 6;             // "line search max halvings"
+  int line_search_watchdog = 2;        // "line search watchdog": see newton_solve
 };
 
 struct LinearSolverConfig {

@@ -254,7 +254,14 @@ std::vector<ListSpec> build_schema() {
        dbl("absolute residual tolerance", 1e-12, "... or if norm(r) <= tol.").ge(0.0),
        dbl("increment tolerance", 1e-10, "And norm(du) <= tol * norm(u).").ge(0.0),
        boolean("line search", true, "Backtracking line search on norm(r)."),
-       integer("line search max halvings", 6, "Maximum halvings of the Newton step.").ge(0)}));
+       integer("line search max halvings", 6, "Maximum halvings of the Newton step.").ge(0),
+       integer("line search watchdog", 2,
+               "Contact active sets: after this many consecutive iterations whose full step changed a contact "
+               "active set and was damped by the line search, the next full step that changes the set is taken "
+               "without the decrease test (a non-monotone watchdog step), so the semi-smooth Newton moves to the "
+               "new set instead of creeping along halved steps. 0: never (strictly monotone). Measured on "
+               "perf/decks/s4_short.xml: 1643 Newton iterations with 0, 1490 with 2 (docs/contact.md).")
+           .ge(0)}));
 
   {
     auto l = list(

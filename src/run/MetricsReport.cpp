@@ -5,7 +5,8 @@
 
 namespace stentor {
 
-MetricsReport::MetricsReport(const Model& model) : m_(model), metrics_(model), names_(metrics_.columns()) {}
+MetricsReport::MetricsReport(const Model& model)
+    : m_(model), metrics_(model), names_(metrics_.columns()), plastic_(model.assembler->has_history()) {}
 
 int MetricsReport::col(const std::string& name) const {
   return static_cast<int>(std::find(names_.begin(), names_.end(), name) - names_.begin());
@@ -21,6 +22,7 @@ void MetricsReport::open(const std::string& stem) {
   s.insert(s.end(), {"lumen_gain", "stent_radius_max", "radial_recoil", "stage_contact_pressure_max",
                      "stage_artery_von_mises_max", "stage_artery_hoop_stress_max", "stage_delta_energy",
                      "stage_external_work", "stage_dissipation", "stage_contact_work", "stage_friction_dissipation"});
+  if (plastic_) s.push_back("stage_plastic_dissipation");  // also in stage_dissipation
   stages_csv_ = std::make_unique<CsvWriter>(stem + "_stages.csv", s);
 }
 
@@ -52,13 +54,14 @@ void MetricsReport::end_stage(const RunState& s, const std::string& name, std::o
   const EnergyTotals& e = s.energy;
   const double dE = E_ - stage_E0_, wext = e.external + e.support - stage_e0_.external - stage_e0_.support;
   const double diss = e.dissipation - stage_e0_.dissipation, wc = e.contact - stage_e0_.contact;
-  const double fric = e.friction - stage_e0_.friction;
+  const double fric = e.friction - stage_e0_.friction, plast = e.plastic - stage_e0_.plastic;
   const double pmax = at(stage_max_, "contact_pressure_max"), vm = at(stage_max_, "artery_von_mises_max");
   const double hoop = at(stage_max_, "artery_hoop_stress_max");
   if (stages_csv_) {
     std::vector<double> row = {double(s.stage + 1), s.t};
     row.insert(row.end(), now_.begin(), now_.end());
     row.insert(row.end(), {gain, stent_r_max_, recoil, pmax, vm, hoop, dE, wext, diss, wc, fric});
+    if (plastic_) row.push_back(plast);
     stages_csv_->row(row);
   }
   log << std::scientific << std::setprecision(4) << "  metrics at the end of '" << name << "': lumen radius " << lumen
@@ -69,7 +72,9 @@ void MetricsReport::end_stage(const RunState& s, const std::string& name, std::o
     log << ", dogboning " << 100.0 * at(now_, "dogboning") << "%, foreshortening " << 100.0 * at(now_, "foreshortening") << "%";
   log << std::scientific << std::setprecision(3) << "\n  stage maxima: contact pressure " << pmax << " Pa, wall von Mises "
       << vm << " Pa, wall hoop stress " << hoop << " Pa; energy: dE " << dE << ", W_ext " << wext << ", W_contact " << wc
-      << ", D_visc " << diss << ", D_fric " << fric << "\n"
+      << (plastic_ ? ", D_visc + D_plastic " : ", D_visc ") << diss << ", D_fric " << fric;
+  if (plastic_) log << ", D_plastic " << plast;
+  log << "\n"
       << std::defaultfloat;
   stage_max_ = now_;
   stage_e0_ = e;

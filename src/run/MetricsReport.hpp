@@ -37,6 +37,7 @@ class MetricsReport {
   std::unique_ptr<CsvWriter> steps_csv_, stages_csv_;
   std::vector<double> now_, first_;      // the last row's metrics, the t = 0 ones
   std::vector<double> stage_max_;        // this stage's maxima of each metric
+  bool plastic_ = false;                 // Gauss-point history: a stage_plastic_dissipation column
   double stent_r_max_ = 0.0;             // largest stent radius so far
   EnergyTotals stage_e0_;                // totals when the stage began
   double stage_E0_ = 0.0, E_ = 0.0;      // energy when the stage began, now

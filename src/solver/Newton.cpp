@@ -30,6 +30,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     res.converged = true;
     return res;
   }
+  int damped_unsettled = 0;  // consecutive iterations whose full step changed the active set and was damped
   for (int it = 1; it <= cfg.max_iterations; ++it) {
     lin.setup(sys.matrix());
     r.scale(-1.0);
@@ -40,22 +41,34 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
       res.failure = "linear solve produced a non-finite increment";
       return res;
     }
-    // Backtracking: halve the step until the residual decreases (Armijo, c = 1e-4).
+    // Backtracking: halve the step until the residual decreases (Armijo, c = 1e-4). The
+    // residual jumps where a contact active set changes, so a full step into the right
+    // new set can look worse than a halved one in the old set, and Newton then creeps at
+    // alpha = 1/2 (the residual halves per iteration) while the set flips back and forth
+    // between the trials. After `line_search_watchdog` such damped iterations in a row, a
+    // full step that changes the set is taken unconditionally (non-monotone watchdog); if
+    // it leads nowhere, the iteration limit cuts the step back as before.
     double alpha = 1.0, rn_trial = 0.0;
     bool accepted = false, admissible_seen = false;
     const int max_halvings = cfg.line_search ? cfg.line_search_max : 0;
+    bool full_unsettled = false;
     for (int ls = 0; ls <= max_halvings; ++ls) {
       u_trial.update(1.0, u, alpha, du, 0.0);
       if (sys.evaluate(u_trial, r_trial, true)) {
         admissible_seen = true;
         rn_trial = r_trial.norm2();
-        if (std::isfinite(rn_trial) && (!cfg.line_search || rn_trial <= (1.0 - 1e-4 * alpha) * rn)) {
+        if (ls == 0) full_unsettled = !sys.settled();
+        const bool force = ls == 0 && full_unsettled && cfg.line_search_watchdog > 0 &&
+                           damped_unsettled >= cfg.line_search_watchdog;
+        if (std::isfinite(rn_trial) && (force || !cfg.line_search || rn_trial <= (1.0 - 1e-4 * alpha) * rn)) {
           accepted = true;
           break;
         }
       }
       alpha *= 0.5;
     }
+    if (accepted && alpha < 1.0 && full_unsettled) ++damped_unsettled;
+    else damped_unsettled = 0;
     if (!accepted) {
       if (!admissible_seen) {
         res.failure = "every line-search trial inverted elements";

@@ -4,6 +4,8 @@
 //   ||r|| <= max(rtol * ref, atol)                          (residual test), or
 //   ||du|| <= inc_tol * ||u||  and  ||r|| <= sqrt(rtol) * ref  (increment test, for
 //   steps whose residual is limited by round-off).
+// Line search: Armijo backtracking on ||r||, with a watchdog for contact active sets
+// (NewtonConfig::line_search_watchdog, explained in newton_solve).
 // A trial state the residual cannot be evaluated at (an inverted element) counts as a
 // failed line-search trial; if even the smallest step is inadmissible, or the iteration
 // limit is reached, the solve fails and the caller cuts the time/load step.
