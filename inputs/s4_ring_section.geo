@@ -8,8 +8,8 @@
 // N towards the axis), and the strut has the width w measured along the centre line's
 // normal (both faces are the centre line offset by +-w/2 along its normal, so the strut
 // is equally thick on the crowns and the straight legs). With the defaults the crimped
-// ring spans r = 0.54 ... 0.90 and its centre line is 7.5 long: fully straightened it
-// would be a circle of radius 1.20, so the ring can open the lumen by up to ~20%.
+// ring spans r = 0.54 ... 0.90 and its centre line is 7.09 long: fully straightened it
+// would be a circle of radius 1.13, so the ring can open the lumen by up to ~15%.
 // The offset stays free of cusps while w/2 is below the centre line's smallest radius
 // of curvature (0.032 at the inner crowns with the defaults).
 //
