@@ -11,6 +11,7 @@
 #include "fem/Shape.hpp"
 #include "material/CiarletGeymonat.hpp"
 #include "material/DiscreteGradient.hpp"
+#include "material/ElasticLaw.hpp"
 #include "material/Kinematics.hpp"
 #include "material/MaterialState.hpp"
 #include "stentor/tensor.hpp"
@@ -138,7 +139,8 @@ KOKKOS_INLINE_FUNCTION bool history_gonzalez(const Law& law, const Mat3& Fv, con
 //   r_(a,i) = sum_q P_iJ dN_a/dX_J w detJ,  K = dr/du_{n+1} = sum_q dN_a/dX_J A_iJkL dN_b/dX_L w detJ.
 // `energy` = int W(C_{n+1}) (with history: int Psi_{n+1}); `dissipation` = int S^v : (C_{n+1} - C_n)/2
 // = int eta |dC|^2/dt; `plastic` += int D_p of the step (laws with history only).
-// Mat is CiarletGeymonat with Hist = NoHistory, or a law with history (MaterialState.hpp,
+// Mat is a hyperelastic law (ElasticLaw: the dispatch over every law, or one law such as
+// CiarletGeymonat) with Hist = NoHistory, or a law with history (MaterialState.hpp,
 // e.g. CiarletGeymonatPlasticity) with Hist = CellHistory; with history the stress is
 // evaluated at the end point, or by history_gonzalez for the Gonzalez scheme.
 template <bool WithTangent, class Mat = CiarletGeymonat, class Hist = NoHistory>
