@@ -56,6 +56,12 @@ ElasticLaw elastic_law(const MaterialConfig& m) {
     const MooneyRivlinCoefficients c = mooney_rivlin_from_lame(Lame{m.mu, m.lambda}, m.C2);
     return ElasticLaw::mooney_rivlin(MooneyRivlin{c.C1, c.C2, c.lam});
   }
+  if (m.model == "Holzapfel-Gasser-Ogden") {
+    const HolzapfelGasserOgden h{NeoHookean{m.mu, m.lambda}, m.k1, m.k2, {1.0, 0.0, 0.0}, {1.0, 0.0, 0.0}};
+    const FibreFrame f{{m.axis_point[0], m.axis_point[1], m.axis_point[2]}, {m.axis[0], m.axis[1], m.axis[2]},
+                       m.fibre_angle * 3.14159265358979323846 / 180.0};
+    return ElasticLaw::holzapfel_gasser_ogden(h, f);
+  }
   return ElasticLaw::ciarlet_geymonat(CiarletGeymonat{m.C1, m.C2, m.D});
 }
 
@@ -794,7 +800,7 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
               const FrozenPlasticPotential frozen{cg, inverse(Ftr)};
               sig = sig + w * cauchy_stress(F, matmul(F, frozen.stress(tmul(F, F))));
             } else if (J > 0.0) {
-              sig = sig + w * cauchy_stress(F, matmul(F, mat.stress(tmul(F, F))));
+              sig = sig + w * cauchy_stress(F, matmul(F, law_at_point(mat, nn, N, Xe).stress(tmul(F, F))));
             }
           }
           sig = (1.0 / vol) * sig;

@@ -278,6 +278,7 @@ class DeckReader {
   void read_mesh(const ParameterList& pl);
   void read_materials(const ParameterList& pl);
   void read_elastic_constants(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
+  void read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
   void read_bodies(const ParameterList& pl);
   void read_loads(const ParameterList& pl);
   void read_stepping(const ParameterList& pl);
@@ -785,8 +786,8 @@ void DeckReader::read_elastic_constants(const ParameterList& sub, const ListSpec
   if (!cg && given == &sets[0])
     fail(quoted(path + "->" + (sub.isParameter("C1") ? "C1" : "D")) + " is a Ciarlet-Geymonat parameter; 'model' = " +
          m.model + " takes E + nu or mu + lambda");
-  if (m.model == "neo-Hookean" && sub.isParameter("C2"))
-    fail(quoted(path + "->C2") + " needs 'model' = Ciarlet-Geymonat or Mooney-Rivlin (neo-Hookean has no I2 term)");
+  if ((m.model == "neo-Hookean" || m.model == "Holzapfel-Gasser-Ogden") && sub.isParameter("C2"))
+    fail(quoted(path + "->C2") + " needs 'model' = Ciarlet-Geymonat or Mooney-Rivlin (" + m.model + " has no I2 term)");
   m.C2 = get_double(sub, ls, "C2");
   if (given == &sets[0]) {
     m.C1 = get_double(sub, ls, "C1");
@@ -822,6 +823,34 @@ void DeckReader::read_elastic_constants(const ParameterList& sub, const ListSpec
          "; Ciarlet-Geymonat needs D > 0 (nu > 0, and 'C2' below lambda/4 = " + num(0.25 * l.lambda) + ")");
 }
 
+// Holzapfel-Gasser-Ogden: k1, k2, fibre angle required, frame optional; none of them with other models.
+void DeckReader::read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const {
+  const char* keys[] = {"k1", "k2", "fibre angle", "axis point", "axis"};
+  const bool hgo = m.model == "Holzapfel-Gasser-Ogden";
+  for (const char* k : keys) {
+    if (!hgo && sub.isParameter(k)) fail(quoted(path + "->" + k) + " needs 'model' = Holzapfel-Gasser-Ogden");
+    if (hgo && std::string(k) != "axis point" && std::string(k) != "axis" && !sub.isParameter(k)) {
+      const ParamSpec& p = spec(ls, k);
+      fail("missing required parameter " + quoted(path + "->" + k) + " (double, " + p.allowed_text() +
+           ") for model = Holzapfel-Gasser-Ogden: " + p.doc);
+    }
+  }
+  if (!hgo) return;
+  m.k1 = get_double(sub, ls, "k1");
+  m.k2 = get_double(sub, ls, "k2");
+  m.fibre_angle = get_double(sub, ls, "fibre angle");
+  if (sub.isParameter("axis point")) {
+    const auto p = get_array(sub, ls, "axis point");
+    check_dim_length(p, path + "->axis point");
+    for (std::size_t c = 0; c < p.size(); ++c) m.axis_point[c] = p[c];
+  }
+  if (sub.isParameter("axis")) {
+    const auto a = get_array(sub, ls, "axis");
+    for (std::size_t c = 0; c < 3; ++c) m.axis[c] = a[c];
+    unit_direction(m.axis, path + "->axis");
+  }
+}
+
 void DeckReader::read_materials(const ParameterList& pl) {
   const ListSpec& top = deck_list_spec("Materials");
   const ListSpec& ls = deck_list_spec("Materials/*");
@@ -836,6 +865,7 @@ void DeckReader::read_materials(const ParameterList& pl) {
     m.name = name;
     m.model = get_string(sub, ls, "model");
     read_elastic_constants(sub, ls, path, m);
+    read_fibres(sub, ls, path, m);
     m.density = get_double(sub, ls, "density");
     m.viscosity = get_double(sub, ls, "viscosity");
     m.yield_stress = get_double(sub, ls, "yield stress");

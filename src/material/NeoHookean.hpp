@@ -4,8 +4,9 @@
 //   W(C) = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2,   I1 = tr C,  J = sqrt(det C).
 //
 // mu, lambda [Pa] are the small-strain Lame constants (or from E, nu:
-// ElasticConstants.hpp). W(I) = 0, S(I) = 0; polyconvex for mu > 0, lambda >= 0, and
-// W -> +inf as J -> 0. This is Mooney–Rivlin (MooneyRivlin.hpp) with C1 = mu/2,
+// ElasticConstants.hpp). W(I) = 0, S(I) = 0; W -> +inf as J -> 0. Polyconvex (I1 convex in
+// F; f(J) = -mu ln J + lambda/2 (ln J)^2 has f'' = (mu + lambda (1 - ln J))/J^2) wherever
+// ln J < 1 + mu/lambda, i.e. in every state short of a volume growth by e = 2.7. This is Mooney–Rivlin (MooneyRivlin.hpp) with C1 = mu/2,
 // C2 = 0, lam = lambda (a test checks that they agree).
 //
 // Derivatives (InvariantTangent.hpp: dI1/dC = I, d(ln J)/dC = Ci/2, Ci = C^{-1}):

@@ -498,8 +498,8 @@ TEST_F(Deck, MaterialRanges) {
                {"'Materials->steel->density' must be >= 0, got -1"});
   expect_error(replace(kMinimalDeck, "<Parameter name=\"D\"",
                        "<Parameter name=\"model\" type=\"string\" value=\"neo-hooke\"/><Parameter name=\"D\""),
-               {"'Materials->steel->model' must be one of Ciarlet-Geymonat, Ciarlet-Geymonat plasticity, neo-Hookean, Mooney-Rivlin; got "
-                "'neo-hooke'; did you mean 'neo-Hookean'?"});
+               {"'Materials->steel->model' must be one of Ciarlet-Geymonat, Ciarlet-Geymonat plasticity, neo-Hookean, Mooney-Rivlin, "
+                "Holzapfel-Gasser-Ogden; got 'neo-hooke'; did you mean 'neo-Hookean'?"});
 }
 
 // Elastic constants: exactly one of C1 + D (+ C2), E + nu, mu + lambda (material/ElasticConstants.hpp).
@@ -557,6 +557,22 @@ TEST_F(Deck, ElasticConstantSets) {
   expect_error(replace(kMinimalDeck, cg, model("neo-Hookean")), {"'Materials->steel' needs one set", "E + nu or mu + lambda"});
   expect_error(replace(kMinimalDeck, cg, model("Mooney-Rivlin") + p("mu", "4") + p("lambda", "1") + p("C2", "0.5")),
                {"lambda - 4 C2 = -1", "Mooney-Rivlin needs it >= 0"});
+  // Holzapfel-Gasser-Ogden: k1, k2, fibre angle required; the frame defaults to the z axis through the origin.
+  const std::string hgo = model("Holzapfel-Gasser-Ogden") + p("mu", "3") + p("lambda", "300");
+  {
+    const Config c = read_deck(write(replace(kMinimalDeck, cg, hgo + p("k1", "2.4") + p("k2", "0.8") + p("fibre angle", "29") +
+                                                                 "<Parameter name=\"axis\" type=\"Array(double)\" value=\"{0, 2, 0}\"/>")));
+    EXPECT_EQ(c.materials[0].k1, 2.4);
+    EXPECT_EQ(c.materials[0].k2, 0.8);
+    EXPECT_EQ(c.materials[0].fibre_angle, 29.0);
+    EXPECT_EQ(c.materials[0].axis[1], 1.0);  // normalised
+    EXPECT_EQ(c.materials[0].axis_point[0], 0.0);
+  }
+  expect_error(replace(kMinimalDeck, cg, hgo + p("k1", "2.4") + p("fibre angle", "29")),
+               {"missing required parameter 'Materials->steel->k2' (double, > 0) for model = Holzapfel-Gasser-Ogden"});
+  expect_error(replace(kMinimalDeck, cg, hgo + p("k1", "2.4") + p("k2", "1") + p("fibre angle", "100")),
+               {"'Materials->steel->fibre angle' must be in [0, 90], got 100"});
+  expect_error(replace(kMinimalDeck, cg, cg + p("k1", "2.4")), {"'Materials->steel->k1' needs 'model' = Holzapfel-Gasser-Ogden"});
   // 'e' (lower case) is not a parameter; the suggestion is E, no longer D.
   const std::string msg = expect_error(replace(kMinimalDeck, cg, p("e", "1") + p("nu", "0.3")),
                                        {"unknown parameter 'Materials->steel->e'", "did you mean 'E'"});

@@ -317,12 +317,17 @@ TEST(Dynamics, ViscousBodyDissipatesExactlyAndEnergyDecreases) {
 
 // ---------------------------------------------------------------------------------------
 // c2. The other hyperelastic laws with the Gonzalez scheme (docs/verification.md,
-// "Material point: neo-Hookean, Mooney-Rivlin"): the free square of c (E = 3e3, nu = 0.3
+// "Material point: neo-Hookean, Mooney-Rivlin" and "Holzapfel-Gasser-Ogden"): the free square of c (E = 3e3, nu = 0.3
 // from E/nu, rho = 1, no viscosity) spun at omega = 20 stretches and vibrates; 40 steps of
 // dt = 0.005. The total energy stays at E0 to solver tolerance, as with Ciarlet-Geymonat.
 TEST(Dynamics, GonzalezConservesEnergyWithEveryLaw) {
   const std::vector<std::pair<std::string, std::string>> laws = {
-      {"neo-Hookean", ""}, {"Mooney-Rivlin", "<Parameter name=\"C2\" type=\"double\" value=\"200\"/>"}};
+      {"neo-Hookean", ""},
+      {"Mooney-Rivlin", "<Parameter name=\"C2\" type=\"double\" value=\"200\"/>"},
+      {"Holzapfel-Gasser-Ogden",  // fibres at +-30 deg around the spin centre (axis normal to the plane)
+       "<Parameter name=\"k1\" type=\"double\" value=\"3000\"/><Parameter name=\"k2\" type=\"double\" value=\"2\"/>"
+       "<Parameter name=\"fibre angle\" type=\"double\" value=\"30\"/>"
+       "<Parameter name=\"axis point\" type=\"Array(double)\" value=\"{0.5, 0.5}\"/>"}};
   for (const auto& [model, extra] : laws) {
     Spec sp;
     sp.model = model;
