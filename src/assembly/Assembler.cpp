@@ -8,6 +8,7 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include "assembly/HyperelasticElement.hpp"
+#include "material/ElasticConstants.hpp"
 
 namespace stentor {
 namespace {
@@ -48,6 +49,22 @@ KOKKOS_INLINE_FUNCTION void scatter(int nd, const int* dofs, const double* re, c
   }
 }
 
+// The law of a material (deck/Config.cpp resolved its constants; material/ElasticConstants.hpp).
+ElasticLaw elastic_law(const MaterialConfig& m) {
+  if (m.model == "neo-Hookean") return ElasticLaw::neo_hookean(NeoHookean{m.mu, m.lambda});
+  if (m.model == "Mooney-Rivlin") {
+    const MooneyRivlinCoefficients c = mooney_rivlin_from_lame(Lame{m.mu, m.lambda}, m.C2);
+    return ElasticLaw::mooney_rivlin(MooneyRivlin{c.C1, c.C2, c.lam});
+  }
+  if (m.model == "Holzapfel-Gasser-Ogden") {
+    const HolzapfelGasserOgden h{NeoHookean{m.mu, m.lambda}, m.k1, m.k2, {1.0, 0.0, 0.0}, {1.0, 0.0, 0.0}};
+    const FibreFrame f{{m.axis_point[0], m.axis_point[1], m.axis_point[2]}, {m.axis[0], m.axis[1], m.axis[2]},
+                       m.fibre_angle * 3.14159265358979323846 / 180.0};
+    return ElasticLaw::holzapfel_gasser_ogden(h, f);
+  }
+  return ElasticLaw::ciarlet_geymonat(CiarletGeymonat{m.C1, m.C2, m.D});
+}
+
 }  // namespace
 
 Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& cfg, const Loads& loads,
@@ -55,7 +72,7 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
     : dist_(dist), loads_(loads), dim_(dist.dim()) {
   for (std::size_t b = 0; b < mesh.volumes.size(); ++b) {
     const MaterialConfig& m = cfg.materials[static_cast<std::size_t>(block_material[b])];
-    block_mat_.push_back(CiarletGeymonat{m.C1, m.C2, m.D});
+    block_mat_.push_back(elastic_law(m));
     block_plastic_.push_back(m.plastic() ? 1 : 0);
     block_plastic_law_.push_back(CiarletGeymonatPlasticity{CiarletGeymonat{m.C1, m.C2, m.D}, m.yield_stress, m.hardening});
     block_density_.push_back(m.density);
@@ -466,7 +483,7 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
       const auto& lb = dist_.blocks()[bi];
       const std::size_t nc = lb.cell_ids.size();
       if (nc == 0) continue;
-      const CiarletGeymonat mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
+      const ElasticLaw mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
       const QuadRule q = make_rule(lb.type, stiffness_quadrature_degree(lb.type));
       ElementTime et;
       et.eval = in.eval;
@@ -749,7 +766,8 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
     const std::size_t nc = lb.cell_ids.size();
     out.cell_ids.insert(out.cell_ids.end(), lb.cell_ids.begin(), lb.cell_ids.end());
     if (nc == 0) continue;
-    const CiarletGeymonat mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
+    const ElasticLaw mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
+    const CiarletGeymonat cg = mat.cg;  // the plastic law's elastic part (Ciarlet-Geymonat only)
     // With history: the stress of the committed state at the kernels' Gauss points,
     // S = G Sbar(G^T C G) G^T, G = Ftr^-1 (FrozenPlasticPotential).
     const HistoryView hist = bi < history_.size() ? history_[bi].committed : HistoryView();
@@ -779,10 +797,10 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
             if (J > 0.0 && has_hist) {
               Mat3 Ftr;
               for (int i = 0; i < 9; ++i) Ftr(i / 3, i % 3) = hist(c * ngp + g, CiarletGeymonatPlasticity::kFtr + i);
-              const FrozenPlasticPotential frozen{mat, inverse(Ftr)};
+              const FrozenPlasticPotential frozen{cg, inverse(Ftr)};
               sig = sig + w * cauchy_stress(F, matmul(F, frozen.stress(tmul(F, F))));
             } else if (J > 0.0) {
-              sig = sig + w * cauchy_stress(F, matmul(F, mat.stress(tmul(F, F))));
+              sig = sig + w * cauchy_stress(F, matmul(F, law_at_point(mat, nn, N, Xe).stress(tmul(F, F))));
             }
           }
           sig = (1.0 / vol) * sig;

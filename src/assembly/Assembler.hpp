@@ -22,7 +22,7 @@
 #include "bc/Loads.hpp"
 #include "deck/Config.hpp"
 #include "assembly/HyperelasticElement.hpp"
-#include "material/CiarletGeymonat.hpp"
+#include "material/ElasticLaw.hpp"
 #include "material/Plasticity.hpp"
 #include "parallel/Distribution.hpp"
 
@@ -130,7 +130,7 @@ class Assembler {
   const Distribution& dist_;
   const Loads& loads_;
   int dim_;
-  std::vector<CiarletGeymonat> block_mat_;  // per mesh volume block
+  std::vector<ElasticLaw> block_mat_;        // per mesh volume block (the one law dispatch)
   std::vector<char> block_plastic_;         // per mesh volume block: Ciarlet-Geymonat plasticity
   std::vector<CiarletGeymonatPlasticity> block_plastic_law_;
   std::vector<double> block_density_, block_eta_;

@@ -11,6 +11,7 @@
 #include "fem/Shape.hpp"
 #include "material/CiarletGeymonat.hpp"
 #include "material/DiscreteGradient.hpp"
+#include "material/ElasticLaw.hpp"
 #include "material/Kinematics.hpp"
 #include "material/MaterialState.hpp"
 #include "stentor/tensor.hpp"
@@ -138,7 +139,8 @@ KOKKOS_INLINE_FUNCTION bool history_gonzalez(const Law& law, const Mat3& Fv, con
 //   r_(a,i) = sum_q P_iJ dN_a/dX_J w detJ,  K = dr/du_{n+1} = sum_q dN_a/dX_J A_iJkL dN_b/dX_L w detJ.
 // `energy` = int W(C_{n+1}) (with history: int Psi_{n+1}); `dissipation` = int S^v : (C_{n+1} - C_n)/2
 // = int eta |dC|^2/dt; `plastic` += int D_p of the step (laws with history only).
-// Mat is CiarletGeymonat with Hist = NoHistory, or a law with history (MaterialState.hpp,
+// Mat is a hyperelastic law (ElasticLaw: the dispatch over every law, or one law such as
+// CiarletGeymonat) with Hist = NoHistory, or a law with history (MaterialState.hpp,
 // e.g. CiarletGeymonatPlasticity) with Hist = CellHistory; with history the stress is
 // evaluated at the end point, or by history_gonzalez for the Gonzalez scheme.
 template <bool WithTangent, class Mat = CiarletGeymonat, class Hist = NoHistory>
@@ -160,12 +162,13 @@ KOKKOS_INLINE_FUNCTION int solid_element(int dim, CellType type, int nn, const d
     const double detJ = reference_gradients(dim, nn, X, dN, dNdX);
     if (!(detJ > 0.0)) return kElementDegenerate;
     const double wq = q.w[g] * detJ;
+    const Mat matq = law_at_point(mat, nn, N, X);  // fibre directions at this point, if the law has them
     const Mat3 F1 = deformation_gradient(dim, nn, U, dNdX);
     if (!(det(F1) > 0.0)) return kElementInverted;
     const Mat3 C1 = tmul(F1, F1);
     Mat3 P, Fv = F1, C0 = C1;
     Ten4 A;
-    if constexpr (!Hist::kActive) energy += wq * mat.energy(C1);
+    if constexpr (!Hist::kActive) energy += wq * matq.energy(C1);
     if (et.has_old) {
       const Mat3 F0 = deformation_gradient(dim, nn, U0, dNdX);
       C0 = tmul(F0, F0);
@@ -175,8 +178,8 @@ KOKKOS_INLINE_FUNCTION int solid_element(int dim, CellType type, int nn, const d
       // End point (statics, Newmark, HHT) or the energy-dissipative Gonzalez step; the deck
       // refuses the plain midpoint rule with history.
       const bool ok = et.eval == StressEval::Gonzalez
-                          ? history_gonzalez<WithTangent>(mat, Fv, F1, C0, C1, hist.n(g), hist.np1(g), wq, P, A, energy, *plastic)
-                          : history_point<WithTangent>(mat, F1, hist.n(g), hist.np1(g), wq, P, A, energy, *plastic);
+                          ? history_gonzalez<WithTangent>(matq, Fv, F1, C0, C1, hist.n(g), hist.np1(g), wq, P, A, energy, *plastic)
+                          : history_point<WithTangent>(matq, F1, hist.n(g), hist.np1(g), wq, P, A, energy, *plastic);
       if (!ok) return kElementLocalFailure;
     } else if (et.eval == StressEval::EndPoint || et.eval == StressEval::Midpoint) {
       // Stress of the evaluation configuration Fv (F_{n+1} or F_{n+1/2}).
@@ -185,9 +188,9 @@ KOKKOS_INLINE_FUNCTION int solid_element(int dim, CellType type, int nn, const d
       Mat3 S;
       Ten4 CC;
       if (WithTangent)
-        mat.stress_and_tangent(Cv, S, CC);
+        matq.stress_and_tangent(Cv, S, CC);
       else
-        S = mat.stress(Cv);
+        S = matq.stress(Cv);
       P = matmul(Fv, S);
       if (WithTangent) {
         spatial_tangent_dPdF(Fv, S, CC, A);
@@ -203,9 +206,9 @@ KOKKOS_INLINE_FUNCTION int solid_element(int dim, CellType type, int nn, const d
       Mat3 Sig;
       Ten4 D;
       if (WithTangent)
-        gonzalez_stress_and_tangent(mat, C0, C1, Sig, D);
+        gonzalez_stress_and_tangent(matq, C0, C1, Sig, D);
       else
-        Sig = gonzalez_stress(mat, C0, C1);
+        Sig = gonzalez_stress(matq, C0, C1);
       P = matmul(Fv, Sig);
       if (WithTangent) gonzalez_dPdF(Fv, F1, Sig, D, A);
     }

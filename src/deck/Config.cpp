@@ -22,6 +22,7 @@
 #include <sstream>
 
 #include "deck/Schema.hpp"
+#include "material/ElasticConstants.hpp"
 
 namespace stentor {
 
@@ -276,6 +277,8 @@ class DeckReader {
   void read_problem(const ParameterList& pl);
   void read_mesh(const ParameterList& pl);
   void read_materials(const ParameterList& pl);
+  void read_elastic_constants(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
+  void read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
   void read_bodies(const ParameterList& pl);
   void read_loads(const ParameterList& pl);
   void read_stepping(const ParameterList& pl);
@@ -754,6 +757,100 @@ void DeckReader::read_mesh(const ParameterList& pl) {
     fail("'Mesh->recombine' = true needs 'Mesh->order' = 1 (quad8/hex20 bodies are not supported)");
 }
 
+// Exactly one of the sets C1 + D (+ C2), E + nu, mu + lambda (material/ElasticConstants.hpp).
+void DeckReader::read_elastic_constants(const ParameterList& sub, const ListSpec& ls, const std::string& path,
+                                        MaterialConfig& m) const {
+  struct Set {
+    const char* a;
+    const char* b;
+  };
+  const Set sets[] = {{"C1", "D"}, {"E", "nu"}, {"mu", "lambda"}};
+  const Set* given = nullptr;
+  for (const Set& s : sets) {
+    const bool ha = sub.isParameter(s.a), hb = sub.isParameter(s.b);
+    if (!ha && !hb) continue;
+    if (given)
+      fail(quoted(path) + ": give exactly one set of elastic constants (C1 + D, E + nu, or mu + lambda), got both " +
+           given->a + "/" + given->b + " and " + s.a + "/" + s.b);
+    if (ha != hb) {
+      const ParamSpec& missing = spec(ls, ha ? s.b : s.a);
+      fail("missing required parameter " + quoted(path + "->" + missing.name) + " (double, " + missing.allowed_text() +
+           "): '" + s.a + "' and '" + s.b + "' are given together");
+    }
+    given = &s;
+  }
+  const bool cg = m.ciarlet_geymonat();
+  if (!given)
+    fail(quoted(path) + " needs one set of elastic constants: " +
+         (cg ? "C1 + D (+ C2), E + nu, or mu + lambda [Pa]" : "E + nu or mu + lambda [Pa]"));
+  if (!cg && given == &sets[0])
+    fail(quoted(path + "->" + (sub.isParameter("C1") ? "C1" : "D")) + " is a Ciarlet-Geymonat parameter; 'model' = " +
+         m.model + " takes E + nu or mu + lambda");
+  if ((m.model == "neo-Hookean" || m.model == "Holzapfel-Gasser-Ogden") && sub.isParameter("C2"))
+    fail(quoted(path + "->C2") + " needs 'model' = Ciarlet-Geymonat or Mooney-Rivlin (" + m.model + " has no I2 term)");
+  m.C2 = get_double(sub, ls, "C2");
+  if (given == &sets[0]) {
+    m.C1 = get_double(sub, ls, "C1");
+    m.D = get_double(sub, ls, "D");
+    m.mu = 2.0 * (m.C1 + m.C2);
+    m.lambda = 4.0 * (m.C2 + m.D);
+    return;
+  }
+  const Lame l = given == &sets[1] ? lame_from_young(get_double(sub, ls, "E"), get_double(sub, ls, "nu"))
+                                   : Lame{get_double(sub, ls, "mu"), get_double(sub, ls, "lambda")};
+  m.mu = l.mu;
+  m.lambda = l.lambda;
+  const std::string from = std::string(given->a) + "/" + given->b;
+  if (m.model == "Mooney-Rivlin") {
+    const MooneyRivlinCoefficients c = mooney_rivlin_from_lame(l, m.C2);
+    m.C1 = c.C1;
+    if (!(c.C1 > 0.0))
+      fail(quoted(path) + ": C1 = mu/2 - C2 = " + num(c.C1) + " from " + from + " and 'C2' = " + num(m.C2) +
+           "; Mooney-Rivlin needs C1 > 0 (lower 'C2' below mu/2 = " + num(0.5 * l.mu) + ")");
+    if (!(c.lam >= 0.0))
+      fail(quoted(path) + ": the volumetric coefficient lambda - 4 C2 = " + num(c.lam) + " from " + from + " and 'C2' = " +
+           num(m.C2) + "; Mooney-Rivlin needs it >= 0 (lower 'C2' to at most lambda/4 = " + num(0.25 * l.lambda) + ")");
+  }
+  if (!cg) return;
+  const CiarletGeymonatCoefficients c = ciarlet_geymonat_from_lame(l, m.C2);
+  m.C1 = c.C1;
+  m.D = c.D;
+  if (!(m.C1 > 0.0))
+    fail(quoted(path) + ": C1 = mu/2 - C2 = " + num(m.C1) + " from " + from + " and 'C2' = " + num(m.C2) +
+         "; Ciarlet-Geymonat needs C1 > 0 (lower 'C2' below mu/2 = " + num(0.5 * l.mu) + ")");
+  if (!(m.D > 0.0))
+    fail(quoted(path) + ": D = lambda/4 - C2 = " + num(m.D) + " from " + from + " and 'C2' = " + num(m.C2) +
+         "; Ciarlet-Geymonat needs D > 0 (nu > 0, and 'C2' below lambda/4 = " + num(0.25 * l.lambda) + ")");
+}
+
+// Holzapfel-Gasser-Ogden: k1, k2, fibre angle required, frame optional; none of them with other models.
+void DeckReader::read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const {
+  const char* keys[] = {"k1", "k2", "fibre angle", "axis point", "axis"};
+  const bool hgo = m.model == "Holzapfel-Gasser-Ogden";
+  for (const char* k : keys) {
+    if (!hgo && sub.isParameter(k)) fail(quoted(path + "->" + k) + " needs 'model' = Holzapfel-Gasser-Ogden");
+    if (hgo && std::string(k) != "axis point" && std::string(k) != "axis" && !sub.isParameter(k)) {
+      const ParamSpec& p = spec(ls, k);
+      fail("missing required parameter " + quoted(path + "->" + k) + " (double, " + p.allowed_text() +
+           ") for model = Holzapfel-Gasser-Ogden: " + p.doc);
+    }
+  }
+  if (!hgo) return;
+  m.k1 = get_double(sub, ls, "k1");
+  m.k2 = get_double(sub, ls, "k2");
+  m.fibre_angle = get_double(sub, ls, "fibre angle");
+  if (sub.isParameter("axis point")) {
+    const auto p = get_array(sub, ls, "axis point");
+    check_dim_length(p, path + "->axis point");
+    for (std::size_t c = 0; c < p.size(); ++c) m.axis_point[c] = p[c];
+  }
+  if (sub.isParameter("axis")) {
+    const auto a = get_array(sub, ls, "axis");
+    for (std::size_t c = 0; c < 3; ++c) m.axis[c] = a[c];
+    unit_direction(m.axis, path + "->axis");
+  }
+}
+
 void DeckReader::read_materials(const ParameterList& pl) {
   const ListSpec& top = deck_list_spec("Materials");
   const ListSpec& ls = deck_list_spec("Materials/*");
@@ -767,9 +864,8 @@ void DeckReader::read_materials(const ParameterList& pl) {
     MaterialConfig m;
     m.name = name;
     m.model = get_string(sub, ls, "model");
-    m.C1 = get_double(sub, ls, "C1");
-    m.C2 = get_double(sub, ls, "C2");
-    m.D = get_double(sub, ls, "D");
+    read_elastic_constants(sub, ls, path, m);
+    read_fibres(sub, ls, path, m);
     m.density = get_double(sub, ls, "density");
     m.viscosity = get_double(sub, ls, "viscosity");
     m.yield_stress = get_double(sub, ls, "yield stress");

@@ -55,12 +55,20 @@ struct MeshConfig {
 struct MaterialConfig {
   std::string name;                       // sublist name under "Materials"
   std::string model = "Ciarlet-Geymonat"; // "model"
-  double C1 = 0, C2 = 0, D = 0;           // "C1", "C2", "D" [Pa], all > 0 (C2 >= 0 allowed)
+  // "C1", "C2", "D" [Pa] of Ciarlet-Geymonat (C1, D > 0, C2 >= 0), given or from E/nu or mu/lambda;
+  // Mooney-Rivlin: C1 = mu/2 - C2 > 0 and C2 (material/ElasticConstants.hpp); unused by neo-Hookean.
+  double C1 = 0, C2 = 0, D = 0;
+  double mu = 0, lambda = 0;              // small-strain Lame constants [Pa] of the law (every model)
+  // Holzapfel-Gasser-Ogden (material/HolzapfelGasserOgden.hpp): "k1" [Pa], "k2" [-], "fibre angle" beta
+  // [deg] to the circumferential direction of the frame through "axis point" along "axis" (unit).
+  double k1 = 0, k2 = 0, fibre_angle = 0;
+  std::array<double, 3> axis_point{0, 0, 0}, axis{0, 0, 1};
   double density = 0;                     // "density" [kg/m^3], >= 0
   double viscosity = 0;                   // "viscosity" eta (Curnier), >= 0; unused in statics
   double yield_stress = 0;                // "yield stress" Y [Pa], > 0 (plasticity only)
   double hardening = 0;                   // "hardening" H [Pa], >= 0 (plasticity only)
   bool plastic() const { return model == "Ciarlet-Geymonat plasticity"; }
+  bool ciarlet_geymonat() const { return model == "Ciarlet-Geymonat" || plastic(); }
 };
 
 struct BodyConfig {

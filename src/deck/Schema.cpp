@@ -121,14 +121,50 @@ std::vector<ListSpec> build_schema() {
   s.push_back(list(
       "Materials/*", "Materials-><material>",
       "A hyperelastic material. Ciarlet-Geymonat: W = C1 (I1 - 3) + C2 (I2 - 3) + D (I3 - 1) "
-      "- (C1 + 2 C2 + D) ln I3; small-strain mu = 2 (C1 + C2), lambda = 4 (C2 + D). Plane strain in 2D. "
+      "- (C1 + 2 C2 + D) ln I3; small-strain mu = 2 (C1 + C2), lambda = 4 (C2 + D). The elastic constants "
+      "are exactly one of three sets: `C1` + `D` (+ `C2`), `E` + `nu`, or `mu` + `lambda`; with E/nu or "
+      "mu/lambda, C1 = mu/2 - C2 and D = lambda/4 - C2 with `C2` as given (default 0), both must be > 0 "
+      "(docs/deck.md, Materials). neo-Hookean: W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2, from E + nu "
+      "or mu + lambda. Mooney-Rivlin: W = C1 (I1 - 3) + C2 (I2 - 3) - 2 (C1 + 2 C2) ln J + lam/2 (ln J)^2 "
+      "with C1 = mu/2 - C2, lam = lambda - 4 C2 from E + nu or mu + lambda and `C2` (default 0). "
+      "Holzapfel-Gasser-Ogden (arteries): the neo-Hookean matrix from E + nu or mu + lambda plus two fibre families, "
+      "sum k1/(2 k2) [exp(k2 (I4 - 1)^2) - 1] over I4 = a0.C a0 > 1 (tension only; unmodified invariants), a0 at "
+      "+-`fibre angle` to the circumferential direction of the cylindrical frame of `axis point` and `axis`. "
+      "Plane strain in 2D. "
       "`Ciarlet-Geymonat plasticity` adds multiplicative von Mises plasticity F = Fe Ftr with the Mandel "
       "stress, yield |M|_H <= Y + H alpha and linear isotropic hardening (docs/plasticity.md); in dynamics "
       "with the gonzalez (energy-dissipative), newmark or hht scheme.",
-      {str("model", "Ciarlet-Geymonat", "Constitutive law.").one_of({"Ciarlet-Geymonat", "Ciarlet-Geymonat plasticity"}),
-       dbl("C1", 0.0, "First invariant coefficient [Pa].").req().gt(0.0),
-       dbl("C2", 0.0, "Second invariant coefficient [Pa].").ge(0.0),
-       dbl("D", 0.0, "Volumetric coefficient [Pa].").req().gt(0.0),
+      {str("model", "Ciarlet-Geymonat", "Constitutive law (docs/deck.md, Materials).")
+           .one_of({"Ciarlet-Geymonat", "Ciarlet-Geymonat plasticity", "neo-Hookean", "Mooney-Rivlin",
+                    "Holzapfel-Gasser-Ogden"}),
+       dbl("C1", 0.0, "First invariant coefficient [Pa] (with `D`; not with E/nu or mu/lambda).").gt(0.0)
+           .dflt_doc("from E/nu or mu/lambda"),
+       dbl("C2", 0.0, "Second invariant coefficient [Pa]; with E/nu or mu/lambda it sets the split of mu.").ge(0.0),
+       dbl("D", 0.0, "Volumetric coefficient [Pa] (with `C1`).").gt(0.0).dflt_doc("from E/nu or mu/lambda"),
+       dbl("E", 0.0, "Young's modulus [Pa] (with `nu`): mu = E/(2(1+nu)), lambda = E nu/((1+nu)(1-2nu)).")
+           .gt(0.0).dflt_doc("none"),
+       dbl("nu", 0.0, "Poisson ratio [-] (with `E`).").ge(0.0).lt(0.5).dflt_doc("none"),
+       dbl("mu", 0.0, "Small-strain shear modulus (Lame mu) [Pa] (with `lambda`).").gt(0.0).dflt_doc("none"),
+       dbl("lambda", 0.0, "Small-strain Lame lambda [Pa] (with `mu`).").ge(0.0).dflt_doc("none"),
+       dbl("k1", 0.0, "Fibre stiffness k1 [Pa] of `Holzapfel-Gasser-Ogden` (required there, not allowed with other models).")
+           .gt(0.0)
+           .dflt_doc("none"),
+       dbl("k2", 0.0, "Fibre exponent k2 [-] of `Holzapfel-Gasser-Ogden` (required there).").gt(0.0).dflt_doc("none"),
+       dbl("fibre angle", 0.0,
+           "Angle beta [deg] of the two fibre families (+beta, -beta) to the circumferential direction, towards the "
+           "axis, of `Holzapfel-Gasser-Ogden` (required there): 0 circumferential, 90 axial.")
+           .ge(0.0)
+           .le(90.0)
+           .dflt_doc("none"),
+       arr("axis point",
+           "A point of the vessel axis of the fibre frame [m] of `Holzapfel-Gasser-Ogden` (one value per dimension; "
+           "the radial direction at X is that of X minus its projection on the axis).")
+           .len(2, 3)
+           .dflt_doc("origin"),
+       arr("axis", "Direction of the fibre frame's axis (3 values, normalized) of `Holzapfel-Gasser-Ogden`: (0, 0, 1) "
+                   "for a 2D cross-section of a vessel, in the plane for an axial section.")
+           .len(3, 3)
+           .dflt_doc("(0, 0, 1)"),
        dbl("density", 0.0, "Mass density [kg/m^3] (dynamics).").ge(0.0),
        dbl("viscosity", 0.0, "Viscosity eta [Pa s] (Curnier); unused in statics.").ge(0.0),
        dbl("yield stress", 0.0,
@@ -600,6 +636,7 @@ std::string nearest_name(const std::string& name, const std::vector<std::string>
   if (ln.size() >= 3)
     for (const auto& c : candidates) {
       const std::string lc = lower(c);
+      if (lc.size() < 3) continue;  // 'e' or 'nu' is in too many words to be an abbreviation
       if (lc.find(ln) != std::string::npos || ln.find(lc) != std::string::npos) return c;
     }
   return "";

@@ -45,10 +45,31 @@
 //    1/2 Sigma:dC - [W(C1) - W(C0)] = -g = O(|d3W| |dC|^3 / 24) < ~1e-19 |d3W|,
 //    below the round-off of the computed energy difference itself. (Without the
 //    guard, g_S/q and the dC(x)dg/q term would amplify round-off as eps |S|/|dC|.)
+// 3. A law whose energy is only C^1 on some segments (Holzapfel–Gasser–Ogden: the fibres
+//    switch on at I4 = 1, where the tangent jumps) defines smooth_between(C0, C1); where it
+//    is false, Simpson's error bound (which needs d5W) does not hold, so g is evaluated
+//    directly, W(C1) - W(C0) - 1/2 Sm:dC, at any |dC| >= kGonzalezGuard: the identity then
+//    holds to the round-off of the energy difference (~eps_W / |dC| in Sigma).
 #pragma once
+#include <type_traits>
+
 #include "stentor/tensor.hpp"
 
 namespace stentor {
+
+// smooth_between(C0, C1) of the law if it has one, else true (smooth laws).
+template <class Mat, class = void>
+struct HasSmoothBetween : std::false_type {};
+template <class Mat>
+struct HasSmoothBetween<Mat, std::void_t<decltype(std::declval<const Mat&>().smooth_between(Mat3(), Mat3()))>>
+    : std::true_type {};
+template <class Mat>
+KOKKOS_INLINE_FUNCTION bool gonzalez_smooth(const Mat& m, const Mat3& C0, const Mat3& C1) {
+  if constexpr (HasSmoothBetween<Mat>::value)
+    return m.smooth_between(C0, C1);
+  else
+    return true;
+}
 
 // |C1 - C0| below which the discrete gradient falls back to S(Cm) (see above).
 constexpr double kGonzalezGuard = 1e-6;
@@ -63,7 +84,7 @@ KOKKOS_INLINE_FUNCTION Mat3 gonzalez_stress(const Mat& m, const Mat3& C0, const 
   const Mat3 Sm = m.stress(Cm);
   const double n = std::sqrt(q);
   if (!(n >= kGonzalezGuard)) return Sm;  // also catches NaN
-  const double g = n < kGonzalezSimpson
+  const double g = n < kGonzalezSimpson && gonzalez_smooth(m, C0, C1)
                        ? ddot((m.stress(C0) - Sm) + (m.stress(C1) - Sm), dC) / 12.0
                        : m.energy(C1) - m.energy(C0) - 0.5 * ddot(Sm, dC);
   return Sm + (2.0 * g / q) * dC;
@@ -92,7 +113,7 @@ KOKKOS_INLINE_FUNCTION void gonzalez_stress_and_tangent(const Mat& m, const Mat3
   const Mat3 dCraw = C1 - C0;
   double g;
   Mat3 G;  // dg/dC1
-  if (n < kGonzalezSimpson) {
+  if (n < kGonzalezSimpson && gonzalez_smooth(m, C0, C1)) {
     // g_S = (1/12)(S0 + S1 - 2 Sm):dC,
     // dg_S/dC1 = (1/12)[1/2 (CC1 - CCm):dC + S0 + S1 - 2 Sm], with D = CCm/4 here.
     Mat3 S1;

@@ -498,7 +498,85 @@ TEST_F(Deck, MaterialRanges) {
                {"'Materials->steel->density' must be >= 0, got -1"});
   expect_error(replace(kMinimalDeck, "<Parameter name=\"D\"",
                        "<Parameter name=\"model\" type=\"string\" value=\"neo-hooke\"/><Parameter name=\"D\""),
-               {"'Materials->steel->model' must be one of Ciarlet-Geymonat, Ciarlet-Geymonat plasticity; got 'neo-hooke'"});
+               {"'Materials->steel->model' must be one of Ciarlet-Geymonat, Ciarlet-Geymonat plasticity, neo-Hookean, Mooney-Rivlin, "
+                "Holzapfel-Gasser-Ogden; got 'neo-hooke'; did you mean 'neo-Hookean'?"});
+}
+
+// Elastic constants: exactly one of C1 + D (+ C2), E + nu, mu + lambda (material/ElasticConstants.hpp).
+TEST_F(Deck, ElasticConstantSets) {
+  const std::string cg = "<Parameter name=\"C1\" type=\"double\" value=\"1\"/>\n      <Parameter name=\"D\" type=\"double\" value=\"2\"/>";
+  auto p = [](const char* n, const char* v) {
+    return std::string("<Parameter name=\"") + n + "\" type=\"double\" value=\"" + v + "\"/>";
+  };
+  {  // E = 2.6, nu = 0.3: mu = 1, lambda = 1.5; C2 = 0 -> C1 = 0.5, D = 0.375.
+    const Config c = read_deck(write(replace(kMinimalDeck, cg, p("E", "2.6") + p("nu", "0.3"))));
+    EXPECT_NEAR(c.materials[0].mu, 1.0, 1e-15);
+    EXPECT_NEAR(c.materials[0].lambda, 1.5, 1e-15);
+    EXPECT_NEAR(c.materials[0].C1, 0.5, 1e-15);
+    EXPECT_EQ(c.materials[0].C2, 0.0);
+    EXPECT_NEAR(c.materials[0].D, 0.375, 1e-15);
+  }
+  {  // mu/lambda with a given C2: C1 = mu/2 - C2, D = lambda/4 - C2.
+    const Config c = read_deck(write(replace(kMinimalDeck, cg, p("mu", "4") + p("lambda", "8") + p("C2", "0.5"))));
+    EXPECT_DOUBLE_EQ(c.materials[0].C1, 1.5);
+    EXPECT_DOUBLE_EQ(c.materials[0].C2, 0.5);
+    EXPECT_DOUBLE_EQ(c.materials[0].D, 1.5);
+  }
+  {  // C1/D: mu, lambda reported from the law's small-strain match.
+    const Config c = read_deck(write(kMinimalDeck));
+    EXPECT_DOUBLE_EQ(c.materials[0].mu, 2.0);
+    EXPECT_DOUBLE_EQ(c.materials[0].lambda, 8.0);
+  }
+  expect_error(replace(kMinimalDeck, cg, p("E", "1")), {"missing required parameter 'Materials->steel->nu'", "'E' and 'nu'"});
+  expect_error(replace(kMinimalDeck, cg, p("lambda", "1")), {"missing required parameter 'Materials->steel->mu'"});
+  expect_error(replace(kMinimalDeck, cg, p("D", "1")), {"missing required parameter 'Materials->steel->C1'"});
+  expect_error(replace(kMinimalDeck, cg, cg + p("E", "1") + p("nu", "0.2")),
+               {"'Materials->steel'", "exactly one set", "got both C1/D and E/nu"});
+  expect_error(replace(kMinimalDeck, cg, p("E", "1") + p("nu", "0.2") + p("mu", "1") + p("lambda", "1")),
+               {"got both E/nu and mu/lambda"});
+  expect_error(replace(kMinimalDeck, cg, p("C2", "1")), {"'Materials->steel' needs one set of elastic constants", "E + nu"});
+  expect_error(replace(kMinimalDeck, cg, p("E", "1") + p("nu", "0")), {"D = lambda/4 - C2 = 0", "needs D > 0"});
+  expect_error(replace(kMinimalDeck, cg, p("E", "1") + p("nu", "0.5")), {"'Materials->steel->nu' must be in [0, 0.5), got 0.5"});
+  expect_error(replace(kMinimalDeck, cg, p("mu", "1") + p("lambda", "4") + p("C2", "0.5")), {"C1 = mu/2 - C2 = 0", "needs C1 > 0"});
+  // neo-Hookean and Mooney-Rivlin: E/nu or mu/lambda only; Mooney-Rivlin splits mu with C2.
+  auto model = [&](const char* m) { return std::string("<Parameter name=\"model\" type=\"string\" value=\"") + m + "\"/>"; };
+  {
+    const Config c = read_deck(write(replace(kMinimalDeck, cg, model("Mooney-Rivlin") + p("mu", "4") + p("lambda", "8") + p("C2", "0.5"))));
+    EXPECT_EQ(c.materials[0].model, "Mooney-Rivlin");
+    EXPECT_DOUBLE_EQ(c.materials[0].C1, 1.5);
+    EXPECT_DOUBLE_EQ(c.materials[0].C2, 0.5);
+    EXPECT_DOUBLE_EQ(c.materials[0].lambda, 8.0);
+    const Config n = read_deck(write(replace(kMinimalDeck, cg, model("neo-hookean") + p("E", "2.6") + p("nu", "0.3"))));
+    EXPECT_EQ(n.materials[0].model, "neo-Hookean");
+    EXPECT_NEAR(n.materials[0].mu, 1.0, 1e-15);
+  }
+  expect_error(replace(kMinimalDeck, cg, model("neo-Hookean") + cg),
+               {"'Materials->steel->C1' is a Ciarlet-Geymonat parameter", "neo-Hookean takes E + nu or mu + lambda"});
+  expect_error(replace(kMinimalDeck, cg, model("neo-Hookean") + p("E", "1") + p("nu", "0.3") + p("C2", "0.1")),
+               {"'Materials->steel->C2' needs 'model' = Ciarlet-Geymonat or Mooney-Rivlin"});
+  expect_error(replace(kMinimalDeck, cg, model("neo-Hookean")), {"'Materials->steel' needs one set", "E + nu or mu + lambda"});
+  expect_error(replace(kMinimalDeck, cg, model("Mooney-Rivlin") + p("mu", "4") + p("lambda", "1") + p("C2", "0.5")),
+               {"lambda - 4 C2 = -1", "Mooney-Rivlin needs it >= 0"});
+  // Holzapfel-Gasser-Ogden: k1, k2, fibre angle required; the frame defaults to the z axis through the origin.
+  const std::string hgo = model("Holzapfel-Gasser-Ogden") + p("mu", "3") + p("lambda", "300");
+  {
+    const Config c = read_deck(write(replace(kMinimalDeck, cg, hgo + p("k1", "2.4") + p("k2", "0.8") + p("fibre angle", "29") +
+                                                                 "<Parameter name=\"axis\" type=\"Array(double)\" value=\"{0, 2, 0}\"/>")));
+    EXPECT_EQ(c.materials[0].k1, 2.4);
+    EXPECT_EQ(c.materials[0].k2, 0.8);
+    EXPECT_EQ(c.materials[0].fibre_angle, 29.0);
+    EXPECT_EQ(c.materials[0].axis[1], 1.0);  // normalised
+    EXPECT_EQ(c.materials[0].axis_point[0], 0.0);
+  }
+  expect_error(replace(kMinimalDeck, cg, hgo + p("k1", "2.4") + p("fibre angle", "29")),
+               {"missing required parameter 'Materials->steel->k2' (double, > 0) for model = Holzapfel-Gasser-Ogden"});
+  expect_error(replace(kMinimalDeck, cg, hgo + p("k1", "2.4") + p("k2", "1") + p("fibre angle", "100")),
+               {"'Materials->steel->fibre angle' must be in [0, 90], got 100"});
+  expect_error(replace(kMinimalDeck, cg, cg + p("k1", "2.4")), {"'Materials->steel->k1' needs 'model' = Holzapfel-Gasser-Ogden"});
+  // 'e' (lower case) is not a parameter; the suggestion is E, no longer D.
+  const std::string msg = expect_error(replace(kMinimalDeck, cg, p("e", "1") + p("nu", "0.3")),
+                                       {"unknown parameter 'Materials->steel->e'", "did you mean 'E'"});
+  EXPECT_EQ(msg.find("did you mean 'D'"), std::string::npos) << msg;
 }
 
 TEST_F(Deck, PlasticityParameters) {
@@ -648,6 +726,7 @@ TEST(Schema, NearestName) {
   EXPECT_EQ(nearest_name("STEPPING", {"Stepping", "Newton"}), "Stepping");
   EXPECT_EQ(nearest_name("tolerance", {"relative residual tolerance", "max iterations"}), "relative residual tolerance");
   EXPECT_EQ(nearest_name("qwertyuiop", {"C1", "D"}), "");
+  EXPECT_EQ(nearest_name("stiffness", {"C1", "E", "nu", "D"}), "");  // one-letter names are no abbreviation
   EXPECT_EQ(edit_distance_ci("kitten", "SITTING"), 3);
 }
 
@@ -655,7 +734,8 @@ TEST(Schema, EveryDefaultSatisfiesItsOwnRange) {
   for (const auto& l : deck_schema())
     for (const auto& p : l.params) {
       if (p.required) continue;
-      if (p.type == ParamType::Int || p.type == ParamType::Double) {
+      // A documented default other than a value ("none", "from E/nu or mu/lambda") is not a number to check.
+      if ((p.type == ParamType::Int || p.type == ParamType::Double) && p.default_doc.empty()) {
         EXPECT_TRUE(p.in_range(p.num)) << l.title << "->" << p.name;
       }
       if (!p.choices.empty()) {

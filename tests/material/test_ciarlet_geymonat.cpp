@@ -17,6 +17,7 @@
 
 #include "MaterialSamples.hpp"
 #include "material/CiarletGeymonat.hpp"
+#include "material/ElasticConstants.hpp"
 #include "material/Kinematics.hpp"
 
 using stentor::CiarletGeymonat;
@@ -490,5 +491,40 @@ TEST(CiarletGeymonat, SmallStrainLimit) {
     EXPECT_LE(r1, 50.0 * (la + mu) * eps * eps);
     EXPECT_GT(r1 / r2, 3.6);
     EXPECT_LT(r1 / r2, 4.4);
+  }
+}
+
+// Input alternative E/nu (material/ElasticConstants.hpp): the tangent at C = I of the
+// law built from (E, nu, C2) is the isotropic elasticity tensor of E and nu, checked on
+// two states written with E and nu only (not mu, lambda): uniaxial stress
+// eps = diag(1, -nu, -nu)/E gives sigma = diag(1, 0, 0); pure shear eps_01 = eps_10 = g/2
+// gives sigma_01 = E/(2(1+nu)) g. In small strain S = 1/2 CC:dC, dC = 2 eps.
+TEST(CiarletGeymonat, FromYoungPoissonTangentIsIsotropicElasticity) {
+  const double cases[][3] = {{210e3, 0.3, 0.0}, {1.0, 0.45, 0.0}, {5.0, 0.25, 0.4}, {2.0, 0.49, 0.1}};
+  for (const auto& cs : cases) {
+    const double E = cs[0], nu = cs[1];
+    const auto k = stentor::ciarlet_geymonat_from_lame(stentor::lame_from_young(E, nu), cs[2]);
+    const CiarletGeymonat m{k.C1, k.C2, k.D};
+    ASSERT_GT(m.C1, 0.0);
+    ASSERT_GT(m.D, 0.0);
+    EXPECT_EQ(m.C2, cs[2]);
+    Ten4 CC;
+    m.tangent(Mat3::identity(), CC);
+    auto sigma = [&](const Mat3& eps) {  // sigma = CC : eps (= 1/2 CC : 2 eps)
+      Mat3 s = Mat3::zero();
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) s(i, j) += CC(i, j, a, b) * eps(a, b);
+      return s;
+    };
+    const Mat3 s1 = sigma((1.0 / E) * diag(1.0, -nu, -nu));
+    EXPECT_LE(max_abs(s1 - diag(1.0, 0.0, 0.0)), 1e-12 / (1.0 - 2.0 * nu)) << E << " " << nu;
+    Mat3 shear = Mat3::zero();
+    shear(0, 1) = shear(1, 0) = 0.5e-3;
+    const Mat3 s2 = sigma(shear);
+    Mat3 ref = Mat3::zero();
+    ref(0, 1) = ref(1, 0) = E / (2.0 * (1.0 + nu)) * 1e-3;
+    EXPECT_LE(max_abs(s2 - ref), 1e-14 * E) << E << " " << nu;
   }
 }

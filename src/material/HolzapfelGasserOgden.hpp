@@ -1,0 +1,131 @@
+// Holzapfel–Gasser–Ogden law for arterial layers with two fibre families (Holzapfel,
+// Gasser & Ogden, J. Elasticity 61, 2000; no dispersion, kappa = 0 in the 2006 model),
+// compressible, with the anisotropic term in the *unmodified* invariants:
+//
+//   W(C) = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2                (neo-Hookean matrix)
+//        + sum_{f = 4, 6} k1/(2 k2) [exp(k2 (I_f - 1)^2) - 1]  if I_f > 1 (else 0),
+//   I4 = a0·C a0,  I6 = g0·C g0   (a0, g0 unit fibre directions in the reference).
+//
+// Why not the isochoric-volumetric split with the "modified" invariants Ibar4 = J^-2/3 I4
+// of the 2000/2006 papers: with a compressible penalty the split anisotropic term gives
+// no volume change under the fibre stress it should carry (a sphere under pressure stays
+// a sphere, Sansour 2008; Helfenstein et al. 2010), and Nolan et al. (J. Mech. Behav.
+// Biomed. Mater. 39, 2014) show that the unmodified I4, I6 give the physically right
+// compressible response; this is their recommended form. Nearly incompressible (lambda
+// >> mu) both forms agree to O(mu/lambda).
+//
+// Fibres bear load only in tension (I_f > 1), as in the 2000 paper: at I_f = 1 the
+// energy and the stress are continuous (psi'(1) = 0) and the tangent jumps by 4 k1 A⊗A.
+//
+// Derivatives, psi(I) = k1/(2 k2)(exp(k2 (I-1)^2) - 1), A = a0⊗a0 (dI4/dC = A):
+//   psi'(I)  = k1 (I - 1) exp(k2 (I - 1)^2),
+//   psi''(I) = k1 (1 + 2 k2 (I - 1)^2) exp(k2 (I - 1)^2),
+//   S  = S_NH + sum_f 2 psi'(I_f) A_f,      CC = CC_NH + sum_f 4 psi''(I_f) A_f⊗A_f   (I_f > 1).
+// Units: mu, lambda, k1 [Pa]; k2 [-].
+//
+// The directions come from a local cylindrical frame (FibreFrame): at a point X, with the
+// vessel axis through `point` along the unit `axis` e_z,
+//   e_r = (X - point) - ((X - point)·e_z) e_z, normalised;  e_t = e_z × e_r,
+//   a0 = cos(beta) e_t + sin(beta) e_z,  g0 = cos(beta) e_t - sin(beta) e_z,
+// i.e. two helices at +-beta to the circumferential direction (beta = 0: both
+// circumferential, 90 deg: both axial). On the axis itself (e_r undefined) e_r is any
+// unit vector normal to e_z.
+#pragma once
+#include "material/NeoHookean.hpp"
+
+namespace stentor {
+
+struct HolzapfelGasserOgden {
+  NeoHookean matrix;
+  double k1, k2;
+  double a0[3], g0[3];
+
+  KOKKOS_INLINE_FUNCTION static double invariant(const Mat3& C, const double* a) {
+    double s = 0.0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) s += a[i] * C(i, j) * a[j];
+    return s;
+  }
+
+  KOKKOS_INLINE_FUNCTION double fibre_energy(double I) const {
+    const double x = I - 1.0;
+    return x > 0.0 ? k1 / (2.0 * k2) * std::expm1(k2 * x * x) : 0.0;
+  }
+
+  KOKKOS_INLINE_FUNCTION double energy(const Mat3& C) const {
+    return matrix.energy(C) + fibre_energy(invariant(C, a0)) + fibre_energy(invariant(C, g0));
+  }
+
+  KOKKOS_INLINE_FUNCTION Mat3 stress(const Mat3& C) const {
+    Mat3 S = matrix.stress(C);
+    add_fibre(C, a0, S, nullptr);
+    add_fibre(C, g0, S, nullptr);
+    return S;
+  }
+
+  KOKKOS_INLINE_FUNCTION void stress_and_tangent(const Mat3& C, Mat3& S, Ten4& CC) const {
+    matrix.stress_and_tangent(C, S, CC);
+    add_fibre(C, a0, S, &CC);
+    add_fibre(C, g0, S, &CC);
+  }
+
+  KOKKOS_INLINE_FUNCTION void tangent(const Mat3& C, Ten4& CC) const {
+    Mat3 S;
+    stress_and_tangent(C, S, CC);
+  }
+
+  // True when neither fibre switches between tension and compression on the segment
+  // C0 -> C1 (I_f is linear along it, so the end points decide): the energy is then
+  // smooth there (DiscreteGradient.hpp uses Simpson's rule for g only then).
+  KOKKOS_INLINE_FUNCTION bool smooth_between(const Mat3& C0, const Mat3& C1) const {
+    return ((invariant(C0, a0) > 1.0) == (invariant(C1, a0) > 1.0)) && ((invariant(C0, g0) > 1.0) == (invariant(C1, g0) > 1.0));
+  }
+
+ private:
+  KOKKOS_INLINE_FUNCTION void add_fibre(const Mat3& C, const double* a, Mat3& S, Ten4* CC) const {
+    const double x = invariant(C, a) - 1.0;
+    if (!(x > 0.0)) return;
+    const double e = std::exp(k2 * x * x);
+    const double s = 2.0 * k1 * x * e;                         // 2 psi'
+    const double t = 4.0 * k1 * (1.0 + 2.0 * k2 * x * x) * e;  // 4 psi''
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) S(i, j) += s * a[i] * a[j];
+    if (CC)
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          for (int k = 0; k < 3; ++k)
+            for (int l = 0; l < 3; ++l) (*CC)(i, j, k, l) += t * a[i] * a[j] * a[k] * a[l];
+  }
+};
+
+// Cylindrical fibre frame of a material (see above); beta in radians.
+struct FibreFrame {
+  double point[3], axis[3];  // axis: unit
+  double beta;
+
+  // a0, g0 at the reference point X.
+  KOKKOS_INLINE_FUNCTION void directions(const double* X, double* a, double* g) const {
+    double r[3], d = 0.0;
+    for (int i = 0; i < 3; ++i) d += (X[i] - point[i]) * axis[i];
+    double n2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      r[i] = X[i] - point[i] - d * axis[i];
+      n2 += r[i] * r[i];
+    }
+    if (!(n2 > 1e-300)) {  // on the axis: any normal to it
+      const int k = std::fabs(axis[0]) < 0.9 ? 0 : 1;
+      for (int i = 0; i < 3; ++i) r[i] = (i == k ? 1.0 : 0.0) - axis[k] * axis[i];
+      n2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    }
+    const double inv = 1.0 / std::sqrt(n2);
+    for (int i = 0; i < 3; ++i) r[i] *= inv;
+    const double t[3] = {axis[1] * r[2] - axis[2] * r[1], axis[2] * r[0] - axis[0] * r[2], axis[0] * r[1] - axis[1] * r[0]};
+    const double c = std::cos(beta), s = std::sin(beta);
+    for (int i = 0; i < 3; ++i) {
+      a[i] = c * t[i] + s * axis[i];
+      g[i] = c * t[i] - s * axis[i];
+    }
+  }
+};
+
+}  // namespace stentor
