@@ -12,7 +12,7 @@ L = 53.334;
 imperfection = DefineNumber[0.018, Name "Parameters/imperfection"];
 refine = DefineNumber[0.5, Name "Parameters/refine"];
 zf = DefineNumber[8.0, Name "Parameters/zf"];
-h = DefineNumber[1.5, Name "Parameters/h"];
+h = DefineNumber[3.0, Name "Parameters/h"];
 
 Cone(1) = {0, 0, 0, 0, 0, L / 2, (1 - imperfection) * R, R, Pi / 2};
 
