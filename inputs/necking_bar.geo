@@ -4,8 +4,9 @@
 // 0 <= z <= L/2 (z = 0 is the mid-length section). Units: mm (with MPa, N).
 // Physical groups: volume "bar"; surfaces "xsym" (x = 0), "ysym" (y = 0), "mid" (z = 0,
 // the symmetry plane at mid-length), "end" (z = L/2, pulled), "mantle" (free).
-// Mesh size: the deck's Mesh->size is the largest element size; a background field
-// refines to hneck = Mesh->size * refine near the middle (z < zf), where the neck forms.
+// Mesh size: a background field, h * refine near the middle (z < zf, where the neck
+// forms) growing linearly to h at z = 2 zf. inputs/necking_bar.xml uses Mesh->size = 0
+// (these sizes: h = 3, 1.5 mm at the neck); a Mesh->size > 0 would only cap them.
 SetFactory("OpenCASCADE");
 R = 6.413;
 L = 53.334;
