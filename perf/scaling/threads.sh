@@ -5,13 +5,17 @@
 # Writes perf/results/scaling/threads.csv and threads.png (see docs/performance.md).
 #
 #   perf/scaling/threads.sh                       # THREADS="1 2", P1 h=0.04 and P2 h=0.1
+#   CASES="cube_p2:0.1 cube_p2_plastic:0.1" ASSEMBLIES=atomic perf/scaling/threads.sh
+#                                                 # elastic vs plastic (every point flowing)
 #   THREADS="1 2 4 8 16" perf/scaling/threads.sh  # on a bigger machine
 #   perf/scaling/threads.sh --plot-only           # redraw the PNG from the CSV
 #
-# Environment: THREADS, CASES ("deck:h" list), ROUNDS (3), REPEAT (5), OUT, BUILD.
+# Environment: THREADS, CASES ("deck:h" list), ASSEMBLIES ("atomic coloring"), ROUNDS (3),
+# REPEAT (5), OUT, BUILD.
 . "$(dirname "$0")/lib.sh"
 THREADS=${THREADS:-"1 2"}
 CASES=${CASES:-"cube_p1:0.04 cube_p2:0.1"}
+ASSEMBLIES=${ASSEMBLIES:-"atomic coloring"}
 ROUNDS=${ROUNDS:-3}
 OUT=${OUT:-$root/perf/results/scaling}
 mkdir -p "$OUT/logs"
@@ -24,7 +28,7 @@ echo "threads: $BENCH on $CORES cores, $(uname -n)"
 for round in $(seq 1 "$ROUNDS"); do
   for c in $CASES; do
     deck=${c%%:*} h=${c#*:}
-    for asm in atomic coloring; do
+    for asm in $ASSEMBLIES; do
       for T in $THREADS; do
         log=$OUT/logs/threads_${deck}_${asm}_t${T}_round${round}.log
         launch 1 "$T" "$BENCH" "$root/perf/decks/$deck.xml" --size "$h" --repeat "$REPEAT" --no-newton \

@@ -75,11 +75,12 @@ struct ElementTime {
 
 // Stress and (WithTangent) A = dP/dF of a law with Gauss-point history at F1 (end point):
 // the update reads h_n and writes h_{n+1} (trial); adds Psi_{n+1} and the step's plastic
-// dissipation (times wq). False if the local solve failed.
+// dissipation (times wq). False if the local solve failed. A residual-only call
+// (WithTangent = false) takes the law's stress-only update: the same P bit for bit.
 template <bool WithTangent, class Law>
 KOKKOS_INLINE_FUNCTION bool history_point(const Law& law, const Mat3& F1, const double* hn, double* h1, double wq, Mat3& P,
                                           Ten4& A, double& energy, double& plastic) {
-  const PointResponse pr = law.update(tmul(F1, F1), hn, h1);
+  const PointResponse pr = law.template update<WithTangent>(tmul(F1, F1), hn, h1);
   if (!pr.converged) return false;
   energy += wq * pr.energy;
   plastic += wq * pr.dissipation;
@@ -119,7 +120,7 @@ template <bool WithTangent, class Law>
 KOKKOS_INLINE_FUNCTION bool history_gonzalez(const Law& law, const Mat3& Fv, const Mat3& F1, const Mat3& C0, const Mat3& C1,
                                              const double* hn, double* h1, double wq, Mat3& P, Ten4& A, double& energy,
                                              double& plastic) {
-  const PointResponse pr = law.update(C1, hn, h1);
+  const PointResponse pr = law.template update<false>(C1, hn, h1);  // CC unused: stress-only
   if (!pr.converged) return false;
   energy += wq * pr.energy;
   plastic += wq * pr.dissipation;

@@ -277,14 +277,18 @@ struct CiarletGeymonatPlasticity {
     double mandel_hill;  // |M_{n+1}|_H
   };
 
-  template <class HIn, class HOut>
+  // WithTangent = false: the stress-only update for residual-only calls. The same S, state,
+  // energy and dissipation bit for bit (the same operations), but no CC (left unset): no
+  // algorithmic moduli (three 4x4 solves), no spectral CC (81 x 9 terms), no pushed
+  // elastic tangent. Measured in docs/performance.md ("Plastic assembly").
+  template <bool WithTangent = true, class HIn, class HOut>
   KOKKOS_INLINE_FUNCTION PointResponse update(const Mat3& C, const HIn& hn, const HOut& h1) const {
     PlasticState s0;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) s0.Ftr(i, j) = hn[kFtr + 3 * i + j];
     s0.alpha = hn[kAlpha];
     Step st;
-    const PointResponse r = update_state(C, s0, st);
+    const PointResponse r = update_state<WithTangent>(C, s0, st);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) h1[kFtr + 3 * i + j] = st.state.Ftr(i, j);
     h1[kAlpha] = st.state.alpha;
@@ -305,14 +309,15 @@ struct CiarletGeymonatPlasticity {
   }
 
   // Same on structured state (C = F^T F at t_{n+1}; s0 at t_n is not modified).
+  template <bool WithTangent = true>
   KOKKOS_INLINE_FUNCTION PointResponse update_state(const Mat3& C, const PlasticState& s0,
                                                     Step& out) const {
     const Mat3 G = inverse(s0.Ftr);
     const Mat3 Ct = tmul(G, matmul(C, G));  // Ce^tr = Ftr_n^-T C Ftr_n^-1
     const double Yn = Y + H * s0.alpha;
     const double q_tr = mandel_hill_norm(Ct);
-    if (q_tr - Yn <= 0.0) return elastic_branch(Ct, G, s0, q_tr, out);
-    return plastic_branch(Ct, G, s0, out);
+    if (q_tr - Yn <= 0.0) return elastic_branch<WithTangent>(Ct, G, s0, q_tr, out);
+    return plastic_branch<WithTangent>(Ct, G, s0, out);
   }
 
   // |M|_H for M = Ce Sbar(Ce) by the tensor route (independent of the spectral one).
@@ -323,15 +328,21 @@ struct CiarletGeymonatPlasticity {
   }
 
  private:
+  // (CiarletGeymonat's stress() and stress_and_tangent() compute S by the same code.)
+  template <bool WithTangent>
   KOKKOS_INLINE_FUNCTION PointResponse elastic_branch(const Mat3& Ct, const Mat3& G,
                                                       const PlasticState& s0, double q,
                                                       Step& out) const {
     PointResponse r;
     Mat3 Sb;
-    Ten4 CCb;
-    elastic.stress_and_tangent(Ct, Sb, CCb);
+    if constexpr (WithTangent) {
+      Ten4 CCb;
+      elastic.stress_and_tangent(Ct, Sb, CCb);
+      plasticity_detail::push_tangent(G, CCb, r.CC);
+    } else {
+      Sb = elastic.stress(Ct);
+    }
     r.S = matmul(G, matmul(Sb, transpose(G)));
-    plasticity_detail::push_tangent(G, CCb, r.CC);
     r.energy = elastic.energy(Ct) + 0.5 * H * s0.alpha * s0.alpha;
     r.dissipation = 0.0;
     r.iterations = 0;
@@ -342,6 +353,7 @@ struct CiarletGeymonatPlasticity {
     return r;
   }
 
+  template <bool WithTangent>
   KOKKOS_INLINE_FUNCTION PointResponse plastic_branch(const Mat3& Ct, const Mat3& G,
                                                       const PlasticState& s0, Step& out) const {
     using namespace plasticity_detail;
@@ -350,11 +362,13 @@ struct CiarletGeymonatPlasticity {
     sym_eig3(Ct, ct, N);
     for (int A = 0; A < 3; ++A) et[A] = 0.5 * std::log(ct[A]);
     ReturnMap rm;
-    return_map(et, Y + H * s0.alpha, rm);
+    return_map(et, Y + H * s0.alpha, rm, WithTangent);
     PointResponse r;
     r.converged = rm.converged;
     r.iterations = rm.iterations;
-    spectral_stress_tangent(ct, matmul(G, N), rm, r.S, r.CC);
+    const Mat3 V = matmul(G, N);
+    r.S = spectral_stress(ct, V, rm);
+    if constexpr (WithTangent) spectral_tangent(ct, V, rm, r.CC);
     // Ftr_{n+1} = exp(dg n) Ftr_n, spectral exponential, then det normalisation.
     const double dg = rm.dgamma;
     Mat3 E = Mat3::zero();
@@ -408,9 +422,10 @@ struct CiarletGeymonatPlasticity {
 
   // Local Newton on x = (e_1, e_2, e_3, dg) from the trial point (e = et, dg = 0);
   // converged when |R_4| <= 1e-12 (Yn + max|s|) and |R_A| <= 1e-14 (1 + max|et|).
-  // A step that would make dg negative is shortened to halve dg instead.
+  // A step that would make dg negative is shortened to halve dg instead. rm.a (the
+  // algorithmic moduli) only with `moduli`.
   KOKKOS_INLINE_FUNCTION void return_map(const double et[3], double Yn,
-                                         plasticity_detail::ReturnMap& rm) const {
+                                         plasticity_detail::ReturnMap& rm, bool moduli) const {
     double x[4] = {et[0], et[1], et[2], 0.0}, R[4], J[4][4], Ge[3][3];
     const double emax = std::fmax(std::fabs(et[0]), std::fmax(std::fabs(et[1]), std::fabs(et[2])));
     rm.converged = false;
@@ -433,7 +448,7 @@ struct CiarletGeymonatPlasticity {
     }
     for (int A = 0; A < 3; ++A) rm.e[A] = x[A];
     rm.dgamma = x[3];
-    algorithmic_moduli(J, Ge, rm);
+    if (moduli) algorithmic_moduli(J, Ge, rm);
   }
 
   // a = dtau/det = Ge [J^-1]_{3x3} (J dx = (det, 0)), symmetrised (exact a is symmetric).
@@ -455,10 +470,20 @@ struct CiarletGeymonatPlasticity {
       for (int B = 0; B < 3; ++B) rm.a[A][B] = 0.5 * (a[A][B] + a[B][A]);
   }
 
-  // S = sum z_A v_A v_A^T and CC = 2 dS/dC (header comment), v_A = columns of V = G N.
-  KOKKOS_INLINE_FUNCTION static void spectral_stress_tangent(const double ct[3], const Mat3& V,
-                                                             const plasticity_detail::ReturnMap& rm,
-                                                             Mat3& S, Ten4& CC) {
+  // S = sum z_A v_A v_A^T, z_A = tau_A / ct_A, v_A = columns of V = G N.
+  KOKKOS_INLINE_FUNCTION static Mat3 spectral_stress(const double ct[3], const Mat3& V,
+                                                     const plasticity_detail::ReturnMap& rm) {
+    double z[3];
+    for (int A = 0; A < 3; ++A) z[A] = rm.tau[A] / ct[A];
+    Mat3 S;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) S(i, j) = z[0] * V(i, 0) * V(j, 0) + z[1] * V(i, 1) * V(j, 1) + z[2] * V(i, 2) * V(j, 2);
+    return S;
+  }
+
+  // CC = 2 dS/dC (header comment) from the algorithmic moduli rm.a.
+  KOKKOS_INLINE_FUNCTION static void spectral_tangent(const double ct[3], const Mat3& V,
+                                                      const plasticity_detail::ReturnMap& rm, Ten4& CC) {
     double z[3], dz[3][3], th[3][3];
     for (int A = 0; A < 3; ++A) z[A] = rm.tau[A] / ct[A];
     for (int A = 0; A < 3; ++A)
@@ -471,8 +496,6 @@ struct CiarletGeymonatPlasticity {
                        ? (z[A] - z[B]) / (ct[A] - ct[B])
                        : 0.5 * (dz[A][A] - dz[A][B] + dz[B][B] - dz[B][A]);
       }
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) S(i, j) = z[0] * V(i, 0) * V(j, 0) + z[1] * V(i, 1) * V(j, 1) + z[2] * V(i, 2) * V(j, 2);
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j)
         for (int k = 0; k < 3; ++k)

@@ -146,6 +146,42 @@ TEST(Plasticity, DetFtrIsOneAfterAnyUpdate) {
   EXPECT_GT(plastic, 1000);
 }
 
+// The stress-only update (update<false>, residual-only calls) against the full one: the
+// same S, state, energy, dissipation and iteration count, bit for bit, at elastic and
+// plastic points of random chained states.
+TEST(Plasticity, StressOnlyUpdateIsBitwiseTheFullOne) {
+  std::mt19937 rng(23);
+  int plastic = 0, n = 0;
+  for (const auto& m : kPlast)
+    for (int chain = 0; chain < 50; ++chain) {
+      PlasticState s = virgin();
+      for (int k = 0; k < 4; ++k) {
+        const Mat3 C = stentor::right_cauchy_green(random_F(rng));
+        Step full, only;
+        const PointResponse a = m.update_state<true>(C, s, full);
+        const PointResponse b = m.update_state<false>(C, s, only);
+        ASSERT_TRUE(a.converged && b.converged);
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) {
+            EXPECT_EQ(a.S(i, j), b.S(i, j));
+            EXPECT_EQ(full.state.Ftr(i, j), only.state.Ftr(i, j));
+          }
+        EXPECT_EQ(full.state.alpha, only.state.alpha);
+        EXPECT_EQ(full.dgamma, only.dgamma);
+        EXPECT_EQ(full.mandel_hill, only.mandel_hill);
+        EXPECT_EQ(a.energy, b.energy);
+        EXPECT_EQ(a.dissipation, b.dissipation);
+        EXPECT_EQ(a.iterations, b.iterations);
+        plastic += full.dgamma > 0.0;
+        ++n;
+        s = full.state;
+      }
+    }
+  std::printf("[ measured ] stress-only vs full update: %d points (%d plastic), bitwise equal\n", n, plastic);
+  EXPECT_GT(plastic, n / 3);
+  EXPECT_LT(plastic, n);
+}
+
 // ---------------------------------------------------------------------------
 // No yield below Y
 // ---------------------------------------------------------------------------
