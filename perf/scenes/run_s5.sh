@@ -13,7 +13,7 @@
 #                     (perf/scenes/render_section.py; von Mises / equivalent plastic strain)
 #   usage: perf/scenes/run_s5.sh [build-dir]    (default build; needs gnuplot, python3,
 #          and for the pictures Debian's python3-matplotlib, python3-h5py)
-#   env:   S5_YIELDS (Y values in MPa, default "2 10 40 1e6"); S5_RUNS (raw output dir,
+#   env:   S5_YIELDS (Y values in MPa, default "2 20 100 1e6"); S5_RUNS (raw output dir,
 #          default <build>/scenes/s5); S5_SKIP_RUNS=1 (tables only); S5_JOBS (runs at a time,
 #          default 1)
 set -euo pipefail
@@ -22,7 +22,7 @@ BUILD=${1:-$ROOT/build}
 EXE=$BUILD/stentor
 RUNS=${S5_RUNS:-$BUILD/scenes/s5}
 DOCS=$ROOT/docs/scenes
-YIELDS=${S5_YIELDS:-2 10 40 1e6}
+YIELDS=${S5_YIELDS:-2 20 100 1e6}
 mkdir -p "$RUNS" "$DOCS"
 [ -x "$EXE" ] || { echo "no $EXE: build it first"; exit 1; }
 
@@ -156,12 +156,12 @@ GP
 R=$ROOT/perf/scenes/render_section.py
 shots="1:end of inflation 1.5:end of deflation 2:end of recoil"
 if [ -f "$RUNS/s5_elastic/s5_elastic.h5" ]; then
-  SCALE=1e-6 /usr/bin/python3 "$R" "$RUNS/s5_elastic" s5_elastic "$DOCS/s4_ring_stages.png" von_mises "von Mises stress [MPa]" \
+  XLIM=-1.65,1.65 YLIM=-1.65,1.65 SCALE=1e-6 /usr/bin/python3 "$R" "$RUNS/s5_elastic" s5_elastic "$DOCS/s4_ring_stages.png" von_mises "von Mises stress [MPa]" \
     "0:crimped" "1:inflated" "1.5:deflated" "2:after recoil" || true
 fi
 for y in $YIELDS; do
   [ -f "$RUNS/s5_Y$y/s5_Y$y.h5" ] || continue
-  /usr/bin/python3 "$R" "$RUNS/s5_Y$y" "s5_Y$y" "$DOCS/s5_ring_Y$y.png" equivalent_plastic_strain "equivalent plastic strain [-]" \
+  XLIM=-1.65,1.65 YLIM=-1.65,1.65 /usr/bin/python3 "$R" "$RUNS/s5_Y$y" "s5_Y$y" "$DOCS/s5_ring_Y$y.png" equivalent_plastic_strain "equivalent plastic strain [-]" \
     "1:inflated, Y = $y MPa" "1.5:deflated" "2:after recoil" || true
 done
 echo "wrote $DOCS/s5_summary.md and the plots"

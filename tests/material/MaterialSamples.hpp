@@ -26,4 +26,19 @@ inline Mat3 random_F(std::mt19937& rng, bool plane = false) {
   }
 }
 
+// diag(x, y, z), and the symmetric unit direction (e_I e_J + e_J e_I) / 2 for finite
+// differences in C.
+inline Mat3 diag(double x, double y, double z) {
+  Mat3 m = Mat3::zero();
+  m(0, 0) = x, m(1, 1) = y, m(2, 2) = z;
+  return m;
+}
+
+inline Mat3 sym_unit(int I, int J) {
+  Mat3 E = Mat3::zero();
+  E(I, J) += 0.5;
+  E(J, I) += 0.5;
+  return E;
+}
+
 }  // namespace stentor::testing

@@ -25,16 +25,10 @@ using stentor::Mat3;
 using stentor::Ten4;
 using stentor::testing::kMats;
 using stentor::testing::random_F;
+using stentor::testing::diag;
+using stentor::testing::sym_unit;
 
 namespace {
-
-Mat3 diag(double x, double y, double z) {
-  Mat3 m = Mat3::zero();
-  m(0, 0) = x;
-  m(1, 1) = y;
-  m(2, 2) = z;
-  return m;
-}
 
 // Rotation by angle theta about unit axis n (Rodrigues).
 Mat3 rotation(double nx, double ny, double nz, double theta) {
@@ -47,13 +41,6 @@ Mat3 rotation(double nx, double ny, double nz, double theta) {
 
 // Symmetric unit perturbation E = (e_I⊗e_J + e_J⊗e_I)/2, so that for symmetric G,
 // G:E = G_IJ: a central difference of W along E gives (dW/dC)_IJ directly.
-Mat3 sym_unit(int I, int J) {
-  Mat3 E = Mat3::zero();
-  E(I, J) += 0.5;
-  E(J, I) += 0.5;
-  return E;
-}
-
 }  // namespace
 
 // ---------------------------------------------------------------------------

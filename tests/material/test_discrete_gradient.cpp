@@ -23,6 +23,7 @@ using stentor::Mat3;
 using stentor::Ten4;
 using stentor::testing::kMats;
 using stentor::testing::random_F;
+using stentor::testing::sym_unit;
 
 namespace {
 
@@ -55,13 +56,6 @@ void random_pair(std::mt19937& rng, bool plane, double size, Mat3& C0, Mat3& C1)
 
 // Symmetric unit perturbation E = (e_I⊗e_J + e_J⊗e_I)/2: for D with minor
 // symmetry in KL, D:E = D_..IJ, so a central difference along E gives D_..IJ.
-Mat3 sym_unit(int I, int J) {
-  Mat3 E = Mat3::zero();
-  E(I, J) += 0.5;
-  E(J, I) += 0.5;
-  return E;
-}
-
 // max |D - FD(Sigma)| / max |D| with central differences of step h.
 template <class Mat>
 double tangent_fd_error(const Mat& m, const Mat3& C0, const Mat3& C1, double h) {

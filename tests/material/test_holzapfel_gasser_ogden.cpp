@@ -29,23 +29,12 @@ using stentor::Mat3;
 using stentor::NeoHookean;
 using stentor::Ten4;
 using stentor::testing::random_F;
+using stentor::testing::diag;
+using stentor::testing::sym_unit;
 
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-
-Mat3 diag(double x, double y, double z) {
-  Mat3 m = Mat3::zero();
-  m(0, 0) = x, m(1, 1) = y, m(2, 2) = z;
-  return m;
-}
-
-Mat3 sym_unit(int I, int J) {
-  Mat3 E = Mat3::zero();
-  E(I, J) += 0.5;
-  E(J, I) += 0.5;
-  return E;
-}
 
 // Adventitia-like parameters (Holzapfel et al. 2000, Table 1: c = 2 mu = 2.7 kPa,
 // k1 = 5.1 kPa, k2 = 15.4, beta = 62.5 deg), nearly incompressible lambda = 500 mu,

@@ -34,25 +34,14 @@ using stentor::MooneyRivlin;
 using stentor::NeoHookean;
 using stentor::Ten4;
 using stentor::testing::random_F;
+using stentor::testing::diag;
+using stentor::testing::sym_unit;
 
 namespace {
 
 // Moderate and nearly incompressible parameter sets.
 const NeoHookean kNH[] = {{1.2, 2.5}, {0.8, 4000.0}};
 const MooneyRivlin kMR[] = {{0.4, 0.25, 1.8}, {0.5, 0.15, 5000.0}, {0.3, 0.0, 1.0}};
-
-Mat3 diag(double x, double y, double z) {
-  Mat3 m = Mat3::zero();
-  m(0, 0) = x, m(1, 1) = y, m(2, 2) = z;
-  return m;
-}
-
-Mat3 sym_unit(int I, int J) {
-  Mat3 E = Mat3::zero();
-  E(I, J) += 0.5;
-  E(J, I) += 0.5;
-  return E;
-}
 
 // max |S - 2 dW/dC (central differences)| / (max |S| + modulus).
 template <class Law>

@@ -25,6 +25,8 @@ using stentor::PointResponse;
 using stentor::Ten4;
 using stentor::testing::kMats;
 using stentor::testing::random_F;
+using stentor::testing::diag;
+using stentor::testing::sym_unit;
 using Step = CiarletGeymonatPlasticity::Step;
 
 namespace {
@@ -36,12 +38,6 @@ const CiarletGeymonatPlasticity kPlast[] = {
 
 PlasticState virgin() { return {Mat3::identity(), 0.0}; }
 
-Mat3 diag(double x, double y, double z) {
-  Mat3 m = Mat3::zero();
-  m(0, 0) = x, m(1, 1) = y, m(2, 2) = z;
-  return m;
-}
-
 // Rotation by angle theta about the axis (nx, ny, nz) (Rodrigues).
 Mat3 rotation(double nx, double ny, double nz, double theta) {
   const double nn = std::sqrt(nx * nx + ny * ny + nz * nz);
@@ -49,13 +45,6 @@ Mat3 rotation(double nx, double ny, double nz, double theta) {
   Mat3 K = Mat3::zero();
   K(0, 1) = -nz, K(0, 2) = ny, K(1, 0) = nz, K(1, 2) = -nx, K(2, 0) = -ny, K(2, 1) = nx;
   return Mat3::identity() + std::sin(theta) * K + (1.0 - std::cos(theta)) * stentor::matmul(K, K);
-}
-
-Mat3 sym_unit(int I, int J) {
-  Mat3 E = Mat3::zero();
-  E(I, J) += 0.5;
-  E(J, I) += 0.5;
-  return E;
 }
 
 Mat3 elastic_C(const Mat3& C, const Mat3& Ftr) {
