@@ -4,6 +4,7 @@
 
 #include "mesh/MeshComm.hpp"
 #include "mesh/MeshQuery.hpp"
+#include "solver/SolverParams.hpp"
 
 namespace stentor {
 
@@ -51,6 +52,7 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
   dynamic = cfg.problem.dynamic();
   probe_node = nearest_nodes(mesh, cfg.output.probes);
   check_contact_groups(cfg, mesh);
+  validate_linear_solver(cfg.linear);  // the pass-through lists, before anything runs (and under --check)
 }
 
 void Model::discretise(Timers& timers) {
