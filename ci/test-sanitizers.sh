@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # AddressSanitizer + UndefinedBehaviorSanitizer: builds stentor and a few test programs
-# with -fsanitize=address,undefined in their own folder (build-asan, -O1), then runs a
+# with -fsanitize=address,undefined in their own folder (build-asan, Release + -g1), then runs a
 # small meaningful subset: the cli.corpus subset (hostile decks and meshes), some
 # bad-input cases, unit tests (deck, io, material), one contact and one plastic system
 # test. Exit 1 on any sanitizer report (or failed test).
@@ -15,7 +15,7 @@ san="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=
 t0=$(date +%s)
 if [ ! -f "$B/build.ninja" ]; then
   mkdir -p "$B"
-  cmake -S . -B "$B" -G Ninja -DCMAKE_BUILD_TYPE= -DCMAKE_CXX_FLAGS="-O1 -g1 $san" \
+  cmake -S . -B "$B" -G Ninja -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS="-g1 $san" \
         -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" > "$B/configure.log" 2>&1 \
     || { cat "$B/configure.log"; exit 1; }
 fi
