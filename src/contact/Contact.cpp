@@ -80,7 +80,8 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
     }
   double diag = 0.0;
   for (int c = 0; c < 3; ++c) diag += (hi[c] - lo[c]) * (hi[c] - lo[c]);
-  gap_tol_ = 1e-12 * std::sqrt(diag);
+  model_size_ = std::sqrt(diag);
+  gap_tol_ = 1e-12 * model_size_;
 
   // Master surfaces first: their nodes may not be slaves of any pair.
   std::vector<char> is_master(mesh.num_nodes(), 0);
@@ -286,6 +287,29 @@ void Contact::initialize(const la::Vector& u0, double end_time) {
       nd.gap = nd.d_n;
     }
   }
+}
+
+std::vector<std::string> Contact::initial_penetrations() const {
+  std::vector<std::string> lines;
+  const double tol = 1e-6 * model_size_;
+  for (const auto& p : pairs_) {
+    double loc[2] = {0.0, 0.0}, glob[2] = {0.0, 0.0};  // count, deepest (as a positive depth)
+    for (const auto& nd : p.nodes)
+      if (nd.d_n < -tol) {
+        loc[0] += 1.0;
+        loc[1] = std::max(loc[1], -nd.d_n);
+      }
+    Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &loc[0], &glob[0]);
+    Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_MAX, 1, &loc[1], &glob[1]);
+    if (glob[0] == 0.0) continue;
+    std::ostringstream os;
+    os << "warning: Contact->" << p.cfg.name << ": " << static_cast<long>(glob[0]) << " slave node(s) start inside the "
+       << (p.master ? "master surface '" + p.cfg.master + "'" : "obstacle") << ", the deepest by " << std::setprecision(3)
+       << glob[1] << " (tolerance " << tol << " = 1e-6 of the model size); contact pushes them out in the first steps "
+       << "(check the geometry, 'point' or the initial displacement)";
+    lines.push_back(os.str());
+  }
+  return lines;
 }
 
 Contact::NodalFields Contact::step_history(std::size_t pair) const {

@@ -43,6 +43,10 @@ class Contact {
 
   // Gap history at t = 0 from u_0 (d_{-1} = d_0).
   void initialize(const la::Vector& u0, double end_time);
+  // Pairs whose slave nodes start inside their obstacle or master surface (initialize()'s
+  // gaps) deeper than 1e-6 of the model's size: one warning line each, naming the pair, the
+  // number of such nodes and the deepest penetration. Collective; the same lines on every rank.
+  std::vector<std::string> initial_penetrations() const;
   // The step t_n -> t_n + dt from the converged u_n.
   void begin_step(double t_n, double dt, const la::Vector& u_n);
   // After Assembler::assemble(): active sets from u, then the contact rows of r and, when
@@ -165,7 +169,7 @@ class Contact {
   void update_changed();
 
   int dim_;
-  double end_time_ = 1.0, t0_ = 0.0, t1_ = 0.0, dt_ = 1.0, dt_last_ = 0.0, gap_tol_ = 0.0;
+  double end_time_ = 1.0, t0_ = 0.0, t1_ = 0.0, dt_ = 1.0, dt_last_ = 0.0, gap_tol_ = 0.0, model_size_ = 0.0;
   bool changed_ = true;
   const Distribution& dist_;
   std::vector<Pair> pairs_;

@@ -1232,6 +1232,7 @@ void DeckReader::read_stepping(const ParameterList& pl) {
   cfg_.stepping.num_steps = get_int(pl, ls, "steps");
   cfg_.stepping.max_cutbacks = get_int(pl, ls, "max cutbacks");
   cfg_.stepping.growth = get_double(pl, ls, "growth");
+  cfg_.stepping.predictor = get_string(pl, ls, "predictor");
   cfg_.stepping.min_dt = get_double(pl, ls, "min dt");
   cfg_.stepping.max_steps = get_int(pl, ls, "max steps");
 }

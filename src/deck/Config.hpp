@@ -114,6 +114,7 @@ struct SteppingConfig {
   double growth = 1.5;     // "Stepping"->"growth" in [1, 4]: step growth per accepted step, up to end time / steps
   double min_dt = 0.0;     // "Stepping"->"min dt": smallest step (0: 1e-6 x end time / steps, see min_step())
   int max_steps = 0;       // "Stepping"->"max steps": cap on steps tried (0: 100 x steps + 1000, see step_cap())
+  std::string predictor = "none";  // "Stepping"->"predictor": none | velocity (dynamics: Newton's first iterate)
   // The values in force, 0 resolved to the defaults.
   double min_step() const { return min_dt > 0.0 ? min_dt : 1e-6 * end_time / num_steps; }
   long step_cap() const { return max_steps > 0 ? max_steps : 100L * num_steps + 1000L; }

@@ -279,7 +279,13 @@ std::vector<ListSpec> build_schema() {
        integer("max steps", 0, "Cap on the number of steps tried, accepted and rejected (exit 3 when reached). "
                "0: 100 x steps + 1000.")
            .ge(0)
-           .dflt_doc("`0` (100 x steps + 1000)")}));
+           .dflt_doc("`0` (100 x steps + 1000)"),
+       str("predictor", "none",
+           "Dynamics: Newton's first iterate of a step. `none`: u_n; `velocity`: u_n + dt v_n (midpoint family), "
+           "u_n + dt v_n + dt^2/2 a_n (newmark, hht); prescribed dofs take their values either way, and a guess "
+           "that inverts elements is retried from u_n. Statics always extrapolate the last increment. Measured "
+           "in docs/robustness.md.")
+           .one_of({"none", "velocity"})}));
 
   s.push_back(list(
       "Newton", "Newton",

@@ -4,6 +4,8 @@
 
 #include "mesh/MeshComm.hpp"
 #include "mesh/MeshQuery.hpp"
+#include "run/Supports.hpp"
+#include "solver/SolverParams.hpp"
 
 namespace stentor {
 
@@ -51,6 +53,8 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
   dynamic = cfg.problem.dynamic();
   probe_node = nearest_nodes(mesh, cfg.output.probes);
   check_contact_groups(cfg, mesh);
+  warnings = unsupported_bodies(cfg, mesh, loads);
+  validate_linear_solver(cfg.linear);  // the pass-through lists, before anything runs (and under --check)
 }
 
 void Model::discretise(Timers& timers) {

@@ -38,6 +38,7 @@ struct Model {
   bool dynamic = false;
   std::vector<int> block_mat;     // material of each volume block
   Loads loads;
+  std::vector<std::string> warnings;  // found reading the model (unsupported static bodies), printed with it
   std::vector<GId> probe_node;    // nearest mesh node of each Output->Probes entry
 
   std::unique_ptr<Distribution> dist;

@@ -110,6 +110,7 @@ void Reporter::print_model() {
   out_ << ")\n";
   out_ << "  parallel " << m_.nranks << " MPI rank(s), Kokkos " << la::ExecSpace::name() << " x " << la::ExecSpace().concurrency()
        << " thread(s), " << cfg_.problem.assembly << " assembly\n";
+  for (const std::string& w : m_.warnings) out_ << "  " << w << "\n";
 }
 
 void Reporter::print_solvers() {

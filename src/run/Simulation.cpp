@@ -78,7 +78,10 @@ void initialize(Run& r) {
     }
     r.reporter.energy_row(0, 0.0, au0, r.state.energy);
   }
-  if (m.contact) r.stepper.initialize_contact(r.state);
+  if (m.contact) {
+    r.stepper.initialize_contact(r.state);
+    for (const std::string& w : m.contact->initial_penetrations()) r.reporter.out() << "  " << w << "\n";
+  }
   r.reporter.initial_metrics(r.state);
   if (m.cfg.output.fields) r.reporter.write_fields(0.0, r.state.u);
 }

@@ -42,11 +42,16 @@ NewtonResult Stepper::newton(la::Vector& u) {
 
 // The initial guess. Statics: extrapolate the last converged increment, so that a
 // prescribed boundary motion is spread into the interior instead of squeezing the
-// boundary layer of cells (which can invert them). Dynamics: u_n.
+// boundary layer of cells (which can invert them). Dynamics: u_n, or with Stepping->predictor
+// = velocity the scheme's constant-velocity (acceleration) guess.
 void Stepper::predict(RunState& s, double dt, double t_new, bool& predicted) {
   predicted = false;
   if (!m_.dynamic && s.step > 0 && s.dt_last > 0.0) {
     s.u.update(dt / s.dt_last, s.u_prev, -dt / s.dt_last, s.u_before_last, 1.0);
+    predicted = true;
+  } else if (m_.dynamic && m_.cfg.stepping.predictor == "velocity") {
+    m_.integrator->predict(s.u, s.u_prev, dt);
+    system_.inertia_scale = 2.0 * m_.integrator->momentum_norm() / dt;
     predicted = true;
   }
   m_.assembler->apply_dirichlet(s.u, t_new, m_.cfg.stepping.end_time);
@@ -65,6 +70,7 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
   }
   if (m_.contact) m_.contact->begin_step(s.t, dt, s.u_prev);
   bool predicted = false;
+  system_.inertia_scale = 0.0;
   predict(s, dt, t_new, predicted);
   NewtonResult nr = newton(s.u);
   if (predicted && !nr.converged && nr.iterations == 0) {  // an inadmissible guess: retry from u_n
@@ -79,7 +85,9 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
 
 double StepSystem::current_scale() const { return std::max(a_.external_force().norm2(), a_.static_residual().norm2()); }
 
-double StepSystem::force_scale() const { return std::max(current_scale(), accepted_ ? scale_sum_ / accepted_ : 0.0); }
+double StepSystem::force_scale() const {
+  return std::max({current_scale(), accepted_ ? scale_sum_ / accepted_ : 0.0, inertia_scale});
+}
 
 void StepSystem::record_scale() {
   const double s = current_scale();

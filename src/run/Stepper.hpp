@@ -30,6 +30,10 @@ class StepSystem : public NewtonSystem {
   // be the target: the mean force scale of the accepted steps so far is kept as a floor
   // (Abaqus' time-averaged force plays the same role).
   double force_scale() const override;
+  // With a dynamic predictor, the inertia scale 2 |M v_n| / dt (the residual at u_n would
+  // be about that): a guess that is already nearly exact (free flight) leaves only
+  // round-off in |r|, which a relative target of |r_0| could never reach.
+  double inertia_scale = 0.0;
   // After an accepted step: its force scale joins the mean.
   void record_scale();
   // Restart: the sum and count behind that mean.

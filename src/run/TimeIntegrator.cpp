@@ -129,6 +129,16 @@ Assembler::StepInput TimeIntegrator::step_input(double t_n, double dt, double en
   return in;
 }
 
+void TimeIntegrator::predict(la::Vector& u, const la::Vector& u_n, double dt) const {
+  u.update(1.0, u_n, dt, *v_, 0.0);
+  if (!midpoint_family()) u.update(0.5 * dt * dt, *a_, 1.0);
+}
+
+double TimeIntegrator::momentum_norm() const {
+  assembler_.mass()->apply(*v_, *Mv_);
+  return Mv_->norm2();
+}
+
 EnergyAudit TimeIntegrator::accept(const la::Vector& u_n, const la::Vector& u_np1, double dt, const Assembler::Stats& last) {
   du_->update(1.0, u_np1, -1.0, u_n, 0.0);
   EnergyAudit au;

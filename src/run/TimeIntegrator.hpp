@@ -45,6 +45,12 @@ class TimeIntegrator {
   // Assembler input for the step t_n -> t_n + dt from u_n.
   Assembler::StepInput step_input(double t_n, double dt, double end_time, const la::Vector& u_n);
 
+  // Stepping->predictor = velocity: u <- u_n + dt v_n (midpoint family; v_{n+1} = v_n),
+  // + dt^2/2 a_n for newmark/hht (a_{n+1} = a_n). Dirichlet values are the caller's.
+  void predict(la::Vector& u, const la::Vector& u_n, double dt) const;
+  // |M v_n| (2-norm over all ranks; collective).
+  double momentum_norm() const;
+
   // After a converged step (u_n -> u_{n+1}): velocities, accelerations, history; the audit.
   EnergyAudit accept(const la::Vector& u_n, const la::Vector& u_np1, double dt, const Assembler::Stats& last);
 

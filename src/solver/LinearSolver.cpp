@@ -9,6 +9,7 @@
 #include <iostream>
 
 #include "solver/MueLuPreconditioner.hpp"
+#include "solver/SolverParams.hpp"
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
 #ifdef STENTOR_HAVE_AMESOS2
@@ -16,6 +17,15 @@
 #endif
 
 namespace stentor {
+
+namespace {
+
+Teuchos::RCP<Teuchos::ParameterList> parse_xml(const std::string& xml) {
+  if (xml.empty()) return Teuchos::rcp(new Teuchos::ParameterList());
+  return Teuchos::getParametersFromXmlString(xml);
+}
+
+}  // namespace
 
 struct LinearSolver::Impl {
   LinearSolverConfig cfg;
@@ -93,11 +103,37 @@ struct LinearSolver::Impl {
   int dim = 0;
   std::vector<double> coords;  // owned nodes, 3 each (for multigrid null spaces)
 
-  static Teuchos::RCP<Teuchos::ParameterList> parse(const std::string& xml) {
-    if (xml.empty()) return Teuchos::rcp(new Teuchos::ParameterList());
-    return Teuchos::getParametersFromXmlString(xml);
-  }
+  static Teuchos::RCP<Teuchos::ParameterList> parse(const std::string& xml) { return parse_xml(xml); }
 };
+
+Teuchos::RCP<Teuchos::ParameterList> belos_parameters(const LinearSolverConfig& cfg) {
+  auto p = Teuchos::rcp(new Teuchos::ParameterList("Belos"));
+  p->set("Convergence Tolerance", cfg.tolerance);
+  p->set("Maximum Iterations", cfg.max_iterations);
+  p->set("Num Blocks", cfg.restart);
+  p->set("Maximum Restarts", std::max(1, cfg.max_iterations / std::max(1, cfg.restart)));
+  p->set("Verbosity", Belos::Errors);
+  p->setParameters(*parse_xml(cfg.belos_xml));  // user pass-through wins
+  return p;
+}
+
+Teuchos::ParameterList schwarz_parameters(const LinearSolverConfig& cfg) {
+  Teuchos::ParameterList pl;
+  pl.set("schwarz: overlap level", cfg.overlap);
+  pl.set("inner preconditioner name", cfg.subdomain_solver == "KLU2" ? std::string("AMESOS2") : cfg.subdomain_solver);
+  Teuchos::ParameterList& inner = pl.sublist("inner preconditioner parameters");
+  if (cfg.subdomain_solver == "RILUK") inner.set("fact: iluk level-of-fill", cfg.fill_level);
+  if (cfg.subdomain_solver == "ILUT") inner.set("fact: ilut level-of-fill", static_cast<double>(std::max(1, cfg.fill_level)));
+  if (cfg.subdomain_solver == "KLU2") {
+    // Ifpack2's Amesos2 wrapper takes the solver's name here and its options from a
+    // sublist that must be called "Amesos2" (without it: "The ParameterList passed to
+    // Amesos2 must be called Amesos2", exit 1, before this fix).
+    inner.set("Amesos2 solver name", std::string("KLU2"));
+    inner.sublist("Amesos2");
+  }
+  pl.setParameters(*parse_xml(cfg.ifpack2_xml));
+  return pl;
+}
 
 LinearSolver::LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la::Comm>& comm) : impl_(new Impl) {
   impl_->cfg = cfg;
@@ -113,14 +149,7 @@ LinearSolver::LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la
 #endif
     impl_->auto_chosen = true;
   }
-  auto& p = impl_->belos_params;
-  p = Teuchos::rcp(new Teuchos::ParameterList("Belos"));
-  p->set("Convergence Tolerance", cfg.tolerance);
-  p->set("Maximum Iterations", cfg.max_iterations);
-  p->set("Num Blocks", cfg.restart);
-  p->set("Maximum Restarts", std::max(1, cfg.max_iterations / std::max(1, cfg.restart)));
-  p->set("Verbosity", Belos::Errors);
-  p->setParameters(*Impl::parse(cfg.belos_xml));  // user pass-through wins
+  impl_->belos_params = belos_parameters(cfg);
 #ifndef STENTOR_HAVE_AMESOS2
   if (cfg.method == "direct")
     throw InputError("Linear Solver->method: 'direct' needs Trilinos with Amesos2, which this build lacks; use 'gmres'");
@@ -174,20 +203,10 @@ void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
 #endif
   }
   if (!same || m.prec.is_null()) {
-    Teuchos::ParameterList pl;
-    std::string type;
-    if (m.cfg.preconditioner == "schwarz") {
-      type = "SCHWARZ";
-      pl.set("schwarz: overlap level", m.cfg.overlap);
-      pl.set("inner preconditioner name", m.cfg.subdomain_solver == "KLU2" ? std::string("AMESOS2") : m.cfg.subdomain_solver);
-      Teuchos::ParameterList& inner = pl.sublist("inner preconditioner parameters");
-      if (m.cfg.subdomain_solver == "RILUK") inner.set("fact: iluk level-of-fill", m.cfg.fill_level);
-      if (m.cfg.subdomain_solver == "ILUT") inner.set("fact: ilut level-of-fill", static_cast<double>(std::max(1, m.cfg.fill_level)));
-      if (m.cfg.subdomain_solver == "KLU2") inner.set("Amesos2 solver name", std::string("KLU2"));
-    } else {
+    if (m.cfg.preconditioner != "schwarz")
       throw InputError("Linear Solver->preconditioner: '" + m.cfg.preconditioner + "' is not available in this build (expected 'schwarz', 'muelu' or 'none')");
-    }
-    pl.setParameters(*Impl::parse(m.cfg.ifpack2_xml));
+    const Teuchos::ParameterList pl = schwarz_parameters(m.cfg);
+    const std::string type = "SCHWARZ";
     m.prec = Ifpack2::Factory::create<la::RowMatrix>(type, A);
     m.prec->setParameters(pl);
     m.prec->initialize();

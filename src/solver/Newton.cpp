@@ -1,5 +1,7 @@
 #include "solver/Newton.hpp"
 
+#include "solver/SolverParams.hpp"
+
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -32,9 +34,22 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
   }
   int damped_unsettled = 0;  // consecutive iterations whose full step changed the active set and was damped
   for (int it = 1; it <= cfg.max_iterations; ++it) {
-    lin.setup(sys.matrix());
+    LinearSolver::Result lr;
     r.scale(-1.0);
-    const LinearSolver::Result lr = lin.solve(r, du);
+    try {
+      lin.setup(sys.matrix());
+      lr = lin.solve(r, du);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      // A preconditioner or Krylov breakdown (MueLu "damping factor needs to be finite",
+      // Belos "residual norms is NaN"): a failed iteration, so the step is cut back. On
+      // several ranks the error may be one rank's alone while the others wait in a
+      // collective: there it ends the run on every rank (main's fail_all_ranks).
+      if (u.getMap()->getComm()->getSize() > 1) throw;
+      res.failure = "the linear solver failed: " + teuchos_short_message(e.what());
+      return res;
+    }
     r.scale(-1.0);
     res.linear_iterations += lr.iterations;
     if (!std::isfinite(du.norm2())) {

@@ -434,3 +434,30 @@ TEST(Dynamics, SpinningSquareConservesMomenta) {
 }
 
 }  // namespace
+
+// Stepping->predictor = velocity (u_n + dt v_n; + dt^2/2 a_n for newmark): the same
+// solution as Newton started at u_n (to Newton's tolerance), the energy identity still
+// exact for Gonzalez, and no more Newton iterations on the contact impact deck (measured
+// table: docs/robustness.md).
+TEST(Dynamics, VelocityPredictorSameSolution) {
+  for (const std::string scheme : {"gonzalez", "newmark"}) {
+    Config cfg = read_deck(std::string(STENTOR_SOURCE_DIR) + "/inputs/contact_block_impact.xml");
+    cfg.output.fields = false;
+    cfg.time.scheme = scheme;
+    cfg.stepping.end_time = 0.06;
+    cfg.stepping.num_steps = 60;
+    const RunOut a = run(cfg, "pred_none_" + scheme);
+    cfg.stepping.predictor = "velocity";
+    const RunOut b = run(cfg, "pred_velocity_" + scheme);
+    ASSERT_EQ(a.status, 0);
+    ASSERT_EQ(b.status, 0);
+    double d = 0.0, n = 0.0;
+    for (std::size_t i = 0; i < a.res.displacement.size(); ++i) {
+      d = std::max(d, std::abs(a.res.displacement[i] - b.res.displacement[i]));
+      n = std::max(n, std::abs(a.res.displacement[i]));
+    }
+    EXPECT_LT(d, 1e-6 * n) << scheme;
+    EXPECT_LE(b.res.newton_iterations, a.res.newton_iterations) << scheme;
+    if (scheme == "gonzalez") EXPECT_LT(max_abs(b.energy["balance_residual"]), 1e-5) << "energy identity";
+  }
+}

@@ -14,6 +14,7 @@
 
 #include "deck/Config.hpp"
 #include "solver/LinearSolver.hpp"
+#include "solver/SolverParams.hpp"
 #include "run/Simulation.hpp"
 
 using namespace stentor;
@@ -128,6 +129,98 @@ TEST(MueLu, AutoPicksWhatThisBuildHas) {
   const RunResult r = run(write_deck(2, 0.1, 2), "auto", "auto");
   EXPECT_TRUE(r.converged);
 }
+
+// Pass-through lists are validated by the packages before a run: each bad entry is an
+// InputError naming "Linear Solver-><package>-><parameter>" (issue 16; each of these was
+// exit 1 with raw Trilinos text, MueLu "max levels" = 0 a SIGSEGV).
+TEST(SolverParams, BadPassThroughEntriesNameTheParameter) {
+  struct Case {
+    const char* method;
+    const char* prec;
+    const char* belos;
+    const char* ifpack2;
+    const char* muelu;
+    const char* amesos2;
+    std::vector<std::string> expect;
+  };
+  auto pl = [](const char* name, const std::string& body) {
+    return std::string("<ParameterList name=\"") + name + "\">" + body + "</ParameterList>";
+  };
+  const std::vector<Case> cases = {
+      {"gmres", "none", "<Parameter name=\"Num Blocks\" type=\"int\" value=\"0\"/>", "", "", "", {"Linear Solver->Belos", "Num Blocks", "strictly positive"}},
+      {"gmres", "none", "<Parameter name=\"Convergence Tolerance\" type=\"string\" value=\"tiny\"/>", "", "", "",
+       {"Linear Solver->Belos->Convergence Tolerance", "wrong type", "double"}},
+      {"gmres", "none", "<Parameter name=\"Convergence Tolerance\" type=\"double\" value=\"-1\"/>", "", "", "",
+       {"Linear Solver->Belos->Convergence Tolerance", "finite number > 0"}},
+      {"gmres", "none", "<Parameter name=\"Orthogonalization\" type=\"string\" value=\"QR\"/>", "", "", "",
+       {"Linear Solver->Belos", "orthogonalization manager name"}},
+      {"gmres", "none", "<Parameter name=\"Num Blockz\" type=\"int\" value=\"5\"/>", "", "", "", {"Linear Solver->Belos->Num Blockz", "not found", "did you mean 'Num Blocks'"}},
+      {"gmres", "schwarz", "", "<Parameter name=\"schwarz: overlap levl\" type=\"int\" value=\"1\"/>", "", "",
+       {"Linear Solver->Ifpack2->schwarz: overlap levl", "not found"}},
+      {"gmres", "schwarz", "", "<Parameter name=\"schwarz: overlap level\" type=\"string\" value=\"one\"/>", "", "",
+       {"Linear Solver->Ifpack2->schwarz: overlap level", "int"}},
+      {"gmres", "schwarz", "", "<Parameter name=\"inner preconditioner name\" type=\"string\" value=\"NOPE\"/>", "", "",
+       {"Linear Solver->Ifpack2", "Ifpack2 refused"}},
+#ifdef STENTOR_HAVE_MUELU
+      {"gmres", "muelu", "", "", "<Parameter name=\"smoother: type\" type=\"string\" value=\"NOPE\"/>", "",
+       {"Linear Solver->MueLu->smoother: type = 'NOPE'", "MueLu cannot build"}},
+      {"gmres", "auto", "", "", "<Parameter name=\"max levels\" type=\"int\" value=\"0\"/>", "", {"Linear Solver->MueLu->max levels = 0", ">= 1"}},
+      {"gmres", "muelu", "", "", "<Parameter name=\"max levelz\" type=\"int\" value=\"3\"/>", "", {"Linear Solver->MueLu->max levelz", "max levels"}},
+      {"gmres", "muelu", "", "", "<ParameterList name=\"level 1\"><Parameter name=\"coarse: type\" type=\"string\" value=\"NOPE\"/></ParameterList>", "",
+       {"Linear Solver->MueLu->level 1->coarse: type = 'NOPE'"}},
+#endif
+#ifdef STENTOR_HAVE_AMESOS2
+      {"direct", "auto", "", "", "", "<Parameter name=\"Foo\" type=\"int\" value=\"1\"/>", {"Linear Solver->Amesos2->Foo", "not found"}},
+#endif
+  };
+  for (const Case& c : cases) {
+    LinearSolverConfig cfg;
+    cfg.method = c.method;
+    cfg.preconditioner = c.prec;
+    if (*c.belos) cfg.belos_xml = pl("Belos", c.belos);
+    if (*c.ifpack2) cfg.ifpack2_xml = pl("Ifpack2", c.ifpack2);
+    if (*c.muelu) cfg.muelu_xml = pl("MueLu", c.muelu);
+    if (*c.amesos2) cfg.amesos2_xml = pl("Amesos2", c.amesos2);
+    try {
+      validate_linear_solver(cfg);
+      ADD_FAILURE() << "accepted: " << c.expect[0];
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      for (const auto& f : c.expect) EXPECT_NE(what.find(f), std::string::npos) << "'" << f << "' not in: " << what;
+    }
+  }
+  // Valid lists pass (the shipped decks' and the documented combinations).
+  LinearSolverConfig ok;
+  ok.belos_xml = pl("Belos", "<Parameter name=\"Num Blocks\" type=\"int\" value=\"30\"/><Parameter name=\"Orthogonalization\" type=\"string\" value=\"ICGS\"/>");
+  ok.muelu_xml = pl("MueLu", "<Parameter name=\"smoother: type\" type=\"string\" value=\"CHEBYSHEV\"/><Parameter name=\"max levels\" type=\"int\" value=\"3\"/>");
+  EXPECT_NO_THROW(validate_linear_solver(ok));
+  for (const char* sub : {"RILUK", "ILUT", "KLU2"}) {
+    LinearSolverConfig s;
+    s.preconditioner = "schwarz";
+    s.subdomain_solver = sub;
+    s.ifpack2_xml = pl("Ifpack2", "<Parameter name=\"schwarz: overlap level\" type=\"int\" value=\"2\"/>");
+    EXPECT_NO_THROW(validate_linear_solver(s)) << sub;
+  }
+}
+
+#ifdef STENTOR_HAVE_AMESOS2
+// Schwarz with KLU2 subdomain solves (documented; was exit 1, "The ParameterList passed to
+// Amesos2 must be called Amesos2"): the same solution as RILUK subdomains.
+TEST(SolverParams, SchwarzKlu2SameSolutionAsRiluk) {
+  const std::string deck = write_deck(2, 0.1, 2);
+  Config cfg = read_deck(deck);
+  cfg.linear.preconditioner = "schwarz";
+  RunOptions opts;
+  opts.output_dir = (kDir / "out_riluk").string();
+  RunResult a, b;
+  ASSERT_EQ(run_simulation(cfg, opts, &a), 0);
+  cfg.linear.subdomain_solver = "KLU2";
+  opts.output_dir = (kDir / "out_klu2").string();
+  ASSERT_EQ(run_simulation(cfg, opts, &b), 0);
+  EXPECT_LT(rel_diff(b.displacement, a.displacement), 1e-8);
+  EXPECT_LE(b.linear_iterations, a.linear_iterations);
+}
+#endif
 
 #ifndef STENTOR_HAVE_MUELU
 // This build's Trilinos has no MueLu (e.g. the OpenMP build of ci/build-trilinos-openmp.sh):

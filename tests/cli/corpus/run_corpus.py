@@ -6,7 +6,7 @@ usage: run_corpus.py STENTOR CORPUS_DIR WORK_DIR [--jobs N] [--timeout S] [--mem
 
 Per case: `stentor --check [args] DECK` in its own folder WORK_DIR/<case>, under a
 wall-clock limit (--timeout, default 20 s) and an address-space limit (--mem-mb,
-default 4096). Where --check passes and the case is cheap to run (derived from
+default 4096; 0: none). Where --check passes and the case is cheap to run (derived from
 block2d, a .msh case, or an output-folder / mesh-size case), a real run follows
 under the same limits. Outcomes:
   good       exit 2 or 3 and stderr names the deck, mesh or output path
@@ -31,8 +31,9 @@ RUN_PREFIXES = ("block2d.", "msh_", "mesh_size_", "max_cells_", "outdir_", "cli_
 
 def limits(mem_mb):
     def apply():
-        m = mem_mb * 1024 * 1024
-        resource.setrlimit(resource.RLIMIT_AS, (m, m))
+        if mem_mb > 0:  # 0: no limit (AddressSanitizer reserves terabytes of address space)
+            m = mem_mb * 1024 * 1024
+            resource.setrlimit(resource.RLIMIT_AS, (m, m))
         resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
     return apply
 

@@ -1,0 +1,25 @@
+#!/usr/bin/env bash
+# A questionable deck that runs, with a warning naming the culprit on the log (stdout).
+# usage: warning.sh STENTOR WORKDIR MODE DECK [-e FRAGMENT]...
+#   MODE: check (`stentor --check`, exit 0) or run (a run into WORKDIR/out, exit 0 or 3)
+set -u
+. "$(dirname "$0")/lib.sh"
+stentor=$1 work=$2 mode=$3 deck=$4
+shift 4
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || fail "cannot make $work"
+if [ "$mode" = check ]; then
+  "$stentor" --check "$deck" > stdout.txt 2> stderr.txt
+  rc=$?
+  [ "$rc" -eq 0 ] || { cat stdout.txt stderr.txt; fail "--check: exit status $rc, expected 0"; }
+else
+  "$stentor" --output out "$deck" > stdout.txt 2> stderr.txt
+  rc=$?
+  [ "$rc" -eq 0 ] || [ "$rc" -eq 3 ] || { cat stdout.txt stderr.txt; fail "exit status $rc, expected 0 or 3"; }
+fi
+cat stdout.txt
+while [ $# -gt 0 ]; do
+  [ "$1" = "-e" ] || fail "expected -e FRAGMENT, got '$1'"
+  grep -qF -- "$2" stdout.txt || fail "the log does not contain '$2'"
+  shift 2
+done
+echo "PASS"
