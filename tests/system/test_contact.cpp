@@ -243,6 +243,7 @@ TEST(Contact, SameHistoryOnOneAndTwoRanks) {
   const std::string exe = std::string(STENTOR_BINARY_DIR) + "/stentor";
   const std::string deck = kInputs + "contact_block_impact.xml";
   Series h[2], e[2];
+  fs::create_directories(kDir);  // the shell writes <dir>.log there, before stentor creates <dir>
   for (int np = 1; np <= 2; ++np) {
     const fs::path dir = kDir / ("mpi" + std::to_string(np));
     // env -i: the test process is itself an MPI singleton; its OMPI_*/PMIX_* variables would
