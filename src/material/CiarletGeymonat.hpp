@@ -18,6 +18,7 @@
 // Requires det C > 0 (ln I3); the energy is NaN/inf otherwise, which callers
 // (line search, step cutting) can detect.
 #pragma once
+#include "material/InvariantTangent.hpp"
 #include "stentor/tensor.hpp"
 
 namespace stentor {
@@ -37,20 +38,20 @@ struct CiarletGeymonat {
 
   KOKKOS_INLINE_FUNCTION Mat3 stress(const Mat3& C) const {
     double I3;
-    const Mat3 Ci = inv_and_det(C, I3);
+    const Mat3 Ci = inverse_and_det(C, I3);
     return stress_from(C, Ci, I3);
   }
 
   KOKKOS_INLINE_FUNCTION void tangent(const Mat3& C, Ten4& CC) const {
     double I3;
-    const Mat3 Ci = inv_and_det(C, I3);
+    const Mat3 Ci = inverse_and_det(C, I3);
     tangent_from(Ci, I3, CC);
   }
 
   // One determinant/cofactor evaluation shared by S and CC (the Newton hot path).
   KOKKOS_INLINE_FUNCTION void stress_and_tangent(const Mat3& C, Mat3& S, Ten4& CC) const {
     double I3;
-    const Mat3 Ci = inv_and_det(C, I3);
+    const Mat3 Ci = inverse_and_det(C, I3);
     S = stress_from(C, Ci, I3);
     tangent_from(Ci, I3, CC);
   }
@@ -59,42 +60,15 @@ struct CiarletGeymonat {
   KOKKOS_INLINE_FUNCTION double lame_lambda() const { return 4.0 * (C2 + D); }
 
  private:
-  // C^{-1} via the cofactor (symmetric for symmetric C), and I3 = det C.
-  KOKKOS_INLINE_FUNCTION static Mat3 inv_and_det(const Mat3& C, double& I3) {
-    const Mat3 cof = cofactor(C);
-    I3 = C(0, 0) * cof(0, 0) + C(0, 1) * cof(0, 1) + C(0, 2) * cof(0, 2);  // row expansion
-    return (1.0 / I3) * cof;
-  }
-
+  // S = a I + b C + c Ci and CC = p (I⊗I - II) + q Ci⊗Ci + r (Ci_IK Ci_JL + Ci_IL Ci_JK)
+  // with the coefficients of the header comment (InvariantTangent.hpp fills them).
   KOKKOS_INLINE_FUNCTION Mat3 stress_from(const Mat3& C, const Mat3& Ci, double I3) const {
-    const double a = 2.0 * (C1 + C2 * trace(C));  // coefficient of I
-    const double b = -2.0 * C2;                   // coefficient of C
-    const double c = 2.0 * (D * I3 - K());        // coefficient of C^{-1}
-    Mat3 S;
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) S(i, j) = b * C(i, j) + c * Ci(i, j);
-    for (int i = 0; i < 3; ++i) S(i, i) += a;
-    return S;
+    return invariant_stress(C, Ci, 2.0 * (C1 + C2 * trace(C)), -2.0 * C2, 2.0 * (D * I3 - K()));
   }
 
-  // Fills CC using its minor symmetries: 36 distinct (IJ, KL) pairs with I<=J, K<=L
-  // are evaluated and copied to the (JI), (LK) permutations.
   KOKKOS_INLINE_FUNCTION void tangent_from(const Mat3& Ci, double I3, Ten4& CC) const {
-    const double a = 4.0 * C2;              // I⊗I - II
-    const double b = 4.0 * D * I3;          // Ci⊗Ci
-    const double g = 2.0 * (K() - D * I3);  // 4(K - D I3) * 1/2 from the symmetrisation
-    for (int I = 0; I < 3; ++I)
-      for (int J = I; J < 3; ++J)
-        for (int Kk = 0; Kk < 3; ++Kk)
-          for (int L = Kk; L < 3; ++L) {
-            double v = b * Ci(I, J) * Ci(Kk, L) + g * (Ci(I, Kk) * Ci(J, L) + Ci(I, L) * Ci(J, Kk));
-            if (I == J && Kk == L) v += a;
-            if (I == Kk && J == L) v -= (I == J) ? a : 0.5 * a;  // II: 1 on diagonal, 1/2 off
-            CC(I, J, Kk, L) = v;
-            CC(J, I, Kk, L) = v;
-            CC(I, J, L, Kk) = v;
-            CC(J, I, L, Kk) = v;
-          }
+    // r = 4(K - D I3) * 1/2 from the symmetrisation
+    invariant_tangent(Ci, 4.0 * C2, 4.0 * D * I3, 2.0 * (K() - D * I3), CC);
   }
 };
 

@@ -1,5 +1,5 @@
 // Building blocks shared by the isotropic laws written in the invariants of C
-// (NeoHookean.hpp, MooneyRivlin.hpp, HolzapfelGasserOgden.hpp).
+// (CiarletGeymonat.hpp, NeoHookean.hpp, MooneyRivlin.hpp, HolzapfelGasserOgden.hpp).
 //
 // With Ci = C^{-1}, J = sqrt(det C):
 //   dI1/dC = I,  dI2/dC = I1 I - C,  d(ln J)/dC = 1/2 Ci,
