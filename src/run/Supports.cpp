@@ -1,5 +1,7 @@
 #include "run/Supports.hpp"
 
+#include "mesh/MeshQuery.hpp"
+
 #include <algorithm>
 #include <numeric>
 
@@ -10,14 +12,6 @@ namespace {
 int find(std::vector<int>& parent, int i) {
   while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
   return i;
-}
-
-// The nodes of a boundary group.
-std::vector<GId> group_nodes(const Mesh& mesh, const std::string& group) {
-  std::vector<GId> nodes;
-  for (const auto& bb : mesh.boundaries)
-    if (bb.name == group) nodes.insert(nodes.end(), bb.conn.begin(), bb.conn.end());
-  return nodes;
 }
 
 // Node -> connected body (-1: in no body); `names`: the bodies of each connected body.
@@ -40,7 +34,7 @@ std::vector<int> connected_bodies(const Config& cfg, const Mesh& mesh, std::vect
     if (c.master.empty()) continue;
     int first = -1;
     for (const std::string& grp : {c.slave, c.master})
-      for (GId g : group_nodes(mesh, grp)) {
+      for (GId g : boundary_nodes(mesh, grp)) {
         const int b = node_body[static_cast<std::size_t>(g)];
         if (b < 0) continue;
         if (first < 0) first = b;
@@ -65,7 +59,7 @@ std::vector<std::string> unsupported_bodies(const Config& cfg, const Mesh& mesh,
   std::vector<char> contact(nb, 0);
   for (const auto& c : cfg.contact)  // a rigid obstacle may hold the body it touches
     if (c.master.empty())
-      for (GId g : group_nodes(mesh, c.slave))
+      for (GId g : boundary_nodes(mesh, c.slave))
         if (body[static_cast<std::size_t>(g)] >= 0) contact[static_cast<std::size_t>(body[static_cast<std::size_t>(g)])] = 1;
   std::vector<std::array<bool, 3>> held(nb, {false, false, false});
   std::vector<GId> first(nb, -1);
