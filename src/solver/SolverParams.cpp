@@ -14,6 +14,7 @@
 #include <Amesos2.hpp>
 #endif
 
+#include "deck/Schema.hpp"
 #include "parallel/LinearAlgebra.hpp"
 #include "solver/LinearSolver.hpp"
 
@@ -53,24 +54,10 @@ std::string teuchos_short_message(const std::string& what) {
 }
 
 std::string did_you_mean(const std::string& name, const Teuchos::ParameterList& valid) {
-  auto distance = [](const std::string& a, const std::string& b) {
-    std::vector<std::size_t> d(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) d[j] = j;
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-      std::size_t diag = d[0];
-      d[0] = i;
-      for (std::size_t j = 1; j <= b.size(); ++j) {
-        const std::size_t up = d[j];
-        d[j] = std::min({d[j] + 1, d[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-        diag = up;
-      }
-    }
-    return d[b.size()];
-  };
   std::string best;
   std::size_t best_d = std::max<std::size_t>(3, name.size() / 4) + 1;
   for (auto it = valid.begin(); it != valid.end(); ++it) {
-    const std::size_t dist = distance(name, valid.name(it));
+    const auto dist = static_cast<std::size_t>(edit_distance_ci(name, valid.name(it)));
     if (dist < best_d) best_d = dist, best = valid.name(it);
   }
   return best.empty() ? "" : " (did you mean '" + best + "'?)";

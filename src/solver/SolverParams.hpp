@@ -29,7 +29,8 @@ Teuchos::ParameterList schwarz_parameters(const LinearSolverConfig& cfg);
 // every valid parameter (a "Did you mean ...?" hint is kept).
 std::string teuchos_short_message(const std::string& what);
 
-// " (did you mean 'X'?)" for the name of `valid` nearest to `name` (edit distance), or "".
+// " (did you mean 'X'?)" for the name of `valid` nearest to `name` (deck/Schema.hpp's edit
+// distance, ignoring case like the deck's own suggestions), or "".
 std::string did_you_mean(const std::string& name, const Teuchos::ParameterList& valid);
 
 // MueLu's part (MueLuPreconditioner.cpp, where MueLu's headers are): the user list's
