@@ -72,15 +72,7 @@ Contact::~Contact() = default;
 
 Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, const Assembler& assembler)
     : dim_(mesh.dim), end_time_(cfg.stepping.end_time), dist_(dist) {
-  double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
-  for (std::size_t n = 0; n < mesh.num_nodes(); ++n)
-    for (int c = 0; c < 3; ++c) {
-      lo[c] = std::min(lo[c], mesh.x[3 * n + c]);
-      hi[c] = std::max(hi[c], mesh.x[3 * n + c]);
-    }
-  double diag = 0.0;
-  for (int c = 0; c < 3; ++c) diag += (hi[c] - lo[c]) * (hi[c] - lo[c]);
-  model_size_ = std::sqrt(diag);
+  model_size_ = mesh.bounding_box().diagonal();
   gap_tol_ = 1e-12 * model_size_;
 
   // Master surfaces first: their nodes may not be slaves of any pair.

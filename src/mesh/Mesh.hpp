@@ -38,6 +38,13 @@ struct Mesh {
   // Names of the physical groups present (volumes and boundaries), for error messages.
   std::vector<std::string> volume_group_names() const;
   std::vector<std::string> boundary_group_names() const;
+
+  // Axis-aligned box of all nodes (z = 0 in 2D), and its diagonal's length: the model's size.
+  struct Box {
+    double lo[3], hi[3];
+    double diagonal() const;
+  };
+  Box bounding_box() const;
 };
 
 }  // namespace stentor

@@ -161,12 +161,9 @@ void Reporter::open() {
       if (cfg_.output.fields) xdmf_ = std::make_unique<XdmfWriter>(staging_->path(), cfg_.output.basename, m_.mesh);
       const bool rigid = std::any_of(cfg_.contact.begin(), cfg_.contact.end(), [](const ContactPairConfig& c) { return !c.obstacle.empty(); });
       if (cfg_.output.fields && m_.contact && rigid) {
-        std::array<double, 3> lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300}, c{};
-        for (std::size_t n = 0; n < m_.mesh.num_nodes(); ++n)
-          for (std::size_t k = 0; k < 3; ++k) lo[k] = std::min(lo[k], m_.mesh.x[3 * n + k]), hi[k] = std::max(hi[k], m_.mesh.x[3 * n + k]);
-        double ext = 0.0;
-        for (std::size_t k = 0; k < 3; ++k) c[k] = 0.5 * (lo[k] + hi[k]), ext += (hi[k] - lo[k]) * (hi[k] - lo[k]);
-        obstacles_ = std::make_unique<ObstacleVtkWriter>(staging_->path(), cfg_.output.basename, m_.dim, std::sqrt(ext), c);
+        const Mesh::Box box = m_.mesh.bounding_box();
+        const std::array<double, 3> c{0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]), 0.5 * (box.lo[2] + box.hi[2])};
+        obstacles_ = std::make_unique<ObstacleVtkWriter>(staging_->path(), cfg_.output.basename, m_.dim, box.diagonal(), c);
       }
       history_ = std::make_unique<CsvWriter>(stem + "_history.csv", history_columns());
       if (m_.dynamic) energy_csv_ = std::make_unique<CsvWriter>(stem + "_energy.csv", energy_columns());
