@@ -767,7 +767,7 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
     out.cell_ids.insert(out.cell_ids.end(), lb.cell_ids.begin(), lb.cell_ids.end());
     if (nc == 0) continue;
     const ElasticLaw mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
-    const CiarletGeymonat cg = mat.cg;  // the plastic law's elastic part (Ciarlet-Geymonat only)
+    const CiarletGeymonat cg = block_plastic_law_[static_cast<std::size_t>(lb.volume_block)].elastic;  // with history
     // With history: the stress of the committed state at the kernels' Gauss points,
     // S = G Sbar(G^T C G) G^T, G = Ftr^-1 (FrozenPlasticPotential).
     const HistoryView hist = bi < history_.size() ? history_[bi].committed : HistoryView();
