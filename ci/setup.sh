@@ -7,7 +7,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 PKGS="build-essential cmake ninja-build ccache pkg-config trilinos-all-dev libptscotch-dev
       openmpi-bin libopenmpi-dev libmetis-dev libhdf5-openmpi-dev gmsh libgmsh-dev
-      libgtest-dev googletest gnuplot-nox ${STENTOR_EXTRA_PKGS:-}"
+      libgtest-dev googletest gnuplot-nox python3-meshio python3-h5py python3-numpy ${STENTOR_EXTRA_PKGS:-}"
 missing=""
 for p in $PKGS; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="$missing $p"

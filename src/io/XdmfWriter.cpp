@@ -42,6 +42,20 @@ int xdmf_node_permutation(CellType t, int perm[kMaxCellNodes]) {
   return n;
 }
 
+int xdmf_mixed_type_id(CellType t) {
+  // XDMF's cell type numbers in a "Mixed" topology (XdmfTopologyType.cpp, Xdmf 2 and 3).
+  switch (t) {
+    case CellType::Tri3: return 0x4;
+    case CellType::Quad4: return 0x5;
+    case CellType::Tet4: return 0x6;
+    case CellType::Hex8: return 0x9;
+    case CellType::Tri6: return 0x24;
+    case CellType::Quad8: return 0x25;
+    case CellType::Tet10: return 0x26;
+    default: return -1;
+  }
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -176,6 +190,13 @@ struct XdmfWriter::Impl {
   std::string h5_path, h5_name, xdmf_path;
   std::size_t num_nodes = 0, num_cells = 0;
   std::vector<Block> blocks;
+  // The whole mesh as one topology: /mesh/topology is num_cells x npc when every cell has
+  // one type, else the 1-D XDMF "Mixed" list (type id, nodes; topology_size entries).
+  std::string topology;
+  bool mixed = false;
+  int npc = 0;
+  std::size_t topology_size = 0;
+  std::string block_legend;  // "0: name; 1: name; ..." (the cell_block values)
   std::vector<Step> steps;  // completed
   bool in_step = false;
   Step current;
@@ -236,6 +257,7 @@ struct XdmfWriter::Impl {
     if (!in_step) fail(std::string(kind) + "('" + name + "') called outside begin_step/end_step");
     if (name.empty()) fail(std::string(kind) + ": empty field name");
     const std::string dset = dataset_name(name);
+    if (name == "cell_block") fail(std::string(kind) + ": the field name 'cell_block' is reserved");
     if (dset == "." || dset == "..") fail(std::string(kind) + ": invalid field name '" + name + "'");
     for (const auto& f : current.fields)
       if (f.name == name || dataset_name(f.name) == dset)
@@ -277,57 +299,80 @@ struct XdmfWriter::Impl {
                         const std::string& indent) const {
     std::ostringstream o;
     o << indent << "<DataItem Dimensions=\"" << rows;
-    if (ncomp != 1 || is_int) o << ' ' << ncomp;
+    if (ncomp != 1) o << ' ' << ncomp;
     o << "\" NumberType=\"" << (is_int ? "Int" : "Float") << "\" Precision=\"8\" Format=\"HDF\">"
       << xml_escape(h5_name) << ':' << xml_escape(path) << "</DataItem>\n";
     return o.str();
   }
 
+  // /mesh/topology (every block's cells in block order, one cell type or XDMF "Mixed"),
+  // /mesh/cell_block (the block index of each cell) and the block legend.
+  void write_whole_mesh(const Mesh& mesh, const std::vector<std::vector<long long>>& conn) {
+    std::set<CellType> types;
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      if (blocks[i].ncells > 0) types.insert(mesh.volumes[i].type);
+      block_legend += (i ? "; " : "") + std::to_string(i) + ": " + blocks[i].grid_name;
+    }
+    mixed = types.size() != 1;
+    std::vector<long long> topo, cell_block;
+    cell_block.reserve(num_cells);
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      const Block& b = blocks[i];
+      cell_block.insert(cell_block.end(), b.ncells, static_cast<long long>(i));
+      for (std::size_t c = 0; c < b.ncells; ++c) {
+        if (mixed) topo.push_back(xdmf_mixed_type_id(mesh.volumes[i].type));
+        topo.insert(topo.end(), conn[i].begin() + static_cast<std::ptrdiff_t>(c * b.npc),
+                    conn[i].begin() + static_cast<std::ptrdiff_t>((c + 1) * b.npc));
+      }
+    }
+    if (mixed) {
+      topology = "Mixed";
+      topology_size = topo.size();
+      const hsize_t d[1] = {static_cast<hsize_t>(topo.size())};
+      write_dataset(file.get(), "/mesh/topology", H5T_NATIVE_LLONG, 1, d, topo.data(), "/mesh/topology");
+    } else {
+      topology = xdmf_topology_name(*types.begin());
+      npc = cell_num_nodes(*types.begin());
+      const hsize_t d[2] = {static_cast<hsize_t>(num_cells), static_cast<hsize_t>(npc)};
+      write_dataset(file.get(), "/mesh/topology", H5T_NATIVE_LLONG, 2, d, topo.data(), "/mesh/topology");
+    }
+    H5Id ds(check(H5Dopen2(file.get(), "/mesh/topology", H5P_DEFAULT), "opening /mesh/topology"), H5Dclose);
+    write_string_attr(ds.get(), "topology", topology, "/mesh/topology");
+    const hsize_t d[1] = {static_cast<hsize_t>(num_cells)};
+    write_dataset(file.get(), "/mesh/cell_block", H5T_NATIVE_LLONG, 1, d, cell_block.data(), "/mesh/cell_block");
+  }
+
+  // One Uniform grid per step (see the header for why): Time, the whole mesh's Topology
+  // and Geometry, the block index per cell, then the step's fields.
   std::string xdmf_text() const {
     std::ostringstream o;
     o << "<?xml version=\"1.0\" ?>\n"
       << "<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
       << "<Xdmf Version=\"3.0\">\n"
       << "  <Domain>\n"
+      << "    <Information Name=\"cell_block\" Value=\"" << xml_escape(block_legend) << "\"/>\n"
       << "    <Grid Name=\"TimeSeries\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    const bool several = blocks.size() > 1;
+    const std::string in = "          ";
     for (const auto& s : steps) {
-      o << "      <Grid Name=\"" << s.group.substr(1)
-        << "\" GridType=\"Collection\" CollectionType=\"Spatial\">\n"
-        << "        <Time Value=\"" << fmt_double(s.time) << "\"/>\n";
-      for (const auto& b : blocks) {
-        if (b.ncells == 0) continue;
-        const std::string in = "            ";
-        o << "        <Grid Name=\"" << xml_escape(b.grid_name) << "\" GridType=\"Uniform\">\n"
-          << "          <Topology TopologyType=\"" << b.topology << "\" NumberOfElements=\""
-          << b.ncells << "\">\n"
-          << data_item(b.conn_path, b.ncells, b.npc, true, in) << "          </Topology>\n"
-          << "          <Geometry GeometryType=\"XYZ\">\n"
-          << data_item("/mesh/coordinates", num_nodes, 3, false, in) << "          </Geometry>\n";
-        for (const auto& f : s.fields) {
-          const char* at = f.ncomp == 1 ? "Scalar" : f.ncomp == 3 ? "Vector" : "Tensor";
-          o << "          <Attribute Name=\"" << xml_escape(f.name) << "\" AttributeType=\"" << at
-            << "\" Center=\"" << (f.on_nodes ? "Node" : "Cell") << "\">\n";
-          if (f.on_nodes || !several) {
-            o << data_item(f.path, f.on_nodes ? num_nodes : num_cells, f.ncomp, false, in);
-          } else {
-            // Rows [offset, offset+ncells) of the all-cells dataset.
-            const bool one_d = f.ncomp == 1;
-            o << in << "<DataItem ItemType=\"HyperSlab\" Dimensions=\"" << b.ncells;
-            if (!one_d) o << ' ' << f.ncomp;
-            o << "\" Type=\"HyperSlab\">\n";
-            o << in << "  <DataItem Dimensions=\"3 " << (one_d ? 1 : 2)
-              << "\" NumberType=\"Int\" Format=\"XML\">";
-            if (one_d)
-              o << b.offset << ' ' << 1 << ' ' << b.ncells;
-            else
-              o << b.offset << " 0 1 1 " << b.ncells << ' ' << f.ncomp;
-            o << "</DataItem>\n"
-              << data_item(f.path, num_cells, f.ncomp, false, in + "  ") << in << "</DataItem>\n";
-          }
-          o << "          </Attribute>\n";
-        }
-        o << "        </Grid>\n";
+      o << "      <Grid Name=\"" << s.group.substr(1) << "\" GridType=\"Uniform\">\n"
+        << "        <Time Value=\"" << fmt_double(s.time) << "\"/>\n"
+        << "        <Topology TopologyType=\"" << topology << "\" NumberOfElements=\"" << num_cells
+        << "\">\n";
+      if (mixed)
+        o << data_item("/mesh/topology", topology_size, 1, true, in);
+      else
+        o << data_item("/mesh/topology", num_cells, npc, true, in);
+      o << "        </Topology>\n"
+        << "        <Geometry GeometryType=\"XYZ\">\n"
+        << data_item("/mesh/coordinates", num_nodes, 3, false, in) << "        </Geometry>\n"
+        << "        <Attribute Name=\"cell_block\" AttributeType=\"Scalar\" Center=\"Cell\">\n"
+        << data_item("/mesh/cell_block", num_cells, 1, true, in) << "        </Attribute>\n";
+      for (const auto& f : s.fields) {
+        const char* at = f.ncomp == 1 ? "Scalar" : f.ncomp == 3 ? "Vector" : "Tensor";
+        o << "        <Attribute Name=\"" << xml_escape(f.name) << "\" AttributeType=\"" << at
+          << "\" Center=\"" << (f.on_nodes ? "Node" : "Cell") << "\">\n"
+          << data_item(f.path, f.on_nodes ? num_nodes : num_cells, f.ncomp, false, in)
+          << "        </Attribute>\n";
       }
       o << "      </Grid>\n";
     }
@@ -399,6 +444,7 @@ XdmfWriter::XdmfWriter(const std::string& dir, const std::string& basename, cons
   hsize_t dims[2] = {static_cast<hsize_t>(m.num_nodes), 3};
   m.write_dataset(g.get(), "coordinates", H5T_NATIVE_DOUBLE, 2, dims, mesh.x.data(),
                   "/mesh/coordinates");
+  std::vector<std::vector<long long>> block_conn;  // XDMF node order
   for (std::size_t i = 0; i < mesh.volumes.size(); ++i) {
     const CellBlock& cb = mesh.volumes[i];
     const Impl::Block& b = m.blocks[i];
@@ -415,7 +461,9 @@ XdmfWriter::XdmfWriter(const std::string& dir, const std::string& basename, cons
       for (int j = 0; j < b.npc; ++j) conn[c * b.npc + j] = cb.conn[c * b.npc + perm[j]];
     hsize_t cd[2] = {static_cast<hsize_t>(b.ncells), static_cast<hsize_t>(b.npc)};
     m.write_dataset(bg.get(), "connectivity", H5T_NATIVE_LLONG, 2, cd, conn.data(), b.conn_path);
+    block_conn.push_back(std::move(conn));
   }
+  m.write_whole_mesh(mesh, block_conn);
   m.check_status(H5Fflush(m.file.get(), H5F_SCOPE_GLOBAL), "H5Fflush");
 }
 

@@ -1,4 +1,5 @@
-// Results for ParaView: one HDF5 file with the heavy data and an XDMF file describing it.
+// Results for ParaView (its three XDMF readers) and meshio: one HDF5 file with the heavy
+// data and an XDMF file describing it.
 //
 // Serial writer: the caller gathers the mesh and the fields on one rank (rank 0) and
 // creates/uses the writer there only; the HDF5 file is opened with the default (sec2)
@@ -6,21 +7,38 @@
 //
 // <dir>/<basename>.h5
 //   /mesh/coordinates            num_nodes x 3 doubles (z = 0 in 2D)
-//   /mesh/block_<i>/connectivity num_cells x nodes_per_cell int64, XDMF/VTK node order
-//                                (gmsh tet10 differs: its nodes 8 and 9 are swapped);
+//   /mesh/topology               every volume cell, blocks in order, XDMF/VTK node order
+//                                (= meshio's; gmsh tet10 differs: its nodes 8 and 9 are
+//                                swapped): num_cells x nodes_per_cell int64 when all cells
+//                                have one type, else XDMF's 1-D "Mixed" list (per cell its
+//                                XDMF type number, then its nodes); attribute "topology"
+//   /mesh/cell_block             num_cells int64: the volume block of each cell (0, 1, ...)
+//   /mesh/block_<i>/connectivity num_cells_i x nodes_per_cell int64 (the same node order);
 //                                attributes "name" (physical group), "topology"
-//   /step_<k>                    one group per step, attribute "time"
+//   /step_<k>                    one group per step, attribute "time" (double)
 //   /step_<k>/<field>            (characters other than [A-Za-z0-9_.+-] replaced by '_';
 //                                the XDMF Attribute keeps the name as given)
-//                                num_nodes x ncomp (node field) or num_volume_cells x ncomp
+//                                num_nodes x ncomp (node field) or num_cells x ncomp
 //                                (cell field, cells in block order); scalars are 1-D.
 //                                Symmetric tensors (ncomp 6, given as xx,yy,zz,xy,yz,xz)
 //                                are stored expanded to full 3x3 row-major (9 components),
 //                                which every ParaView XDMF reader interprets alike.
-// <dir>/<basename>.xdmf
-//   Temporal collection of steps; each step a spatial collection of one Uniform grid per
-//   (non-empty) volume block, all sharing /mesh/coordinates. Node fields reference the
-//   whole dataset, cell fields the block's rows (HyperSlab when there are several blocks).
+// <dir>/<basename>.xdmf (XDMF 3)
+//   <Domain>: an Information "cell_block" ("0: <block name>; 1: ...") and a Temporal
+//   collection with one Uniform grid per step: <Time>, the whole mesh (Topology on
+//   /mesh/topology, Geometry on /mesh/coordinates), the cell attribute "cell_block", then
+//   the step's fields, each a plain HDF DataItem on its whole dataset.
+//   Why one Uniform grid per step, not a Spatial collection of one grid per block (before
+//   issue 13): meshio's TimeSeriesReader reads the mesh from one Uniform grid and takes a
+//   step's Attributes only from the step's own element (Attributes of nested grids are
+//   skipped, HyperSlab DataItems are not understood): it failed with "Unknown section
+//   'Grid'" or found no data. (meshio.read() reads single-grid files only, no time series
+//   of anyone's; meshio documents TimeSeriesReader for these.) A temporal collection of Uniform grids whose
+//   DataItems reference HDF5 datasets is the plain XDMF 2/3 pattern (FEniCS, meshio write
+//   it) that ParaView's "XDMF Reader" (Xdmf 2) and Xdmf3ReaderS/T read: the blocks now come
+//   as one unstructured grid, told apart by "cell_block" (Threshold on it in ParaView).
+//   "Mixed" (bodies of different cell types, e.g. triangles and quadrilaterals) is read by
+//   ParaView's readers; meshio 5.0 (Debian 12) knows only linear types in a Mixed list.
 //   Rewritten (write to .tmp + rename) by every end_step() after the .h5 was flushed, so
 //   the pair is consistent whenever end_step() has returned.
 //
@@ -42,6 +60,10 @@ const char* xdmf_topology_name(CellType t);
 // nodes (perm filled for j < n), 0 for types without an XDMF equivalent.
 int xdmf_node_permutation(CellType t, int perm[kMaxCellNodes]);
 
+// XDMF's number of a cell type in a "Mixed" topology (0x26 for Tetrahedron_10, ...);
+// -1 for types without an XDMF topology here.
+int xdmf_mixed_type_id(CellType t);
+
 class XdmfWriter {
  public:
   // Writes <dir>/<basename>.h5 with the mesh (dir must exist). Only mesh.volumes are
@@ -56,6 +78,7 @@ class XdmfWriter {
   // major) or 6 (symmetric tensor: xx,yy,zz,xy,yz,xz).
   void node_field(const std::string& name, int ncomp, const std::vector<double>& data);
   // num_volume_cells*ncomp values, cells in block order (all of volumes[0], then ...).
+  // The name "cell_block" is reserved (the writer's own block index).
   void cell_field(const std::string& name, int ncomp, const std::vector<double>& data);
   // Flushes the step's datasets to the .h5, then rewrites the .xdmf.
   void end_step();

@@ -456,86 +456,95 @@ TEST(XdmfWriter, WritesMeshFieldsAndConsistentXdmf) {
     EXPECT_EQ(read_doubles(f.id, g + "/cell_id"), (std::vector<double>{0, 1, 2, 3}));
   }
 
-  // XDMF: well-formed, two time steps of three block grids, every DataItem resolves.
+  // The whole mesh: the three blocks' cells in block order as one XDMF "Mixed" list
+  // (type number, nodes), and each cell's block.
+  EXPECT_EQ(read_ints(f.id, "/mesh/topology"),
+            (std::vector<long long>{0x4, 0, 1, 2, 0x4, 0, 2, 3, 0x5, 1, 4, 5, 2, 0x26, 6, 7, 8, 9,
+                                    10, 11, 12, 13, 15, 14}));
+  EXPECT_EQ(read_ints(f.id, "/mesh/cell_block"), (std::vector<long long>{0, 0, 1, 2}));
+
+  // XDMF: well-formed, two time steps, each one Uniform grid with the whole mesh (what
+  // meshio's TimeSeriesReader and ParaView's readers both read), every DataItem resolves.
   const XmlNode x = XmlParser(slurp(dir / "result.xdmf")).document();
   EXPECT_EQ(x.name, "Xdmf");
+  EXPECT_EQ(x.attr("Version"), "3.0");
   ASSERT_EQ(x.children("Domain").size(), 1u);
   const XmlNode& dom = *x.children("Domain")[0];
   ASSERT_EQ(dom.children("Grid").size(), 1u);
+  ASSERT_EQ(dom.children("Information").size(), 1u);
+  EXPECT_EQ(dom.children("Information")[0]->attr("Value"), "0: tris; 1: quad; 2: tet");
   const XmlNode& series = *dom.children("Grid")[0];
   EXPECT_EQ(series.attr("GridType"), "Collection");
   EXPECT_EQ(series.attr("CollectionType"), "Temporal");
   const auto steps = series.children("Grid");
   ASSERT_EQ(steps.size(), 2u);
-  const std::vector<std::string> names = {"tris", "quad", "tet"};
-  const std::vector<std::string> topo = {"Triangle", "Quadrilateral", "Tetrahedron_10"};
-  const std::vector<int> ncells = {2, 1, 1}, offset = {0, 2, 3};
   for (int s = 0; s < 2; ++s) {
-    const XmlNode& st = *steps[s];
-    EXPECT_EQ(st.attr("CollectionType"), "Spatial");
-    ASSERT_EQ(st.children("Time").size(), 1u);
-    EXPECT_EQ(std::stod(st.children("Time")[0]->attr("Value")), s * 0.5);
-    const auto grids = st.children("Grid");
-    ASSERT_EQ(grids.size(), 3u);
-    for (int b = 0; b < 3; ++b) {
-      const XmlNode& g = *grids[b];
-      EXPECT_EQ(g.attr("Name"), names[b]);
-      ASSERT_EQ(g.children("Topology").size(), 1u);
-      EXPECT_EQ(g.children("Topology")[0]->attr("TopologyType"), topo[b]);
-      EXPECT_EQ(g.children("Topology")[0]->attr("NumberOfElements"), std::to_string(ncells[b]));
-      ASSERT_EQ(g.children("Geometry").size(), 1u);
-      EXPECT_EQ(g.children("Geometry")[0]->attr("GeometryType"), "XYZ");
-      std::map<std::string, const XmlNode*> attrs;
-      for (const XmlNode* a : g.children("Attribute")) attrs[a->attr("Name")] = a;
-      ASSERT_EQ(attrs.size(), 4u);
-      EXPECT_EQ(attrs["displacement"]->attr("AttributeType"), "Vector");
-      EXPECT_EQ(attrs["displacement"]->attr("Center"), "Node");
-      EXPECT_EQ(attrs["temperature"]->attr("AttributeType"), "Scalar");
-      EXPECT_EQ(attrs["stress"]->attr("AttributeType"), "Tensor");
-      EXPECT_EQ(attrs["stress"]->attr("Center"), "Cell");
-      ASSERT_NE(attrs["cell id"], nullptr);
-      // Cell fields select this block's rows of the all-cells dataset.
-      const XmlNode& hs = *attrs["stress"]->children("DataItem")[0];
-      EXPECT_EQ(hs.attr("ItemType"), "HyperSlab");
-      EXPECT_EQ(parse_dims(hs.attr("Dimensions")),
-                (std::vector<hsize_t>{static_cast<hsize_t>(ncells[b]), 9}));
-      ASSERT_EQ(hs.children("DataItem").size(), 2u);
-      EXPECT_EQ(parse_dims(hs.children("DataItem")[0]->text),
-                (std::vector<hsize_t>{static_cast<hsize_t>(offset[b]), 0, 1, 1,
-                                      static_cast<hsize_t>(ncells[b]), 9}));
-      EXPECT_EQ(trim(hs.children("DataItem")[1]->text),
-                "result.h5:/step_" + std::to_string(s) + "/stress");
-      const XmlNode& hs1 = *attrs["cell id"]->children("DataItem")[0];
-      EXPECT_EQ(parse_dims(hs1.children("DataItem")[0]->text),
-                (std::vector<hsize_t>{static_cast<hsize_t>(offset[b]), 1,
-                                      static_cast<hsize_t>(ncells[b])}));
-    }
+    const XmlNode& g = *steps[s];
+    EXPECT_EQ(g.attr("GridType"), "Uniform");
+    EXPECT_TRUE(g.children("Grid").empty());
+    ASSERT_EQ(g.children("Time").size(), 1u);
+    EXPECT_EQ(std::stod(g.children("Time")[0]->attr("Value")), s * 0.5);
+    ASSERT_EQ(g.children("Topology").size(), 1u);
+    const XmlNode& topo = *g.children("Topology")[0];
+    EXPECT_EQ(topo.attr("TopologyType"), "Mixed");
+    EXPECT_EQ(topo.attr("NumberOfElements"), "4");
+    EXPECT_EQ(parse_dims(topo.children("DataItem")[0]->attr("Dimensions")), (std::vector<hsize_t>{24}));
+    ASSERT_EQ(g.children("Geometry").size(), 1u);
+    EXPECT_EQ(g.children("Geometry")[0]->attr("GeometryType"), "XYZ");
+    std::map<std::string, const XmlNode*> attrs;
+    for (const XmlNode* a : g.children("Attribute")) attrs[a->attr("Name")] = a;
+    ASSERT_EQ(attrs.size(), 5u);
+    EXPECT_EQ(attrs["displacement"]->attr("AttributeType"), "Vector");
+    EXPECT_EQ(attrs["displacement"]->attr("Center"), "Node");
+    EXPECT_EQ(attrs["temperature"]->attr("AttributeType"), "Scalar");
+    EXPECT_EQ(attrs["stress"]->attr("AttributeType"), "Tensor");
+    EXPECT_EQ(attrs["stress"]->attr("Center"), "Cell");
+    EXPECT_EQ(attrs["cell_block"]->attr("Center"), "Cell");
+    ASSERT_NE(attrs["cell id"], nullptr);
+    // Cell fields reference their whole dataset (the grid has every cell).
+    const XmlNode& di = *attrs["stress"]->children("DataItem")[0];
+    EXPECT_EQ(di.attr("Format"), "HDF");
+    EXPECT_EQ(parse_dims(di.attr("Dimensions")), (std::vector<hsize_t>{4, 9}));
+    EXPECT_EQ(trim(di.text), "result.h5:/step_" + std::to_string(s) + "/stress");
   }
   int count = 0;
   check_data_items(x, dir, count);
-  // Per step and block: topology, geometry, 4 fields.
-  EXPECT_EQ(count, 2 * 3 * 6);
+  // Per step: topology, geometry, cell_block, 4 fields.
+  EXPECT_EQ(count, 2 * 7);
 }
 
-TEST(XdmfWriter, SingleBlockReferencesDatasetsDirectly) {
+TEST(XdmfWriter, OneCellTypeIsOneTopology) {
   const fs::path dir = scratch("xdmf_single");
   Mesh mesh = test_mesh();
   mesh.volumes.erase(mesh.volumes.begin(), mesh.volumes.begin() + 2);  // tet10 only
+  mesh.volumes.push_back(mesh.volumes[0]);                             // a second tet10 block
+  mesh.volumes[1].name = "tet";                                        // same name: made unique
   {
     XdmfWriter w(dir.string(), "one", mesh);
     w.begin_step(1.0);
-    w.cell_field("p", 1, {42.0});
+    w.cell_field("p", 1, {42.0, 43.0});
+    EXPECT_THROW(w.cell_field("cell_block", 1, {0.0, 0.0}), std::runtime_error);  // reserved
     w.end_step();
   }
   const XmlNode x = XmlParser(slurp(dir / "one.xdmf")).document();
-  const XmlNode& g = *x.children("Domain")[0]->children("Grid")[0]->children("Grid")[0]
-                          ->children("Grid")[0];
-  const XmlNode& di = *g.children("Attribute")[0]->children("DataItem")[0];
+  EXPECT_EQ(x.children("Domain")[0]->children("Information")[0]->attr("Value"), "0: tet; 1: tet_1");
+  const XmlNode& g = *x.children("Domain")[0]->children("Grid")[0]->children("Grid")[0];
+  const XmlNode& topo = *g.children("Topology")[0];
+  EXPECT_EQ(topo.attr("TopologyType"), "Tetrahedron_10");
+  EXPECT_EQ(topo.attr("NumberOfElements"), "2");
+  EXPECT_EQ(parse_dims(topo.children("DataItem")[0]->attr("Dimensions")), (std::vector<hsize_t>{2, 10}));
+  H5File f((dir / "one.h5").string());
+  const std::vector<long long> tet = {6, 7, 8, 9, 10, 11, 12, 13, 15, 14};
+  std::vector<long long> both = tet;
+  both.insert(both.end(), tet.begin(), tet.end());
+  EXPECT_EQ(read_ints(f.id, "/mesh/topology"), both);
+  EXPECT_EQ(read_ints(f.id, "/mesh/cell_block"), (std::vector<long long>{0, 1}));
+  const XmlNode& di = *g.children("Attribute")[1]->children("DataItem")[0];
   EXPECT_EQ(di.attr("Format"), "HDF");
   EXPECT_EQ(trim(di.text), "one.h5:/step_0/p");
   int count = 0;
   check_data_items(x, dir, count);
-  EXPECT_EQ(count, 3);
+  EXPECT_EQ(count, 4);
 }
 
 TEST(XdmfWriter, Errors) {
