@@ -99,20 +99,23 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
   auto fh = Kokkos::create_mirror_view(dirichlet_flag_);
   Kokkos::deep_copy(fh, 0);
   std::vector<int> owned_set(static_cast<std::size_t>(dist.num_owned_nodes()) * dim_, -1);
+  // The set a constrained dof's reaction is reported for: the first set in deck order that
+  // constrains this component of this node (a node shared by two sets counts once).
+  std::vector<int> first_set(owned_set.size(), -1);
   std::vector<double> owned_val(owned_set.size(), 0.0);
-  dirichlet_owned_nodes_.resize(loads.dirichlet.size());
   for (std::size_t s = 0; s < loads.dirichlet.size(); ++s) {
     const DirichletSet& d = loads.dirichlet[s];
     for (GId g : d.nodes) {
       const la::LO l = dist.local_node(g);
       if (l < 0) continue;
-      if (l < dist.num_owned_nodes()) dirichlet_owned_nodes_[s].push_back(l);
       const std::array<double, 3> value = d.field ? d.field(&mesh.x[3 * static_cast<std::size_t>(g)]) : d.values;
       for (int c = 0; c < dim_; ++c) {
         if (!d.components[static_cast<std::size_t>(c)]) continue;
         fh(static_cast<std::size_t>(l) * dim_ + c) = 1;
         if (l < dist.num_owned_nodes()) {  // later sets override earlier ones on shared nodes
           owned_set[static_cast<std::size_t>(l) * dim_ + c] = static_cast<int>(s);
+          int& first = first_set[static_cast<std::size_t>(l) * dim_ + c];
+          if (first < 0) first = static_cast<int>(s);
           owned_val[static_cast<std::size_t>(l) * dim_ + c] = value[static_cast<std::size_t>(c)];
         }
       }
@@ -124,6 +127,7 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
       owned_dirichlet_dofs_.push_back(static_cast<la::LO>(i));
       owned_dirichlet_value_.push_back(owned_val[i]);
       owned_dirichlet_set_.push_back(owned_set[i]);
+      owned_reaction_set_.push_back(first_set[i]);
     }
   owned_dirichlet_flag_.assign(owned_set.size(), 0);
   for (la::LO i : owned_dirichlet_dofs_) owned_dirichlet_flag_[static_cast<std::size_t>(i)] = 1;
@@ -680,9 +684,10 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
     // Reactions, then zero the constrained rows.
     auto rh = r.getLocalViewHost(Tpetra::Access::ReadWrite);
     std::vector<double> loc(3 * reactions_.size(), 0.0), glob(loc.size(), 0.0);
-    for (std::size_t s = 0; s < dirichlet_owned_nodes_.size(); ++s)
-      for (la::LO l : dirichlet_owned_nodes_[s])
-        for (int d = 0; d < dim_; ++d) loc[3 * s + d] += rh(l * dim_ + d, 0);
+    for (std::size_t k = 0; k < owned_dirichlet_dofs_.size(); ++k) {
+      const la::LO i = owned_dirichlet_dofs_[k];
+      loc[3 * static_cast<std::size_t>(owned_reaction_set_[k]) + static_cast<std::size_t>(i % dim_)] += rh(i, 0);
+    }
     if (!loc.empty()) Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), glob.data());
     for (std::size_t s = 0; s < reactions_.size(); ++s) reactions_[s] = {glob[3 * s], glob[3 * s + 1], glob[3 * s + 2]};
     dirichlet_r_.resize(owned_dirichlet_dofs_.size());

@@ -105,7 +105,10 @@ class Assembler {
   // Sets the prescribed values at time t on the owned Dirichlet dofs of u.
   void apply_dirichlet(la::Vector& u, double t, double end_time) const;
 
-  // Reaction force (sum over each Dirichlet set's nodes, all components) from the last assemble().
+  // Reaction force per Dirichlet set from the last assemble(): the residual summed over the
+  // dofs the set constrains (its nodes' listed components only; the other components are
+  // 0). A dof constrained by several sets counts once, for the first of them in deck order
+  // (the prescribed value is the last one's), so the sets' reactions add up to the total.
   const std::vector<std::array<double, 3>>& reactions() const { return reactions_; }
   const std::vector<DirichletSet>& dirichlet_sets() const { return loads_.dirichlet; }
 
@@ -171,7 +174,8 @@ class Assembler {
   Kokkos::View<int*, la::ExecSpace> failures_;
   std::vector<la::LO> owned_dirichlet_dofs_;
   std::vector<double> owned_dirichlet_value_;           // full value (times ramp of its set)
-  std::vector<int> owned_dirichlet_set_;
+  std::vector<int> owned_dirichlet_set_;                // the set whose value is prescribed (the last)
+  std::vector<int> owned_reaction_set_;                 // the set its reaction counts for (the first)
 
   // Dead loads (traction, body force): assembled once for a unit ramp, scaled each step.
   struct DeadLoad {
@@ -190,7 +194,6 @@ class Assembler {
   };
   std::vector<PressureLoad> pressures_;
   std::vector<std::array<double, 3>> reactions_;
-  std::vector<std::vector<la::LO>> dirichlet_owned_nodes_;  // per set
 };
 
 }  // namespace stentor

@@ -125,14 +125,21 @@ void Reporter::print_solvers() {
 
 std::vector<std::string> Reporter::history_columns() const {
   std::vector<std::string> columns = {"step", "time", "dt", "newton_iterations", "linear_iterations", "cutbacks", "strain_energy"};
-  for (const auto& d : m_.assembler->dirichlet_sets())
-    for (int k = 0; k < m_.dim; ++k) columns.push_back("reaction_" + d.name + "_" + kAxes[k]);
+  for (const auto& c : reaction_columns()) columns.push_back(c);
   for (const auto& p : cfg_.output.probes)
     for (int k = 0; k < m_.dim; ++k) columns.push_back("u_" + p.name + "_" + kAxes[k]);
   if (m_.contact)
     for (const auto& c : m_.contact->history_columns()) columns.push_back(c);
   if (m_.assembler->has_history()) columns.push_back("plastic_dissipation");  // of the step
   if (!cfg_.stages.empty()) columns.push_back("stage");
+  return columns;
+}
+
+std::vector<std::string> Reporter::reaction_columns() const {
+  std::vector<std::string> columns;
+  for (const auto& d : m_.assembler->dirichlet_sets())
+    for (int k = 0; k < m_.dim; ++k)
+      if (d.components[static_cast<std::size_t>(k)]) columns.push_back("reaction_" + d.name + "_" + kAxes[k]);
   return columns;
 }
 
@@ -306,8 +313,10 @@ void Reporter::history_row(const RunState& s, const StepRecord& rec, double ener
   const int dim = m_.dim;
   std::vector<double> row = {double(s.step), s.t, rec.dt, double(rec.newton.iterations), double(rec.newton.linear_iterations),
                              double(s.control.total_cuts()), energy};
-  for (const auto& rf : m_.assembler->reactions())
-    for (int k = 0; k < dim; ++k) row.push_back(rf[static_cast<std::size_t>(k)]);
+  for (std::size_t i = 0; i < m_.assembler->reactions().size(); ++i)  // as reaction_columns()
+    for (int k = 0; k < dim; ++k)
+      if (m_.assembler->dirichlet_sets()[i].components[static_cast<std::size_t>(k)])
+        row.push_back(m_.assembler->reactions()[i][static_cast<std::size_t>(k)]);
   for (std::size_t p = 0; p < m_.probe_node.size(); ++p)
     for (int k = 0; k < dim; ++k) row.push_back(pv[3 * p + k]);
   if (m_.contact)
@@ -393,9 +402,7 @@ void Reporter::summary(const RunState& s) {
 void Reporter::plots() {
   const std::string stem = staging_->path() + "/" + cfg_.output.basename;
   const std::string csv = stem + "_history.csv";
-  std::vector<std::string> rcols;
-  for (const auto& d : m_.assembler->dirichlet_sets())
-    for (int k = 0; k < m_.dim; ++k) rcols.push_back("reaction_" + d.name + "_" + kAxes[k]);
+  const std::vector<std::string> rcols = reaction_columns();
   if (!rcols.empty()) plot_csv_png(csv, stem + "_reactions.png", "time", rcols, "Reaction forces", "force");
   if (m_.dynamic) {
     const std::string ecsv = stem + "_energy.csv";

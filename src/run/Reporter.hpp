@@ -74,6 +74,8 @@ class Reporter {
  private:
   std::vector<double> probe_values(const la::Vector& u) const;  // collective
   std::vector<std::string> history_columns() const;
+  // reaction_<set>_<axis> for the components each Dirichlet set constrains (deck order).
+  std::vector<std::string> reaction_columns() const;
   std::vector<std::string> energy_columns() const;
   void plots();
 
