@@ -1,5 +1,8 @@
 // stentor: command-line entry point.
+#include <Kokkos_Macros.hpp>
 #include <Tpetra_Core.hpp>
+#include <Trilinos_version.h>
+#include <hdf5.h>
 #include <mpi.h>
 
 #include <chrono>
@@ -11,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "deck/Config.hpp"
 #include "io/LogCopy.hpp"
@@ -32,11 +36,54 @@ const char* kUsage =
     "                 (files with the names of the results are replaced, no other file)\n"
     "  --restart FILE continue from checkpoint FILE (Output->checkpoint every), on any number of ranks\n"
     "  --verbose      print every Newton iteration\n"
+    "  --version      print Stentor's version and the library versions it was built with\n"
     "  --help         this text\n"
+    "  --kokkos-...   Kokkos's own options (--kokkos-help lists them)\n"
     "\n"
     "exit status: 0 success, 1 internal error, 2 invalid input (or an output folder that\n"
     "may not be used), 3 the solve or writing a result file failed;\n"
     "under MPI an error on any one rank ends every rank with that status\n";
+
+#ifndef STENTOR_VERSION
+#define STENTOR_VERSION "unknown"
+#endif
+#ifndef STENTOR_GIT_DESCRIBE
+#define STENTOR_GIT_DESCRIBE ""
+#endif
+
+std::string version_text() {
+  const std::string git = STENTOR_GIT_DESCRIBE;
+  return std::string("stentor ") + STENTOR_VERSION + (git.empty() ? "" : " (git " + git + ")") + "\n" +
+         "Trilinos " + TRILINOS_VERSION_STRING + ", Kokkos " + std::to_string(KOKKOS_VERSION / 10000) + "." +
+         std::to_string(KOKKOS_VERSION / 100 % 100) + "." + std::to_string(KOKKOS_VERSION % 100) + ", HDF5 " +
+         std::to_string(H5_VERS_MAJOR) + "." + std::to_string(H5_VERS_MINOR) + "." + std::to_string(H5_VERS_RELEASE) + "\n";
+}
+
+// --help and --version are Stentor's: taken out of the arguments before Kokkos sees
+// them (Kokkos::initialize answers --help with its own 40 lines; --kokkos-help still
+// reaches it). The argument after --output/--restart is a value, never an option.
+struct EarlyOptions {
+  bool help = false, version = false;
+  std::vector<char*> rest;  // argv without them, null-terminated
+};
+EarlyOptions early_options(int argc, char** argv) {
+  EarlyOptions e;
+  for (int i = 0; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (i > 0 && (a == "--help" || a == "-h")) {
+      e.help = true;
+      continue;
+    }
+    if (i > 0 && a == "--version") {
+      e.version = true;
+      continue;
+    }
+    e.rest.push_back(argv[i]);
+    if ((a == "--output" || a == "-o" || a == "--restart") && i + 1 < argc) e.rest.push_back(argv[++i]);
+  }
+  e.rest.push_back(nullptr);
+  return e;
+}
 
 // A communicator of its own for agreeing on failures (duplicated at start-up, so that
 // it never mixes with the collectives of the run).
@@ -91,8 +138,16 @@ int main(int argc, char** argv) {
   // A file size limit (ulimit -f) makes a write fail with EFBIG, reported like a full
   // disk, instead of killing the process with SIGXFSZ.
   std::signal(SIGXFSZ, SIG_IGN);
+  EarlyOptions early = early_options(argc, argv);
+  argc = static_cast<int>(early.rest.size()) - 1;
+  argv = early.rest.data();
   Tpetra::ScopeGuard guard(&argc, &argv);
   const int rank = Tpetra::getDefaultComm()->getRank();
+  if (early.help || early.version) {
+    if (rank == 0) std::cout << (early.help ? kUsage : "") << (early.help && early.version ? "\n" : "")
+                             << (early.version ? version_text() : "") << std::flush;
+    return 0;
+  }
   // Rank 0's log, copied into the results (<basename>.log) once the folder exists.
   struct LogCopyGuard {
     explicit LogCopyGuard(bool on) { if (on) stentor::log_copy::start(); }
@@ -103,10 +158,7 @@ int main(int argc, char** argv) {
   std::string deck;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--help" || a == "-h") {
-      if (rank == 0) std::cout << kUsage;
-      return 0;
-    } else if (a == "--check") {
+    if (a == "--check") {
       opts.check_only = true;
     } else if (a == "--overwrite") {
       opts.overwrite = true;

@@ -1,6 +1,7 @@
 #include "io/Csv.hpp"
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 
@@ -39,17 +40,25 @@ CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns)
               "CsvWriter: writing the header of", path_);
 }
 
+std::string format_double(double v) {
+  char buf[40];
+  for (int prec = 15; prec < 17; ++prec) {
+    std::snprintf(buf, sizeof buf, "%.*g", prec, v);
+    if (std::strtod(buf, nullptr) == v) return buf;  // NaN never compares equal: %.17g
+  }
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
 void CsvWriter::row(const std::vector<double>& values) {
   if (values.size() != columns_.size())
     throw std::runtime_error("CsvWriter: row of " + std::to_string(values.size()) +
                              " values for " + std::to_string(columns_.size()) + " columns in " +
                              path_);
   std::string line;
-  char buf[40];
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (i) line += ',';
-    std::snprintf(buf, sizeof buf, "%.17g", values[i]);
-    line += buf;
+    line += format_double(values[i]);
   }
   line += '\n';
   check_write(std::fputs(line.c_str(), file_.get()) >= 0 && std::fflush(file_.get()) == 0,

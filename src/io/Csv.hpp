@@ -1,5 +1,6 @@
-// Time series as CSV: a header line, then one line per row, every value at full
-// precision (%.17g, so doubles round-trip exactly). Each row is flushed as it is written:
+// Time series as CSV: a header line, then one line per row, every value in the shortest
+// form that reads back as the same double (format_double: 0.1, not %.17g's
+// 0.10000000000000001). Each row is flushed as it is written:
 // a long run that crashes keeps every row written so far.
 #pragma once
 #include <cstdio>
@@ -8,6 +9,11 @@
 #include <vector>
 
 namespace stentor {
+
+// The shortest of %.15g, %.16g, %.17g that reads back (strtod) as exactly v: the value
+// to the last bit, without the noise digits of %.17g (0.1 -> "0.1", 0.1 + 0.2 ->
+// "0.30000000000000004", which is not the double nearest 0.3).
+std::string format_double(double v);
 
 class CsvWriter {
  public:

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/Csv.hpp"
 #include "io/WriteError.hpp"
 
 namespace stentor {
@@ -164,7 +165,7 @@ void ObstacleVtkWriter::write(double t, const std::vector<ObstacleShape>& shapes
     std::ofstream f(tmp);
     f.precision(17);
     f << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
-    for (const auto& s : steps_) f << "    <DataSet timestep=\"" << s.first << "\" file=\"" << s.second << "\"/>\n";
+    for (const auto& s : steps_) f << "    <DataSet timestep=\"" << format_double(s.first) << "\" file=\"" << s.second << "\"/>\n";
     f << "  </Collection>\n</VTKFile>\n";
     f.flush();
     errno = 0;

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "io/Csv.hpp"
 #include "io/WriteError.hpp"
 
 namespace stentor {
@@ -126,11 +127,7 @@ std::string dataset_name(const std::string& field) {
   return r;
 }
 
-std::string fmt_double(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
+std::string fmt_double(double v) { return format_double(v); }  // exact, shortest
 
 // The innermost message of HDF5's error stack: for a failed write the system's reason
 // ("No space left on device", "File too large"), else HDF5's own description.

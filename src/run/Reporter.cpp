@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <cstdio>
 #include <iomanip>
 #include <iostream>
 
@@ -21,6 +22,15 @@ std::string fmt(double v, int prec = 4) {
   std::ostringstream os;
   os << std::scientific << std::setprecision(prec) << v;
   return os.str();
+}
+
+// Times and step sizes in the log: 6 significant digits, no trailing zeros (0.15, 1e-05),
+// so a time summed from steps (0.15000000000000002) reads as the deck's. The CSV and
+// HDF5 files keep every digit.
+std::string fmt_time(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
 }
 
 // Records (a global id and k values each) of every rank, gathered on rank 0 (empty
@@ -330,8 +340,8 @@ void Reporter::history_row(const RunState& s, const StepRecord& rec, double ener
 
 void Reporter::begin_stage(std::size_t k) {
   const StageConfig& st = cfg_.stages[k];
-  out_ << "stage " << k + 1 << "/" << cfg_.stages.size() << " '" << st.name << "': t " << fmt(st.start, 4) << " -> "
-       << fmt(st.end, 4) << ", " << st.num_steps << " step(s) of " << fmt(st.step(), 3) << "\n";
+  out_ << "stage " << k + 1 << "/" << cfg_.stages.size() << " '" << st.name << "': t " << fmt_time(st.start) << " -> "
+       << fmt_time(st.end) << ", " << st.num_steps << " step(s) of " << fmt_time(st.step()) << "\n";
 }
 
 void Reporter::begin_interval(double t0, double t1) {
@@ -350,7 +360,8 @@ std::string seconds(double s) {
 
 void Reporter::step_line(const RunState& s, const StepRecord& rec, double energy) {
   const NewtonResult& nr = rec.newton;
-  out_ << "  step " << std::setw(4) << s.step << "  t " << fmt(s.t, 4) << "  dt " << fmt(rec.dt, 2) << "  newton " << std::setw(2)
+  out_ << "  step " << std::setw(4) << s.step << "  t " << std::left << std::setw(10) << fmt_time(s.t) << "  dt " << std::setw(8) << fmt_time(rec.dt)
+       << std::right << "  newton " << std::setw(2)
        << nr.iterations << "  linear " << std::setw(4) << nr.linear_iterations << "  |r| " << fmt(nr.residual, 2) << "  W "
        << fmt(energy, 6);
   if (m_.contact) out_ << m_.contact->progress(rec.contact);
@@ -371,7 +382,7 @@ void Reporter::step_line(const RunState& s, const StepRecord& rec, double energy
 }
 
 void Reporter::cutback_line(const RunState& s, double t_new, const NewtonResult& nr, double dt_new) {
-  out_ << "  step " << s.step + 1 << " t=" << fmt(t_new, 3) << ": " << nr.failure << "; cutting dt to " << fmt(dt_new, 3) << std::endl;
+  out_ << "  step " << s.step + 1 << " t=" << fmt_time(t_new) << ": " << nr.failure << "; cutting dt to " << fmt_time(dt_new) << std::endl;
 }
 
 std::vector<double> Reporter::displacement(const la::Vector& u) {

@@ -6,12 +6,15 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
+#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -591,6 +594,33 @@ TEST(XdmfWriter, Errors) {
 // ---------------------------------------------------------------------------------------
 // CSV
 // ---------------------------------------------------------------------------------------
+// Shortest exact form (issue 13: times were written as 0.10000000000000001).
+TEST(Csv, FormatDoubleIsShortestExact) {
+  EXPECT_EQ(format_double(0.1), "0.1");
+  EXPECT_EQ(format_double(0.15), "0.15");
+  EXPECT_EQ(format_double(0.1 + 0.2), "0.30000000000000004");  // not the double nearest 0.3
+  EXPECT_EQ(format_double(3 * 0.05), "0.15000000000000002");
+  EXPECT_EQ(format_double(1.0), "1");
+  EXPECT_EQ(format_double(-2.5e10), "-25000000000");
+  EXPECT_EQ(format_double(1e-300), "1e-300");
+  EXPECT_EQ(format_double(-0.0), "-0");
+  EXPECT_EQ(format_double(std::numeric_limits<double>::infinity()), "inf");
+  EXPECT_EQ(format_double(std::numeric_limits<double>::quiet_NaN()), "nan");
+  // Every double reads back exactly, in at most 17 significant digits (24 characters).
+  std::mt19937_64 gen(13);
+  std::uniform_real_distribution<double> mant(-1.0, 1.0);
+  std::uniform_int_distribution<int> ex(-300, 300);
+  for (int i = 0; i < 20000; ++i) {
+    const double v = std::ldexp(mant(gen), ex(gen));
+    const std::string s = format_double(v);
+    ASSERT_EQ(std::strtod(s.c_str(), nullptr), v) << s;
+    ASSERT_LE(s.size(), 24u) << s;
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.15g", v);
+    if (std::strtod(buf, nullptr) == v) ASSERT_EQ(s, buf);  // no longer than needed
+  }
+}
+
 TEST(Csv, RoundTripsAtFullPrecision) {
   const fs::path dir = scratch("csv");
   const std::string path = (dir / "energy.csv").string();
