@@ -1248,6 +1248,8 @@ void DeckReader::read_newton(const ParameterList& pl) {
   n.line_search = get_bool(pl, ls, "line search");
   n.line_search_max = get_int(pl, ls, "line search max halvings");
   n.line_search_watchdog = get_int(pl, ls, "line search watchdog");
+  n.forcing = get_string(pl, ls, "forcing");
+  n.forcing_max = get_double(pl, ls, "forcing max");
 }
 
 void DeckReader::read_linear(const ParameterList& pl) {
@@ -1262,6 +1264,7 @@ void DeckReader::read_linear(const ParameterList& pl) {
   l.overlap = get_int(pl, ls, "overlap");
   l.subdomain_solver = get_string(pl, ls, "subdomain solver");
   l.fill_level = get_int(pl, ls, "fill level");
+  l.preconditioner_reuse = get_int(pl, ls, "preconditioner reuse");
 #ifndef STENTOR_HAVE_MUELU
   if (l.preconditioner == "muelu")
     fail("'Linear Solver->preconditioner' = muelu needs Trilinos with MueLu, which this build lacks; use schwarz");

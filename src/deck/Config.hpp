@@ -114,7 +114,7 @@ struct SteppingConfig {
   double growth = 1.5;     // "Stepping"->"growth" in [1, 4]: step growth per accepted step, up to end time / steps
   double min_dt = 0.0;     // "Stepping"->"min dt": smallest step (0: 1e-6 x end time / steps, see min_step())
   int max_steps = 0;       // "Stepping"->"max steps": cap on steps tried (0: 100 x steps + 1000, see step_cap())
-  std::string predictor = "none";  // "Stepping"->"predictor": none | velocity (dynamics: Newton's first iterate)
+  std::string predictor = "auto";  // "Stepping"->"predictor": auto | none | velocity | lifting (Newton's first iterate)
   // The values in force, 0 resolved to the defaults.
   double min_step() const { return min_dt > 0.0 ? min_dt : 1e-6 * end_time / num_steps; }
   long step_cap() const { return max_steps > 0 ? max_steps : 100L * num_steps + 1000L; }
@@ -128,6 +128,8 @@ struct NewtonConfig {
   bool line_search = true;             // "line search": backtracking on ||r||
   int line_search_max = 6;             // "line search max halvings"
   int line_search_watchdog = 2;        // "line search watchdog": see newton_solve
+  std::string forcing = "fixed";       // "forcing": fixed | eisenstat-walker (linear tolerance per iteration)
+  double forcing_max = 0.1;            // "forcing max": Eisenstat-Walker's upper bound (and first value)
 };
 
 struct LinearSolverConfig {
@@ -139,6 +141,7 @@ struct LinearSolverConfig {
   int overlap = 1;                       // "overlap": Schwarz overlap
   std::string subdomain_solver = "RILUK";// "subdomain solver": "RILUK" | "ILUT" | "KLU2"(Amesos2)
   int fill_level = 1;                    // "fill level": RILUK level of fill
+  int preconditioner_reuse = 0;          // "preconditioner reuse": later setups that may keep it (gmres)
   // Pass-through sublists "Belos", "Ifpack2", "MueLu", "Amesos2" as XML text ("" if absent);
   // their entries override the values above.
   std::string belos_xml, ifpack2_xml, muelu_xml, amesos2_xml;

@@ -280,12 +280,17 @@ std::vector<ListSpec> build_schema() {
                "0: 100 x steps + 1000.")
            .ge(0)
            .dflt_doc("`0` (100 x steps + 1000)"),
-       str("predictor", "none",
-           "Dynamics: Newton's first iterate of a step. `none`: u_n; `velocity`: u_n + dt v_n (midpoint family), "
-           "u_n + dt v_n + dt^2/2 a_n (newmark, hht); prescribed dofs take their values either way, and a guess "
-           "that inverts elements is retried from u_n. Statics always extrapolate the last increment. Measured "
-           "in docs/robustness.md.")
-           .one_of({"none", "velocity"})}));
+       str("predictor", "auto",
+           "Newton's first iterate of a step. `auto`: statics extrapolate the last increment, and lift the "
+           "prescribed increment where there is none to extrapolate (the first step); dynamics start at u_n. "
+           "`none`: u_n. `extrapolate` (statics): the last increment extrapolated (u_n on the first step). "
+           "`velocity` (dynamics): u_n + dt v_n (midpoint family), u_n + dt v_n + dt^2/2 a_n "
+           "(newmark, hht). `lifting`: every step, one linear solve with the tangent at u_n whose prescribed rows "
+           "carry the increment of the prescribed values, so it is spread into the interior instead of "
+           "squeezing the boundary layer of cells (counted as a Newton iteration). Prescribed dofs take their "
+           "values in every case, and a guess that inverts elements is retried from u_n. Measured in "
+           "docs/robustness.md and docs/performance.md.")
+           .one_of({"auto", "none", "extrapolate", "velocity", "lifting"})}));
 
   s.push_back(list(
       "Newton", "Newton",
@@ -303,7 +308,18 @@ std::vector<ListSpec> build_schema() {
                "without the decrease test (a non-monotone watchdog step), so the semi-smooth Newton moves to the "
                "new set instead of creeping along halved steps. 0: never (strictly monotone). Measured on "
                "perf/decks/s4_short.xml: 1643 Newton iterations with 0, 1490 with 2 (docs/contact.md).")
-           .ge(0)}));
+           .ge(0),
+       str("forcing", "fixed",
+           "Tolerance of each iteration's linear solve. `fixed`: `Linear Solver->tolerance`. "
+           "`eisenstat-walker`: inexact Newton, eta_k = 0.9 (norm(r_k) / norm(r_k-1))^2 (Eisenstat and Walker's "
+           "choice 2 with their safeguard), at most `forcing max`, at least `Linear Solver->tolerance` and at least "
+           "half the convergence target over norm(r_k) (no over-solving in the last iteration). The convergence "
+           "test is unchanged, so the solution (and the energy identity) hold to the same Newton tolerance. "
+           "Measured in docs/performance.md.")
+           .one_of({"fixed", "eisenstat-walker"}),
+       dbl("forcing max", 0.1, "Upper bound of the Eisenstat-Walker forcing term, and its first value.")
+           .gt(0.0)
+           .lt(1.0)}));
 
   {
     auto l = list(
@@ -321,7 +337,14 @@ std::vector<ListSpec> build_schema() {
          integer("overlap", 1, "Schwarz overlap (layers).").ge(0),
          str("subdomain solver", "RILUK", "Schwarz subdomain solver (KLU2 via Amesos2).")
              .one_of({"RILUK", "ILUT", "KLU2"}),
-         integer("fill level", 1, "RILUK level of fill.").ge(0)});
+         integer("fill level", 1, "RILUK level of fill.").ge(0),
+         integer("preconditioner reuse", 0,
+                 "GMRES: how many later Newton iterations (and steps) may keep a preconditioner built for an "
+                 "earlier tangent of the same matrix instead of rebuilding it (0: rebuilt every iteration). It is "
+                 "rebuilt earlier when the last solve did not converge or took more than twice the iterations "
+                 "(+ 10) of the first solve after the last build. A stale preconditioner changes only the Krylov "
+                 "iterations, not the Newton iterate's accuracy. Measured in docs/performance.md.")
+             .ge(0)});
     l.sublists = {"Belos", "Ifpack2", "MueLu", "Amesos2"};
     s.push_back(l);
   }

@@ -407,6 +407,11 @@ void Reporter::summary(const RunState& s) {
        << std::fixed << std::setprecision(2) << wall << " s\n";
   for (const auto& n : timers_.names())
     out_ << "  " << std::left << std::setw(10) << n << std::right << std::setw(10) << timers_.get(n) << " s\n";
+  if (m_.linear) {
+    const LinearSolver::Times& lt = m_.linear->times();
+    out_ << "    (newton: linear set-up " << lt.setup << " s in " << lt.setups << " calls, " << lt.builds
+         << " preconditioner builds; linear solve " << lt.solve << " s in " << lt.solves << " calls)\n";
+  }
   out_ << std::defaultfloat;
 }
 

@@ -40,21 +40,62 @@ NewtonResult Stepper::newton(la::Vector& u) {
   return newton_solve(system_, u, *m_.linear, m_.cfg.newton, newton_log_);
 }
 
-// The initial guess. Statics: extrapolate the last converged increment, so that a
-// prescribed boundary motion is spread into the interior instead of squeezing the
-// boundary layer of cells (which can invert them). Dynamics: u_n, or with Stepping->predictor
-// = velocity the scheme's constant-velocity (acceleration) guess.
-void Stepper::predict(RunState& s, double dt, double t_new, bool& predicted) {
+// The initial guess (Stepping->predictor). auto, statics: extrapolate the last converged
+// increment, so that a prescribed boundary motion is spread into the interior instead of
+// squeezing the boundary layer of cells (which can invert them); where there is no
+// increment yet, lift; extrapolate: the same without the lifting. Dynamics, auto / none:
+// u_n; velocity: the scheme's constant-velocity (acceleration) guess. lifting: lift every
+// step. none: u_n.
+void Stepper::predict(RunState& s, double dt, double t_new, bool& predicted, NewtonResult& lifted) {
   predicted = false;
-  if (!m_.dynamic && s.step > 0 && s.dt_last > 0.0) {
+  const std::string& p = m_.cfg.stepping.predictor;
+  const bool statics_auto = !m_.dynamic && (p == "auto" || p == "velocity");
+  const bool extrapolate = !m_.dynamic && (statics_auto || p == "extrapolate");
+  if (extrapolate && s.step > 0 && s.dt_last > 0.0) {
     s.u.update(dt / s.dt_last, s.u_prev, -dt / s.dt_last, s.u_before_last, 1.0);
     predicted = true;
-  } else if (m_.dynamic && m_.cfg.stepping.predictor == "velocity") {
+  } else if (m_.dynamic && p == "velocity") {
     m_.integrator->predict(s.u, s.u_prev, dt);
     system_.inertia_scale = 2.0 * m_.integrator->momentum_norm() / dt;
     predicted = true;
+  } else if (statics_auto || p == "lifting") {
+    predicted = lift(s, t_new, lifted);
   }
   m_.assembler->apply_dirichlet(s.u, t_new, m_.cfg.stepping.end_time);
+}
+
+// One Newton-like solve from u_n with the tangent K(u_n): the rows of prescribed dofs are
+// identity rows whose right-hand side is the increment of the prescribed values, the
+// others carry -r(u_n) of the new step, so
+//   K_ff du_f = -r_f(u_n) - K_fp (g_{n+1} - g_n),   du_p = g_{n+1} - g_n:
+// the increment enters the interior as the linearised problem spreads it (for a linear
+// material, the whole step's solution). Counted as one Newton iteration.
+bool Stepper::lift(RunState& s, double t_new, NewtonResult& lifted) {
+  Timers::Scope sc{timers_, "newton"};
+  const auto map = s.u.getMap();
+  la::Vector inc(s.u, Teuchos::Copy), r(map), du(map);
+  m_.assembler->apply_dirichlet(inc, t_new, m_.cfg.stepping.end_time);
+  inc.update(-1.0, s.u, 1.0);
+  if (inc.normInf() == 0.0) return false;  // nothing prescribed moves: Newton's first iteration is the lifting
+  if (!system_.evaluate(s.u, r, true)) return false;
+  r.update(1.0, inc, -1.0);  // prescribed rows of r are zero: inc there, -r elsewhere
+  LinearSolver::Result lr;
+  const NewtonConfig& nc = m_.cfg.newton;
+  try {
+    m_.linear->setup(system_.matrix());
+    lr = m_.linear->solve(r, du, nc.forcing == "eisenstat-walker" ? nc.forcing_max : 0.0);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception&) {
+    if (map->getComm()->getSize() > 1) throw;  // as in newton_solve
+    return false;
+  }
+  if (!std::isfinite(du.norm2())) return false;
+  s.u.update(1.0, du, 1.0);
+  lifted.iterations = 1;
+  lifted.linear_iterations = lr.iterations;
+  if (newton_log_) *newton_log_ << "    lifting  |g_{n+1} - g_n| " << inc.norm2() << "  linear " << lr.iterations << "\n";
+  return true;
 }
 
 NewtonResult Stepper::solve(RunState& s, double dt) {
@@ -70,14 +111,17 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
   }
   if (m_.contact) m_.contact->begin_step(s.t, dt, s.u_prev);
   bool predicted = false;
+  NewtonResult lifted;
   system_.inertia_scale = 0.0;
-  predict(s, dt, t_new, predicted);
+  predict(s, dt, t_new, predicted, lifted);
   NewtonResult nr = newton(s.u);
   if (predicted && !nr.converged && nr.iterations == 0) {  // an inadmissible guess: retry from u_n
     s.u.update(1.0, s.u_prev, 0.0);
     m_.assembler->apply_dirichlet(s.u, t_new, T);
     nr = newton(s.u);
   }
+  nr.iterations += lifted.iterations;
+  nr.linear_iterations += lifted.linear_iterations;
   s.newton_iterations += nr.iterations;
   s.linear_iterations += nr.linear_iterations;
   return nr;

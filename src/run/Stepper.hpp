@@ -25,6 +25,8 @@ class StepSystem : public NewtonSystem {
   la::RCP<la::CrsMatrix> matrix() override { return K_.is_null() ? a_.matrix() : K_; }
   // Newton may stop only once the contact active set did not change in the last evaluation.
   bool settled() const override { return contact == nullptr || !contact->active_set_changed(); }
+  // Contact rows are scaled by the tangent's diagonal (Contact::read_scales).
+  bool residual_needs_tangent() const override { return contact != nullptr; }
   // |f_ext| and |f_int - f_ext| over all rows (reactions included): the forces in play.
   // After unloading (a deflated balloon, a body at rest) both are round-off, and so would
   // be the target: the mean force scale of the accepted steps so far is kept as a floor
@@ -91,7 +93,11 @@ class Stepper {
   void attach_contact(const RunState& s);
 
  private:
-  void predict(RunState& s, double dt, double t_new, bool& predicted);
+  // The first iterate of the step (Stepping->predictor); `lifted` counts a lifting solve.
+  void predict(RunState& s, double dt, double t_new, bool& predicted, NewtonResult& lifted);
+  // Linearised lifting of the prescribed increment from u_n = s.u; false (s.u untouched)
+  // when nothing prescribed moves, u_n is inadmissible or the linear solve fails.
+  bool lift(RunState& s, double t_new, NewtonResult& lifted);
   NewtonResult newton(la::Vector& u);
 
   Model& m_;

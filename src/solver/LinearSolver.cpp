@@ -1,5 +1,7 @@
 #include "solver/LinearSolver.hpp"
 
+#include <chrono>
+
 #include <BelosLinearProblem.hpp>
 #include <BelosPseudoBlockGmresSolMgr.hpp>
 #include <BelosTpetraAdapter.hpp>
@@ -100,6 +102,18 @@ struct LinearSolver::Impl {
   }
 #endif
   Teuchos::RCP<Teuchos::ParameterList> belos_params;
+  LinearSolver::Times times;
+  // Preconditioner reuse (cfg.preconditioner_reuse): setups since the last build, the
+  // iterations of the first solve after it (-1: none yet) and the last solve's outcome.
+  int age = 0, first_iterations = -1, last_iterations = 0;
+  bool last_converged = true;
+  bool keep_preconditioner() {
+    const bool built = !prec.is_null() || !mg.is_null();
+    if (!built || age >= cfg.preconditioner_reuse || !last_converged) return false;
+    if (first_iterations >= 0 && last_iterations > 2 * first_iterations + 10) return false;
+    ++age;
+    return true;
+  }
   int dim = 0;
   std::vector<double> coords;  // owned nodes, 3 each (for multigrid null spaces)
 
@@ -163,8 +177,24 @@ void LinearSolver::set_node_coordinates(int dim, const std::vector<double>& owne
   impl_->coords = owned_xyz;
 }
 
+namespace {
+// Adds the scope's wall time to `acc` and counts one call.
+struct Clock {
+  double& acc;
+  long& calls;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  ~Clock() {
+    acc += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    ++calls;
+  }
+};
+}  // namespace
+
+const LinearSolver::Times& LinearSolver::times() const { return impl_->times; }
+
 void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
   Impl& m = *impl_;
+  Clock clock{m.times.setup, m.times.setups};
   const bool same = (m.A.get() == A.get());
   m.A = A;
   if (m.cfg.method == "direct") {
@@ -189,6 +219,10 @@ void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
     return;
   }
   if (m.cfg.preconditioner == "none") return;
+  if (same && m.keep_preconditioner()) return;
+  m.age = 0;
+  m.first_iterations = -1;
+  ++m.times.builds;
   if (m.cfg.preconditioner == "muelu") {
 #ifdef STENTOR_HAVE_MUELU
     // Built once per matrix; later Newton iterations recompute it for the new values
@@ -214,8 +248,14 @@ void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
   m.prec->compute();
 }
 
-LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x) {
+double LinearSolver::tolerance() const {
+  if (impl_->cfg.method == "direct") return 0.0;
+  return impl_->belos_params->get<double>("Convergence Tolerance");
+}
+
+LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x, double tolerance) {
   Impl& m = *impl_;
+  Clock clock{m.times.solve, m.times.solves};
   Result res;
   x.putScalar(0.0);
   if (m.cfg.method == "direct") {
@@ -269,10 +309,18 @@ LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x) {
   if (!m.prec.is_null()) problem->setRightPrec(m.prec);
   if (!m.mg.is_null()) problem->setRightPrec(m.mg);
   problem->setProblem();
-  Belos::PseudoBlockGmresSolMgr<la::SC, la::MV, la::Operator> solver(problem, m.belos_params);
+  auto params = m.belos_params;
+  if (tolerance > 0.0) {
+    params = Teuchos::rcp(new Teuchos::ParameterList(*m.belos_params));
+    params->set("Convergence Tolerance", tolerance);
+  }
+  Belos::PseudoBlockGmresSolMgr<la::SC, la::MV, la::Operator> solver(problem, params);
   const Belos::ReturnType ret = solver.solve();
   res.converged = (ret == Belos::Converged);
   res.iterations = solver.getNumIters();
+  m.last_converged = res.converged;
+  m.last_iterations = res.iterations;
+  if (m.first_iterations < 0) m.first_iterations = res.iterations;
   res.residual = solver.achievedTol();
   return res;
 }

@@ -30,9 +30,22 @@ class LinearSolver {
     int iterations = 0;
     double residual = 0.0;  // achieved relative residual (0 for direct)
   };
-  Result solve(const la::Vector& b, la::Vector& x);
+  // tolerance > 0: this solve's relative residual tolerance instead of the configured one
+  // (inexact Newton's forcing term); the direct method ignores it.
+  Result solve(const la::Vector& b, la::Vector& x, double tolerance = 0.0);
+
+  // The configured relative residual tolerance (Belos pass-through included); 0 for direct.
+  double tolerance() const;
 
   std::string description() const;
+
+  // Wall time spent in setup() (preconditioner or factorization) and solve() so far;
+  // builds: setups that built or recomputed the preconditioner (the others reused it).
+  struct Times {
+    double setup = 0.0, solve = 0.0;
+    long setups = 0, solves = 0, builds = 0;
+  };
+  const Times& times() const;
 
  private:
   struct Impl;

@@ -2,11 +2,106 @@
 
 #include "solver/SolverParams.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 
 namespace stentor {
+
+namespace {
+
+// The relative tolerance of each iteration's linear solve. Fixed: the linear solver's
+// own. Eisenstat-Walker (SIAM J. Sci. Comput. 17 (1996) 16-32, choice 2 with gamma = 0.9,
+// alpha = 2): eta_k = gamma (|r_k| / |r_k-1|)^alpha, kept at least gamma eta_k-1^alpha
+// when that exceeds 0.1 (so eta cannot collapse after one lucky iteration), at most
+// eta_max; at least half the convergence target over |r_k| (the last iteration need not
+// solve beyond the target: Kelley, Iterative Methods for Linear and Nonlinear Equations,
+// 1995, eq. 6.20) and at least the fixed tolerance.
+class Forcing {
+ public:
+  Forcing(const NewtonConfig& cfg, double eta_min)
+      : adaptive_(cfg.forcing == "eisenstat-walker" && eta_min > 0.0),
+        eta_max_(std::max(cfg.forcing_max, eta_min)),
+        eta_min_(eta_min) {}
+  bool adaptive() const { return adaptive_; }
+  // 0 (the solver's own tolerance) or this iteration's eta, given |r_k| and the target.
+  double next(double rn, double target) {
+    if (!adaptive_) return 0.0;
+    constexpr double gamma = 0.9;
+    double eta = eta_max_;
+    if (rn_prev_ > 0.0) {
+      eta = gamma * (rn / rn_prev_) * (rn / rn_prev_);
+      const double floor = gamma * eta_prev_ * eta_prev_;
+      if (floor > 0.1) eta = std::max(eta, floor);
+    }
+    eta = std::max(eta, 0.5 * target / rn);
+    eta = std::max(std::min(eta, eta_max_), eta_min_);
+    rn_prev_ = rn;
+    eta_prev_ = eta;
+    return eta;
+  }
+
+ private:
+  bool adaptive_;
+  double eta_max_, eta_min_;
+  double rn_prev_ = 0.0, eta_prev_ = 0.0;
+};
+
+struct Trial {
+  bool accepted = false;
+  bool admissible_seen = false;
+  bool full_unsettled = false;  // the full step changed the active set
+  bool has_tangent = false;     // the last evaluate() (at the accepted point) assembled the tangent
+  bool settled = true;          // sys.settled() right after the accepted point's evaluate()
+  double alpha = 1.0;
+  double rn = 0.0;
+};
+
+// Backtracking: halve the step until the residual decreases (Armijo, c = 1e-4). The
+// residual jumps where a contact active set changes, so a full step into the right new
+// set can look worse than a halved one in the old set, and Newton then creeps at
+// alpha = 1/2 (the residual halves per iteration) while the set flips back and forth
+// between the trials. After `line_search_watchdog` such damped iterations in a row
+// (`damped_unsettled`), a full step that changes the set is taken unconditionally
+// (non-monotone watchdog); if it leads nowhere, the iteration limit cuts the step back.
+// The full step is evaluated with the tangent; halved trials are residual-only where the
+// system allows it.
+Trial line_search(NewtonSystem& sys, const la::Vector& u, const la::Vector& du, double rn, int damped_unsettled,
+                  const NewtonConfig& cfg, la::Vector& u_trial, la::Vector& r_trial) {
+  Trial t;
+  const int max_halvings = cfg.line_search ? cfg.line_search_max : 0;
+  const bool cheap_trials = !sys.residual_needs_tangent();
+  for (int ls = 0; ls <= max_halvings; ++ls) {
+    u_trial.update(1.0, u, t.alpha, du, 0.0);
+    const bool with_tangent = ls == 0 || !cheap_trials;
+    if (sys.evaluate(u_trial, r_trial, with_tangent)) {
+      t.admissible_seen = true;
+      t.rn = r_trial.norm2();
+      t.settled = sys.settled();
+      if (ls == 0) t.full_unsettled = !t.settled;
+      const bool force = ls == 0 && t.full_unsettled && cfg.line_search_watchdog > 0 &&
+                         damped_unsettled >= cfg.line_search_watchdog;
+      if (std::isfinite(t.rn) && (force || !cfg.line_search || t.rn <= (1.0 - 1e-4 * t.alpha) * rn)) {
+        t.accepted = true;
+        t.has_tangent = with_tangent;
+        return t;
+      }
+    }
+    t.alpha *= 0.5;
+  }
+  return t;
+}
+
+void log_iteration(std::ostream& log, int it, double rn, double step, double alpha, const LinearSolver::Result& lr, double eta) {
+  std::ostringstream os;
+  os << "    newton " << std::setw(2) << it << "  |r| " << std::scientific << std::setprecision(3) << rn << "  |du| " << step
+     << "  alpha " << std::defaultfloat << alpha << "  linear " << lr.iterations << (lr.converged ? "" : " (not converged)");
+  if (eta > 0.0) os << "  eta " << std::setprecision(2) << eta;
+  log << os.str() << "\n";
+}
+
+}  // namespace
 
 NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, const NewtonConfig& cfg, std::ostream* log) {
   NewtonResult res;
@@ -32,13 +127,15 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     res.converged = true;
     return res;
   }
+  Forcing forcing(cfg, lin.tolerance());
   int damped_unsettled = 0;  // consecutive iterations whose full step changed the active set and was damped
   for (int it = 1; it <= cfg.max_iterations; ++it) {
     LinearSolver::Result lr;
+    const double eta = forcing.next(rn, target);
     r.scale(-1.0);
     try {
       lin.setup(sys.matrix());
-      lr = lin.solve(r, du);
+      lr = lin.solve(r, du, eta);
     } catch (const InputError&) {
       throw;
     } catch (const std::exception& e) {
@@ -56,68 +153,46 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
       res.failure = "linear solve produced a non-finite increment";
       return res;
     }
-    // Backtracking: halve the step until the residual decreases (Armijo, c = 1e-4). The
-    // residual jumps where a contact active set changes, so a full step into the right
-    // new set can look worse than a halved one in the old set, and Newton then creeps at
-    // alpha = 1/2 (the residual halves per iteration) while the set flips back and forth
-    // between the trials. After `line_search_watchdog` such damped iterations in a row, a
-    // full step that changes the set is taken unconditionally (non-monotone watchdog); if
-    // it leads nowhere, the iteration limit cuts the step back as before.
-    double alpha = 1.0, rn_trial = 0.0;
-    bool accepted = false, admissible_seen = false;
-    const int max_halvings = cfg.line_search ? cfg.line_search_max : 0;
-    bool full_unsettled = false;
-    for (int ls = 0; ls <= max_halvings; ++ls) {
-      u_trial.update(1.0, u, alpha, du, 0.0);
-      if (sys.evaluate(u_trial, r_trial, true)) {
-        admissible_seen = true;
-        rn_trial = r_trial.norm2();
-        if (ls == 0) full_unsettled = !sys.settled();
-        const bool force = ls == 0 && full_unsettled && cfg.line_search_watchdog > 0 &&
-                           damped_unsettled >= cfg.line_search_watchdog;
-        if (std::isfinite(rn_trial) && (force || !cfg.line_search || rn_trial <= (1.0 - 1e-4 * alpha) * rn)) {
-          accepted = true;
-          break;
-        }
-      }
-      alpha *= 0.5;
-    }
-    if (accepted && alpha < 1.0 && full_unsettled) ++damped_unsettled;
+    Trial t = line_search(sys, u, du, rn, damped_unsettled, cfg, u_trial, r_trial);
+    if (t.accepted && t.alpha < 1.0 && t.full_unsettled) ++damped_unsettled;
     else damped_unsettled = 0;
-    if (!accepted) {
-      if (!admissible_seen) {
+    if (!t.accepted) {
+      if (!t.admissible_seen) {
         res.failure = "every line-search trial inverted elements";
         return res;
       }
       // No decrease along du: take the full step anyway if it is admissible (the residual
       // can rise before Newton's quadratic phase), else fail.
-      alpha = 1.0;
-      u_trial.update(1.0, u, alpha, du, 0.0);
-      if (!sys.evaluate(u_trial, r_trial, true) || !std::isfinite(rn_trial = r_trial.norm2())) {
+      t.alpha = 1.0;
+      u_trial.update(1.0, u, t.alpha, du, 0.0);
+      if (!sys.evaluate(u_trial, r_trial, true) || !std::isfinite(t.rn = r_trial.norm2())) {
         res.failure = "line search found no admissible decrease";
         return res;
       }
+      t.has_tangent = true;
+      t.settled = sys.settled();
     }
     u.update(1.0, u_trial, 0.0);
     r.update(1.0, r_trial, 0.0);
-    const double step = alpha * du.norm2();
+    const double step = t.alpha * du.norm2();
     const double un = u.norm2();
-    rn = rn_trial;
+    rn = t.rn;
     res.iterations = it;
     res.residual = rn;
-    if (log) {
-      std::ostringstream os;
-      os << "    newton " << std::setw(2) << it << "  |r| " << std::scientific << std::setprecision(3) << rn << "  |du| " << step
-         << "  alpha " << std::defaultfloat << alpha << "  linear " << lr.iterations << (lr.converged ? "" : " (not converged)") << "\n";
-      *log << os.str();
-    }
+    if (log) log_iteration(*log, it, rn, step, t.alpha, lr, eta);
     if (!std::isfinite(rn)) {
       res.failure = "residual is not finite";
       return res;
     }
     const bool small = rn <= target || (step <= cfg.increment_tolerance * std::max(un, 1e-300) && rn <= std::sqrt(cfg.residual_tolerance) * ref);
-    if (small && sys.settled()) {
+    if (small && t.settled) {
       res.converged = true;
+      return res;
+    }
+    // A residual-only trial was accepted: the next iteration needs the tangent there (the
+    // same state, so the same residual).
+    if (!t.has_tangent && !sys.evaluate(u, r, true)) {
+      res.failure = "the accepted line-search point became inadmissible";
       return res;
     }
   }

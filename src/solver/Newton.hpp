@@ -5,7 +5,11 @@
 //   ||du|| <= inc_tol * ||u||  and  ||r|| <= sqrt(rtol) * ref  (increment test, for
 //   steps whose residual is limited by round-off).
 // Line search: Armijo backtracking on ||r||, with a watchdog for contact active sets
-// (NewtonConfig::line_search_watchdog, explained in newton_solve).
+// (NewtonConfig::line_search_watchdog, explained in line_search()). The full step is
+// evaluated with the tangent (it is usually accepted); halved trials are residual-only
+// unless the system's residual needs the tangent, and the tangent at an accepted halved
+// step is assembled only if Newton goes on.
+// Linear tolerance: fixed, or Eisenstat-Walker's forcing term (NewtonConfig::forcing).
 // A trial state the residual cannot be evaluated at (an inverted element) counts as a
 // failed line-search trial; if even the smallest step is inadmissible, or the iteration
 // limit is reached, the solve fails and the caller cuts the time/load step.
@@ -33,6 +37,10 @@ class NewtonSystem {
   // False while a discrete part of the residual (e.g. a contact active set) still changed
   // at the last evaluate(): Newton does not stop then, however small the residual.
   virtual bool settled() const { return true; }
+  // True if evaluate(u, r, false) can differ from the residual of evaluate(u, r, true)
+  // (e.g. contact rows scaled by the tangent's diagonal): line-search trials then
+  // assemble the tangent too.
+  virtual bool residual_needs_tangent() const { return false; }
 };
 
 struct NewtonResult {
