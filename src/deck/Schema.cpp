@@ -309,7 +309,7 @@ std::vector<ListSpec> build_schema() {
                "new set instead of creeping along halved steps. 0: never (strictly monotone). Measured on "
                "perf/decks/s4_short.xml: 1643 Newton iterations with 0, 1490 with 2 (docs/contact.md).")
            .ge(0),
-       str("forcing", "fixed",
+       str("forcing", "eisenstat-walker",
            "Tolerance of each iteration's linear solve. `fixed`: `Linear Solver->tolerance`. "
            "`eisenstat-walker`: inexact Newton, eta_k = 0.9 (norm(r_k) / norm(r_k-1))^2 (Eisenstat and Walker's "
            "choice 2 with their safeguard), at most `forcing max`, at least `Linear Solver->tolerance` and at least "
@@ -338,7 +338,7 @@ std::vector<ListSpec> build_schema() {
          str("subdomain solver", "RILUK", "Schwarz subdomain solver (KLU2 via Amesos2).")
              .one_of({"RILUK", "ILUT", "KLU2"}),
          integer("fill level", 1, "RILUK level of fill.").ge(0),
-         integer("preconditioner reuse", 0,
+         integer("preconditioner reuse", 20,
                  "GMRES: how many later Newton iterations (and steps) may keep a preconditioner built for an "
                  "earlier tangent of the same matrix instead of rebuilding it (0: rebuilt every iteration). It is "
                  "rebuilt earlier when the last solve did not converge or took more than twice the iterations "
