@@ -96,7 +96,13 @@ std::vector<ListSpec> build_schema() {
                         "How threads sum element contributions into shared rows: `atomic` additions, or "
                         "`coloring` (one kernel per colour of cells that share no node, plain additions). "
                         "Results agree to round-off; docs/performance.md compares their speed.")
-                        .one_of({"atomic", "coloring"})}));
+                        .one_of({"atomic", "coloring"}),
+                    str("units", "SI",
+                        "The deck's unit system, used only to label plots (nothing is converted: every value is "
+                        "taken as given). `SI`: m, kg, s, N, Pa, J; `mm-N-s`: mm, t (tonne), s, N, MPa, mJ; "
+                        "`mm-g-ms`: mm, g, ms, N, MPa, mJ; `none`: a dimensionless deck, plots without units. "
+                        "In 2D (plane strain) forces and energies are per unit thickness (N/m, J/m in SI).")
+                        .one_of({"SI", "mm-N-s", "mm-g-ms", "none"})}));
 
   s.push_back(list(
       "Mesh", "Mesh", "The gmsh mesh; physical groups name the bodies and the boundaries.",

@@ -623,6 +623,17 @@ TEST_F(Deck, OtherRangesAndChoices) {
                {"'Mesh->order' must be one of 1, 2; got 3"});
 }
 
+// Problem->units: a label for plots only, default SI, case-insensitive like every choice.
+TEST_F(Deck, UnitSystem) {
+  EXPECT_EQ(read_deck(write(kMinimalDeck)).problem.units, "SI");
+  const std::string problem = "<ParameterList name=\"Problem\"><Parameter name=\"units\" type=\"string\" value=\"";
+  const std::string mesh = "<ParameterList name=\"Mesh\">";
+  const Config c = read_deck(write(replace(kMinimalDeck, mesh, problem + "mm-n-s\"/></ParameterList>\n" + mesh)));
+  EXPECT_EQ(c.problem.units, "mm-N-s");
+  expect_error(replace(kMinimalDeck, mesh, problem + "mks\"/></ParameterList>\n" + mesh),
+               {"'Problem->units' must be one of SI, mm-N-s, mm-g-ms, none; got 'mks'"});
+}
+
 TEST_F(Deck, MissingMeshFile) {
   expect_error(replace(kMinimalDeck, "mesh/ring.msh", "mesh/tube.msh"),
                {"'Mesh->file'", (dir / "mesh" / "tube.msh").string(), "does not exist"});
