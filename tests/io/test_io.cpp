@@ -20,6 +20,7 @@
 #include "io/Csv.hpp"
 #include "io/OutputDir.hpp"
 #include "io/Plot.hpp"
+#include "io/Units.hpp"
 #include "io/XdmfWriter.hpp"
 #include "mesh/Mesh.hpp"
 
@@ -745,6 +746,35 @@ TEST(OutputDir, LockRefusesASecondRun) {
   std::ofstream(fs::path(fin + ".partial") / "keep") << "k";
   EXPECT_THROW(OutputDir d(fin), std::runtime_error);
   EXPECT_EQ(slurp(fs::path(fin + ".partial") / "keep"), "k");
+}
+
+// ---------------------------------------------------------------------------------------
+// Unit labels (Problem->units)
+// ---------------------------------------------------------------------------------------
+TEST(Units, LabelsPerSystemAndPerThicknessIn2D) {
+  const UnitLabels si3 = unit_labels("SI", 3), si2 = unit_labels("SI", 2);
+  EXPECT_EQ(si3.length, "m");
+  EXPECT_EQ(si3.force, "N");
+  EXPECT_EQ(si3.energy, "J");
+  EXPECT_EQ(si3.stress, "Pa");
+  EXPECT_EQ(si2.force, "N/m");  // plane strain: per unit thickness
+  EXPECT_EQ(si2.energy, "J/m");
+  EXPECT_EQ(si2.stress, "Pa");
+  const UnitLabels mm = unit_labels("mm-N-s", 2);
+  EXPECT_EQ(mm.force, "N/mm");
+  EXPECT_EQ(mm.energy, "mJ/mm");
+  EXPECT_EQ(mm.stress, "MPa");
+  EXPECT_EQ(mm.mass, "t");
+  const UnitLabels ms = unit_labels("mm-g-ms", 3);
+  EXPECT_EQ(ms.time, "ms");
+  EXPECT_EQ(ms.mass, "g");
+  EXPECT_EQ(ms.energy, "mJ");
+  const UnitLabels none = unit_labels("none", 2);
+  EXPECT_EQ(none.force, "");
+  EXPECT_EQ(with_unit("force", none.force), "force");
+  EXPECT_EQ(with_unit("force", si2.force), "force [N/m]");
+  for (const std::string& s : unit_systems()) EXPECT_NO_THROW(unit_labels(s, 3)) << s;
+  EXPECT_THROW(unit_labels("cgs", 3), std::invalid_argument);
 }
 
 // ---------------------------------------------------------------------------------------
