@@ -771,3 +771,25 @@ TEST(Schema, DocsContainTheGeneratedTables) {
                   << " into docs/deck.md (replacing the BEGIN/END block)";
   }
 }
+
+// docs/deck.md's structure table lists every top-level sublist of the schema, in the
+// schema's order, and no other.
+TEST(Schema, DocsStructureTableListsEveryTopLevelSublist) {
+  std::ifstream f(std::string(STENTOR_SOURCE_DIR) + "/docs/deck.md");
+  ASSERT_TRUE(f) << "docs/deck.md not found";
+  std::string line;
+  std::vector<std::string> listed;
+  bool in_table = false;
+  while (std::getline(f, line)) {
+    if (line.rfind("| Sublist |", 0) == 0) {
+      in_table = true;
+      continue;
+    }
+    if (!in_table) continue;
+    if (line.rfind("|---", 0) == 0) continue;
+    if (line.rfind("| `", 0) != 0) break;
+    const auto e = line.find('`', 3);
+    listed.push_back(line.substr(3, e - 3));
+  }
+  EXPECT_EQ(listed, deck_list_spec("").sublists);
+}
