@@ -1,6 +1,8 @@
 #include "run/ResultPlots.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <iostream>
 #include <limits>
 
 #include "io/Plot.hpp"
@@ -181,8 +183,11 @@ bool deck_at_rest_unloaded(const Model& m) {
 std::vector<std::string> write_result_plots(const Model& m, const std::string& stem, const InitialState& init,
                                             const std::vector<std::string>& radius_columns,
                                             const std::vector<std::string>& stress_columns) {
-  const UnitLabels u = unit_labels(m.cfg.problem.units, m.dim);
   std::vector<std::string> made;
+  const auto& systems = unit_systems();  // a Config built in code may hold any string
+  const bool known = std::find(systems.begin(), systems.end(), m.cfg.problem.units) != systems.end();
+  if (!known) std::cerr << "plots: unknown Problem->units '" << m.cfg.problem.units << "', plots without units\n";
+  const UnitLabels u = unit_labels(known ? m.cfg.problem.units : "none", m.dim);
   PlotTable h;
   if (read_csv_table(stem + "_history.csv", h) && h.find("time") >= 0 && h.rows() > 0) {
     prepend_initial_row(h, m, init);
