@@ -729,6 +729,7 @@ void DeckReader::read_problem(const ParameterList& pl) {
   cfg_.problem.title = get_string(pl, ls, "title");
   cfg_.problem.analysis = get_string(pl, ls, "analysis");
   cfg_.problem.assembly = get_string(pl, ls, "assembly");
+  cfg_.problem.units = get_string(pl, ls, "units");
 }
 
 void DeckReader::read_mesh(const ParameterList& pl) {

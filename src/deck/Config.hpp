@@ -40,6 +40,7 @@ struct ProblemConfig {
   std::string title;                 // "Problem"->"title"
   std::string analysis = "static";   // "Problem"->"analysis": "static" | "dynamic"
   std::string assembly = "atomic";   // "Problem"->"assembly": "atomic" | "coloring" (thread-safe sums)
+  std::string units = "SI";          // "Problem"->"units": SI | mm-N-s | mm-g-ms | none (plot labels only)
   bool dynamic() const { return analysis == "dynamic"; }
 };
 

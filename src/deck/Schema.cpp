@@ -96,7 +96,13 @@ std::vector<ListSpec> build_schema() {
                         "How threads sum element contributions into shared rows: `atomic` additions, or "
                         "`coloring` (one kernel per colour of cells that share no node, plain additions). "
                         "Results agree to round-off; docs/performance.md compares their speed.")
-                        .one_of({"atomic", "coloring"})}));
+                        .one_of({"atomic", "coloring"}),
+                    str("units", "SI",
+                        "The deck's unit system, used only to label plots (nothing is converted: every value is "
+                        "taken as given). `SI`: m, kg, s, N, Pa, J; `mm-N-s`: mm, t (tonne), s, N, MPa, mJ; "
+                        "`mm-g-ms`: mm, g, ms, N, MPa, mJ; `none`: a dimensionless deck, plots without units. "
+                        "In 2D (plane strain) forces and energies are per unit thickness (N/m, J/m in SI).")
+                        .one_of({"SI", "mm-N-s", "mm-g-ms", "none"})}));
 
   s.push_back(list(
       "Mesh", "Mesh", "The gmsh mesh; physical groups name the bodies and the boundaries.",
@@ -294,12 +300,26 @@ std::vector<ListSpec> build_schema() {
 
   s.push_back(list(
       "Newton", "Newton",
-      "Newton-Raphson on the residual. Converged when (relative or absolute residual test) "
-      "and the increment test hold.",
+      "Newton-Raphson on the residual r (Dirichlet rows excluded; global 2-norms), with a backtracking line "
+      "search. With ref = max(norm(r_0), force scale), r_0 the residual of the step's first guess, a step has "
+      "converged when the contact active sets did not change in the last evaluation and either norm(r) <= "
+      "max(`relative residual tolerance` x ref, `absolute residual tolerance`) (the residual test), or the "
+      "last increment satisfies norm(alpha du) <= `increment tolerance` x norm(u) while norm(r) <= "
+      "sqrt(`relative residual tolerance`) x ref (the increment test). The force scale and the exact rule: "
+      "docs/deck.md, \"Newton convergence\".",
       {integer("max iterations", 25, "Iterations per step before a cutback.").ge(1),
-       dbl("relative residual tolerance", 1e-10, "Converged if norm(r) <= tol * norm(r_0) ...").ge(0.0).lt(1.0),
-       dbl("absolute residual tolerance", 1e-12, "... or if norm(r) <= tol.").ge(0.0),
-       dbl("increment tolerance", 1e-10, "And norm(du) <= tol * norm(u).").ge(0.0),
+       dbl("relative residual tolerance", 1e-10,
+           "rtol: the residual test norm(r) <= max(rtol x ref, atol), ref = max(norm(r_0), force scale); "
+           "sqrt(rtol) x ref bounds the residual of the increment test.")
+           .ge(0.0)
+           .lt(1.0),
+       dbl("absolute residual tolerance", 1e-12,
+           "atol [force unit]: the floor of the residual test's target (an absolute residual, not relative).")
+           .ge(0.0),
+       dbl("increment tolerance", 1e-10,
+           "The increment test, an alternative to the residual test: norm(alpha du) <= tol x norm(u) and "
+           "norm(r) <= sqrt(rtol) x ref (a residual limited by round-off).")
+           .ge(0.0),
        boolean("line search", true, "Backtracking line search on norm(r)."),
        integer("line search max halvings", 6, "Maximum halvings of the Newton step.").ge(0),
        integer("line search watchdog", 2,

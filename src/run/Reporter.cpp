@@ -10,7 +10,6 @@
 #include <iostream>
 
 #include "io/LogCopy.hpp"
-#include "io/Plot.hpp"
 
 namespace stentor {
 
@@ -304,6 +303,12 @@ std::vector<double> Reporter::probe_values(const la::Vector& u) const {
 }
 
 void Reporter::initial_metrics(const RunState& s) {
+  if (s.step == 0) {  // not after --restart: the plots' t = 0 (collective)
+    initial_.probes = probe_values(s.u);
+    const bool penetrating = m_.contact && !m_.contact->initial_penetrations().empty();
+    initial_.at_rest_unloaded = !penetrating && deck_at_rest_unloaded(m_);
+    initial_.known = true;
+  }
   if (!metrics_) return;
   Timers::Scope sc{timers_, "output"};
   metrics_->step(s, s.u, m_.dynamic ? total_energy_ : 0.0);
@@ -417,24 +422,8 @@ void Reporter::summary(const RunState& s) {
 
 void Reporter::plots() {
   const std::string stem = staging_->path() + "/" + cfg_.output.basename;
-  const std::string csv = stem + "_history.csv";
-  const std::vector<std::string> rcols = reaction_columns();
-  if (!rcols.empty()) plot_csv_png(csv, stem + "_reactions.png", "time", rcols, "Reaction forces", "force");
-  if (m_.dynamic) {
-    const std::string ecsv = stem + "_energy.csv";
-    plot_csv_png(ecsv, stem + "_energy.png", "time", {"kinetic", "strain", "total", "dissipation", "external_work"},
-                 "Energy (" + cfg_.time.scheme + ")", "energy");
-    plot_csv_png(ecsv, stem + "_balance.png", "time", {"balance_residual"}, "Energy balance residual per step",
-                 "E_{n+1} - E_n - (W_ext + W_sup - D)");
-  } else {
-    plot_csv_png(csv, stem + "_energy.png", "time", {"strain_energy"}, "Stored energy", "energy");
-  }
-  if (metrics_) {
-    const std::string mcsv = stem + "_metrics.csv";
-    plot_csv_png(mcsv, stem + "_radii.png", "time", metrics_->radius_columns(), "Lumen and stent radii", "radius [m]");
-    plot_csv_png(mcsv, stem + "_stresses.png", "time", metrics_->stress_columns(), "Artery wall stress, contact pressure",
-                 "stress [Pa]");
-  }
+  write_result_plots(m_, stem, initial_, metrics_ ? metrics_->radius_columns() : std::vector<std::string>{},
+                     metrics_ ? metrics_->stress_columns() : std::vector<std::string>{});
 }
 
 void Reporter::finish(bool failed) {

@@ -15,6 +15,7 @@
 #include "io/XdmfWriter.hpp"
 #include "run/MetricsReport.hpp"
 #include "run/Model.hpp"
+#include "run/ResultPlots.hpp"
 #include "run/RunState.hpp"
 #include "run/Stepper.hpp"
 
@@ -44,7 +45,8 @@ class Reporter {
   void energy_row(int step, double t, const EnergyAudit& au, const EnergyTotals& e);
   // One row of <basename>_history.csv (collective: probes).
   void history_row(const RunState& s, const StepRecord& rec, double energy);
-  // The stent metrics (Output->Stent Metrics) at t = 0 (collective; nothing without them).
+  // The stent metrics (Output->Stent Metrics) at t = 0 (collective; nothing without them),
+  // and, at step 0, the initial state the plots start from (probes; collective).
   void initial_metrics(const RunState& s);
   // Stage k of Config::stages begins: its header line.
   void begin_stage(std::size_t k);
@@ -96,6 +98,7 @@ class Reporter {
   std::unique_ptr<ObstacleVtkWriter> obstacles_;  // rank 0, fields on and rigid obstacles present
   void write_obstacles(double t);
   double total_energy_ = 0.0;               // kinetic + strain of the last energy_row
+  InitialState initial_;                    // t = 0 for the plots (initial_metrics)
   // Gather of every used dof on rank 0, in mesh node order.
   std::vector<la::GO> all_dofs_;
   la::RCP<const la::Map> gather_map_;

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The default run (inputs/artery_ring.xml): exit 0, all result files, a lumen that
+# The default run (inputs/artery_ring.xml): exit 0, all result files (a static run: no
+# energy plot), a lumen that
 # opens (positive radial displacement at both probes) and one history row per step.
 # usage: default_run.sh STENTOR WORKDIR DECK
 set -u
@@ -14,9 +15,10 @@ rc=$?
 cat log.txt
 [ "$rc" -eq 0 ] || fail "exit status $rc"
 grep -q "^Results in " log.txt || fail "no 'Results in' line"
-for f in "$base.xdmf" "$base.h5" "${base}_history.csv" "${base}_reactions.png" "${base}_energy.png"; do
+for f in "$base.xdmf" "$base.h5" "${base}_history.csv" "${base}_reactions.png" "${base}_probes.png"; do
   [ -s "results/$f" ] || fail "results/$f missing or empty"
 done
+[ -e "results/${base}_energy.png" ] && fail "a static run wrote ${base}_energy.png"
 for f in results/*.png; do
   [ "$(head -c 4 "$f" | tail -c 3)" = "PNG" ] || fail "$f is not a PNG"
 done

@@ -623,6 +623,17 @@ TEST_F(Deck, OtherRangesAndChoices) {
                {"'Mesh->order' must be one of 1, 2; got 3"});
 }
 
+// Problem->units: a label for plots only, default SI, case-insensitive like every choice.
+TEST_F(Deck, UnitSystem) {
+  EXPECT_EQ(read_deck(write(kMinimalDeck)).problem.units, "SI");
+  const std::string problem = "<ParameterList name=\"Problem\"><Parameter name=\"units\" type=\"string\" value=\"";
+  const std::string mesh = "<ParameterList name=\"Mesh\">";
+  const Config c = read_deck(write(replace(kMinimalDeck, mesh, problem + "mm-n-s\"/></ParameterList>\n" + mesh)));
+  EXPECT_EQ(c.problem.units, "mm-N-s");
+  expect_error(replace(kMinimalDeck, mesh, problem + "mks\"/></ParameterList>\n" + mesh),
+               {"'Problem->units' must be one of SI, mm-N-s, mm-g-ms, none; got 'mks'"});
+}
+
 TEST_F(Deck, MissingMeshFile) {
   expect_error(replace(kMinimalDeck, "mesh/ring.msh", "mesh/tube.msh"),
                {"'Mesh->file'", (dir / "mesh" / "tube.msh").string(), "does not exist"});
@@ -759,4 +770,26 @@ TEST(Schema, DocsContainTheGeneratedTables) {
     ADD_FAILURE() << "docs/deck.md does not contain the current schema tables; paste " << out
                   << " into docs/deck.md (replacing the BEGIN/END block)";
   }
+}
+
+// docs/deck.md's structure table lists every top-level sublist of the schema, in the
+// schema's order, and no other.
+TEST(Schema, DocsStructureTableListsEveryTopLevelSublist) {
+  std::ifstream f(std::string(STENTOR_SOURCE_DIR) + "/docs/deck.md");
+  ASSERT_TRUE(f) << "docs/deck.md not found";
+  std::string line;
+  std::vector<std::string> listed;
+  bool in_table = false;
+  while (std::getline(f, line)) {
+    if (line.rfind("| Sublist |", 0) == 0) {
+      in_table = true;
+      continue;
+    }
+    if (!in_table) continue;
+    if (line.rfind("|---", 0) == 0) continue;
+    if (line.rfind("| `", 0) != 0) break;
+    const auto e = line.find('`', 3);
+    listed.push_back(line.substr(3, e - 3));
+  }
+  EXPECT_EQ(listed, deck_list_spec("").sublists);
 }

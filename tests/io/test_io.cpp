@@ -23,6 +23,7 @@
 #include "io/Csv.hpp"
 #include "io/OutputDir.hpp"
 #include "io/Plot.hpp"
+#include "io/Units.hpp"
 #include "io/XdmfWriter.hpp"
 #include "mesh/Mesh.hpp"
 
@@ -787,6 +788,35 @@ TEST(OutputDir, LockRefusesASecondRun) {
 }
 
 // ---------------------------------------------------------------------------------------
+// Unit labels (Problem->units)
+// ---------------------------------------------------------------------------------------
+TEST(Units, LabelsPerSystemAndPerThicknessIn2D) {
+  const UnitLabels si3 = unit_labels("SI", 3), si2 = unit_labels("SI", 2);
+  EXPECT_EQ(si3.length, "m");
+  EXPECT_EQ(si3.force, "N");
+  EXPECT_EQ(si3.energy, "J");
+  EXPECT_EQ(si3.stress, "Pa");
+  EXPECT_EQ(si2.force, "N/m");  // plane strain: per unit thickness
+  EXPECT_EQ(si2.energy, "J/m");
+  EXPECT_EQ(si2.stress, "Pa");
+  const UnitLabels mm = unit_labels("mm-N-s", 2);
+  EXPECT_EQ(mm.force, "N/mm");
+  EXPECT_EQ(mm.energy, "mJ/mm");
+  EXPECT_EQ(mm.stress, "MPa");
+  EXPECT_EQ(mm.mass, "t");
+  const UnitLabels ms = unit_labels("mm-g-ms", 3);
+  EXPECT_EQ(ms.time, "ms");
+  EXPECT_EQ(ms.mass, "g");
+  EXPECT_EQ(ms.energy, "mJ");
+  const UnitLabels none = unit_labels("none", 2);
+  EXPECT_EQ(none.force, "");
+  EXPECT_EQ(with_unit("force", none.force), "force");
+  EXPECT_EQ(with_unit("force", si2.force), "force [N/m]");
+  for (const std::string& s : unit_systems()) EXPECT_NO_THROW(unit_labels(s, 3)) << s;
+  EXPECT_THROW(unit_labels("cgs", 3), std::invalid_argument);
+}
+
+// ---------------------------------------------------------------------------------------
 // gnuplot
 // ---------------------------------------------------------------------------------------
 TEST(Plot, WritesPng) {
@@ -822,6 +852,46 @@ TEST(Plot, WritesPng) {
   EXPECT_FALSE(fs::exists(dir / "bad.png"));
   EXPECT_FALSE(plot_csv_png((dir / "missing.csv").string(), (dir / "m.png").string(), "time",
                             {"E_total"}, "t", "y"));
+}
+
+// plot_png from an in-memory table: the script holds the plotted columns inline (x first,
+// each column once), NaN for non-finite values (a gap), the legends and axis labels given,
+// and a time axis from 0; a missing column or an empty table draws nothing.
+TEST(Plot, TableScriptHasDataLabelsAndLegends) {
+  const fs::path dir = scratch("plot_table");
+  PlotTable t;
+  t.add("time", {0.0, 0.5, 1.0});
+  t.add("u", {0.0, 0.1, 0.2});
+  t.add("R", {std::nan(""), 2.0, 4.0});
+  PlotSpec s{"Reaction", "time [s]", "reaction force [N/m]", "time", {{"R", "pull: reaction x", ""}, {"R", "R vs u", "u"}}, true};
+  const bool drawn = plot_png(t, (dir / "r.png").string(), s);
+  EXPECT_EQ(drawn, gnuplot_available());
+  const std::string script = slurp(dir / "r.gp");
+  EXPECT_NE(script.find("$data << EOD\n0 NaN 0\n0.5 2 0.1\n1 4 0.2\nEOD\n"), std::string::npos) << script;
+  EXPECT_NE(script.find("$data using 1:2 "), std::string::npos) << script;
+  EXPECT_NE(script.find("$data using 3:2 "), std::string::npos) << script;
+  EXPECT_NE(script.find("title 'pull: reaction x'"), std::string::npos) << script;
+  EXPECT_NE(script.find("title 'R vs u'"), std::string::npos) << script;
+  EXPECT_NE(script.find("set xlabel 'time [s]'"), std::string::npos) << script;
+  EXPECT_NE(script.find("set ylabel 'reaction force [N/m]'"), std::string::npos) << script;
+  EXPECT_NE(script.find("set xrange [0:*]"), std::string::npos) << script;
+  if (drawn) EXPECT_EQ(slurp(dir / "r.png").substr(0, 4), "\x89PNG");
+  s.curves.push_back({"nope", "missing", ""});
+  EXPECT_FALSE(plot_png(t, (dir / "bad.png").string(), s));
+  EXPECT_FALSE(fs::exists(dir / "bad.png"));
+  EXPECT_FALSE(plot_png(PlotTable{}, (dir / "empty.png").string(), s));
+  // read_csv_table: a CsvWriter file back, quoted names included.
+  const std::string csv = (dir / "h.csv").string();
+  {
+    CsvWriter w(csv, {"time", "a,b"});
+    w.row({0.0, 1.5});
+    w.row({1.0, -2.5});
+  }
+  PlotTable back;
+  ASSERT_TRUE(read_csv_table(csv, back));
+  ASSERT_EQ(back.names, (std::vector<std::string>{"time", "a,b"}));
+  EXPECT_EQ(back.columns[1], (std::vector<double>{1.5, -2.5}));
+  EXPECT_FALSE(read_csv_table((dir / "none.csv").string(), back));
 }
 
 // Deck text reaches plot labels (load and probe names in column headers, the basename in

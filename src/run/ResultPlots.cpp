@@ -1,0 +1,202 @@
+#include "run/ResultPlots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <limits>
+
+#include "io/Plot.hpp"
+#include "io/Units.hpp"
+#include "run/Model.hpp"
+
+namespace stentor {
+
+namespace {
+
+const char* kAxes[3] = {"x", "y", "z"};
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A name as part of a file name: spaces become '_' (load names may hold spaces).
+std::string file_part(std::string s) {
+  for (char& c : s)
+    if (c == ' ') c = '_';
+  return s;
+}
+
+// The history table with the initial state as row 0 (t = 0): probe displacements when
+// known, reactions and contact forces 0 when at rest and unloaded, else NaN (no point).
+void prepend_initial_row(PlotTable& h, const Model& m, const InitialState& init) {
+  if (h.rows() == 0 || h.find("time") < 0 || h.columns[static_cast<std::size_t>(h.find("time"))].front() <= 0.0) return;
+  std::vector<double> row(h.names.size(), kNaN);
+  for (std::size_t c = 0; c < h.names.size(); ++c) {
+    const std::string& n = h.names[c];
+    if (n == "time" || n == "step") row[c] = 0.0;
+    const bool force = n.rfind("reaction_", 0) == 0 || (n.rfind("contact_", 0) == 0 && n.find("_force_") != std::string::npos);
+    if (force && init.known && init.at_rest_unloaded) row[c] = 0.0;
+  }
+  for (std::size_t p = 0; init.known && p < m.cfg.output.probes.size() && 3 * p + 2 < init.probes.size(); ++p)
+    for (int k = 0; k < m.dim; ++k) {
+      const int c = h.find("u_" + m.cfg.output.probes[p].name + "_" + kAxes[k]);
+      if (c >= 0) row[static_cast<std::size_t>(c)] = init.probes[3 * p + static_cast<std::size_t>(k)];
+    }
+  for (std::size_t c = 0; c < h.names.size(); ++c) h.columns[c].insert(h.columns[c].begin(), row[c]);
+}
+
+// Reactions vs time, and vs the prescribed displacement of each set that moves.
+void reaction_plots(const Model& m, PlotTable& h, const std::string& stem, const UnitLabels& u, std::vector<std::string>& made) {
+  PlotSpec vs_time{"Reaction forces of the Dirichlet sets", with_unit("time", u.time), with_unit("reaction force", u.force), "time", {}, true};
+  const std::vector<double>& t = h.columns[static_cast<std::size_t>(h.find("time"))];
+  const double T = m.cfg.stepping.end_time;
+  for (const DirichletSet& d : m.assembler->dirichlet_sets()) {
+    PlotSpec vs_u{"Reaction of '" + d.name + "' versus its prescribed displacement", with_unit("prescribed displacement", u.length),
+                  with_unit("reaction force", u.force), "", {}, false};
+    for (int k = 0; k < m.dim; ++k) {
+      const std::string col = "reaction_" + d.name + "_" + kAxes[k];
+      if (h.find(col) < 0) continue;
+      const std::string comp = std::string(kAxes[k]);
+      vs_time.curves.push_back({col, d.name + ": reaction " + comp, ""});
+      if (d.field || !d.components[static_cast<std::size_t>(k)] || d.values[static_cast<std::size_t>(k)] == 0.0) continue;
+      std::vector<double> ud(t.size());
+      for (std::size_t r = 0; r < t.size(); ++r) ud[r] = d.values[static_cast<std::size_t>(k)] * d.ramp(t[r], T);
+      const std::string ucol = "prescribed_" + d.name + "_" + comp;
+      h.add(ucol, std::move(ud));
+      vs_u.curves.push_back({col, d.name + ": reaction " + comp + " vs prescribed u_" + comp, ucol});
+    }
+    if (!vs_u.curves.empty()) {
+      const std::string png = stem + "_reaction_" + file_part(d.name) + ".png";
+      if (plot_png(h, png, vs_u)) made.push_back(png);
+    }
+  }
+  if (!vs_time.curves.empty() && plot_png(h, stem + "_reactions.png", vs_time)) made.push_back(stem + "_reactions.png");
+}
+
+// Probe displacements and contact forces vs time.
+void history_plots(const Model& m, const PlotTable& h, const std::string& stem, const UnitLabels& u, std::vector<std::string>& made) {
+  PlotSpec probes{"Displacement at the probes", with_unit("time", u.time), with_unit("displacement", u.length), "time", {}, true};
+  for (const auto& p : m.cfg.output.probes)
+    for (int k = 0; k < m.dim; ++k) {
+      const std::string col = "u_" + p.name + "_" + kAxes[k];
+      if (h.find(col) >= 0) probes.curves.push_back({col, p.name + ": u_" + kAxes[k], ""});
+    }
+  if (!probes.curves.empty() && plot_png(h, stem + "_probes.png", probes)) made.push_back(stem + "_probes.png");
+  PlotSpec contact{"Contact force on the slave side of each pair", with_unit("time", u.time), with_unit("contact force", u.force), "time", {}, true};
+  for (const auto& c : m.cfg.contact)
+    for (int k = 0; k < m.dim; ++k) {
+      const std::string col = "contact_" + c.name + "_force_" + kAxes[k];
+      if (h.find(col) >= 0) contact.curves.push_back({col, c.name + ": force " + kAxes[k], ""});
+    }
+  if (m.contact && !contact.curves.empty() && plot_png(h, stem + "_contact.png", contact)) made.push_back(stem + "_contact.png");
+}
+
+// Dynamics: every term of the energy balance, and the balance per step.
+void energy_plots(const Model& m, const std::string& stem, const UnitLabels& u, std::vector<std::string>& made) {
+  PlotTable e;
+  if (!read_csv_table(stem + "_energy.csv", e) || e.rows() == 0) return;
+  auto col = [&](const std::string& n) -> const std::vector<double>* {
+    const int i = e.find(n);
+    return i < 0 ? nullptr : &e.columns[static_cast<std::size_t>(i)];
+  };
+  const auto *total = col("total"), *ext = col("external_work"), *sup = col("support_work"), *dis = col("dissipation");
+  if (!total || !ext || !sup || !dis || !col("time")) return;
+  const auto *plastic = col("plastic_dissipation"), *wc = col("contact_work"), *fric = col("friction_dissipation");
+  const std::size_t n = e.rows();
+  std::vector<double> viscous(n), error(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    viscous[r] = (*dis)[r] - (plastic ? (*plastic)[r] : 0.0);  // "dissipation" is viscous + plastic
+    const double contact = (wc ? (*wc)[r] : 0.0) - (fric ? (*fric)[r] : 0.0);
+    error[r] = (*total)[r] - (*total)[0] - ((*ext)[r] + (*sup)[r] - (*dis)[r] + contact);
+  }
+  e.add("viscous_dissipation", std::move(viscous));
+  e.add("balance_error", std::move(error));
+  const bool c = wc != nullptr;
+  const std::string balance = std::string("E - E_0 - (W_ext + W_sup") + (c ? " + W_contact" : "") + " - D" + (c ? " - D_friction" : "") + ")";
+  PlotSpec s{"Energy balance (" + m.cfg.time.scheme + "): E = kinetic + strain, D = viscous + plastic dissipation",
+             with_unit("time", u.time), with_unit("energy", u.energy), "time", {}, true};
+  s.curves = {{"kinetic", "kinetic energy", ""},
+              {"strain", "strain energy", ""},
+              {"total", "total energy E (kinetic + strain)", ""},
+              {"external_work", "external work W_ext", ""},
+              {"support_work", "support work W_sup (Dirichlet reactions)", ""},
+              {"viscous_dissipation", "viscous dissipation", ""}};
+  if (plastic) s.curves.push_back({"plastic_dissipation", "plastic dissipation", ""});
+  if (wc) s.curves.push_back({"contact_work", "contact work W_contact", ""});
+  if (fric) s.curves.push_back({"friction_dissipation", "frictional dissipation D_friction", ""});
+  s.curves.push_back({"balance_error", "balance error " + balance, ""});
+  if (plot_png(e, stem + "_energy.png", s)) made.push_back(stem + "_energy.png");
+  const std::string per_step = std::string("E_{n+1} - E_n - (W_ext + W_sup") + (c ? " + W_contact" : "") + " - D" +
+                               (c ? " - D_friction" : "") + ") of the step";
+  PlotSpec b{"Energy balance residual per step (" + m.cfg.time.scheme + ")", with_unit("time", u.time),
+             with_unit("balance residual", u.energy), "time", {{"balance_residual", per_step, ""}}, true};
+  if (plot_png(e, stem + "_balance.png", b)) made.push_back(stem + "_balance.png");
+}
+
+// A metrics column as a legend: "lumen_radius_mean" -> "lumen radius, mean".
+std::string metric_legend(const std::string& c) {
+  static const std::pair<const char*, const char*> names[] = {
+      {"lumen_radius_mean", "lumen radius, mean"}, {"lumen_radius_min", "lumen radius, minimum"},
+      {"stent_radius_mean", "stent radius, mean"}, {"stent_radius_middle", "stent radius, middle"},
+      {"stent_radius_ends", "stent radius, ends"}, {"artery_von_mises_max", "artery von Mises stress, maximum"},
+      {"artery_hoop_stress_max", "artery hoop (circumferential) stress, maximum"},
+      {"contact_pressure_max", "contact pressure, maximum"}};
+  for (const auto& p : names)
+    if (c == p.first) return p.second;
+  std::string s = c;
+  for (char& ch : s)
+    if (ch == '_') ch = ' ';
+  return s;
+}
+
+void metrics_plots(const std::string& stem, const UnitLabels& u, const std::vector<std::string>& radii,
+                   const std::vector<std::string>& stresses, std::vector<std::string>& made) {
+  PlotTable t;
+  if (radii.empty() || !read_csv_table(stem + "_metrics.csv", t)) return;
+  PlotSpec r{"Lumen and stent radii", with_unit("time", u.time), with_unit("radius", u.length), "time", {}, true};
+  for (const auto& c : radii) r.curves.push_back({c, metric_legend(c), ""});
+  if (plot_png(t, stem + "_radii.png", r)) made.push_back(stem + "_radii.png");
+  PlotSpec s{"Artery wall stress, contact pressure", with_unit("time", u.time), with_unit("stress", u.stress), "time", {}, true};
+  for (const auto& c : stresses) s.curves.push_back({c, metric_legend(c), ""});
+  if (plot_png(t, stem + "_stresses.png", s)) made.push_back(stem + "_stresses.png");
+}
+
+}  // namespace
+
+bool deck_at_rest_unloaded(const Model& m) {
+  const Config& c = m.cfg;
+  const double T = c.stepping.end_time;
+  if (m.dynamic)
+    for (int k = 0; k < 3; ++k)
+      if (c.initial.displacement[k] != 0.0 || c.initial.velocity[k] != 0.0 || c.initial.angular_velocity[k] != 0.0) return false;
+  for (const BodyConfig& b : c.bodies)
+    if (m.dynamic && b.has_velocity)
+      for (double v : b.velocity)
+        if (v != 0.0) return false;
+  for (const LoadConfig& l : c.loads) {
+    if (l.ramp(0.0, T) == 0.0) continue;
+    if (l.field) return false;
+    if (l.value != 0.0) return false;
+    for (double v : l.vector)
+      if (v != 0.0) return false;
+  }
+  return true;
+}
+
+std::vector<std::string> write_result_plots(const Model& m, const std::string& stem, const InitialState& init,
+                                            const std::vector<std::string>& radius_columns,
+                                            const std::vector<std::string>& stress_columns) {
+  std::vector<std::string> made;
+  const auto& systems = unit_systems();  // a Config built in code may hold any string
+  const bool known = std::find(systems.begin(), systems.end(), m.cfg.problem.units) != systems.end();
+  if (!known) std::cerr << "plots: unknown Problem->units '" << m.cfg.problem.units << "', plots without units\n";
+  const UnitLabels u = unit_labels(known ? m.cfg.problem.units : "none", m.dim);
+  PlotTable h;
+  if (read_csv_table(stem + "_history.csv", h) && h.find("time") >= 0 && h.rows() > 0) {
+    prepend_initial_row(h, m, init);
+    reaction_plots(m, h, stem, u, made);
+    history_plots(m, h, stem, u, made);
+  }
+  if (m.dynamic) energy_plots(m, stem, u, made);
+  metrics_plots(stem, u, radius_columns, stress_columns, made);
+  return made;
+}
+
+}  // namespace stentor
