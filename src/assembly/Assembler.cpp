@@ -415,7 +415,7 @@ void Assembler::apply_dirichlet(la::Vector& u, double t, double end_time) const 
 double Assembler::support_work(const la::Vector& du) const {
   auto dh = du.getLocalViewHost(Tpetra::Access::ReadOnly);
   double loc = 0.0, glob = 0.0;
-  for (std::size_t k = 0; k < dirichlet_r_.size(); ++k) loc -= dirichlet_r_[k] * dh(owned_dirichlet_dofs_[k], 0);
+  for (std::size_t k = 0; k < dirichlet_r_.size(); ++k) loc += dirichlet_r_[k] * dh(owned_dirichlet_dofs_[k], 0);
   Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &loc, &glob);
   return glob;
 }

@@ -71,9 +71,13 @@ class Assembler {
   const la::Vector& external_force() const { return *f_ext_; }
   // Consistent mass matrix (owned rows, Dirichlet rows included); built on first use.
   const la::RCP<la::CrsMatrix>& mass();
-  // Power of the supports: -sum over owned constrained dofs of r_i du_i (global), with r the
-  // full residual (inertia included) of the last assemble(): the work the Dirichlet
-  // reactions did on the body over a step whose increment is du.
+  // Work of the supports: sum over owned constrained dofs of r_i du_i (global), with r the
+  // full residual (inertia included) of the last assemble(). On a constrained row the
+  // support supplies exactly the force r_i = (f_int + M a - f_ext)_i that the free rows
+  // balance to zero, so this is the work the Dirichlet reactions did on the body over a step
+  // whose increment is du (summing r.du over all rows gives the scheme's identity
+  // dE + D - W_ext = W_sup). Until session 6 the sign was reversed: invisible with fixed
+  // supports (du = 0), a balance error of 2 W_sup with moving ones.
   double support_work(const la::Vector& du) const;
   // Dirichlet flag of each owned dof.
   bool is_dirichlet(la::LO owned_dof) const;

@@ -129,7 +129,7 @@ struct NewtonConfig {
   bool line_search = true;             // "line search": backtracking on ||r||
   int line_search_max = 6;             // "line search max halvings"
   int line_search_watchdog = 2;        // "line search watchdog": see newton_solve
-  std::string forcing = "fixed";       // "forcing": fixed | eisenstat-walker (linear tolerance per iteration)
+  std::string forcing = "eisenstat-walker";  // "forcing": fixed | eisenstat-walker (linear tolerance per iteration)
   double forcing_max = 0.1;            // "forcing max": Eisenstat-Walker's upper bound (and first value)
 };
 
@@ -142,7 +142,7 @@ struct LinearSolverConfig {
   int overlap = 1;                       // "overlap": Schwarz overlap
   std::string subdomain_solver = "RILUK";// "subdomain solver": "RILUK" | "ILUT" | "KLU2"(Amesos2)
   int fill_level = 1;                    // "fill level": RILUK level of fill
-  int preconditioner_reuse = 0;          // "preconditioner reuse": later setups that may keep it (gmres)
+  int preconditioner_reuse = 20;         // "preconditioner reuse": later setups that may keep it (gmres)
   // Pass-through sublists "Belos", "Ifpack2", "MueLu", "Amesos2" as XML text ("" if absent);
   // their entries override the values above.
   std::string belos_xml, ifpack2_xml, muelu_xml, amesos2_xml;

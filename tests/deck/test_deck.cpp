@@ -301,6 +301,39 @@ TEST_F(Deck, MinimalDeckGetsTheStructDefaults) {
   EXPECT_EQ(c.output.fields, d.output.fields);
 }
 
+// A deck without a Newton / Linear Solver / Stepping sublist gets the structs' defaults,
+// one with the sublists empty the schema's: the two must agree (they once did not for
+// Newton->forcing, so decks without a Newton list solved with another forcing term).
+TEST_F(Deck, EmptySublistsGetTheSameDefaultsAsAbsentOnes) {
+  const Config a = read_deck(write(kMinimalDeck));
+  const Config e = read_deck(write(replace(kMinimalDeck, "</ParameterList>\n</ParameterList>", R"(</ParameterList>
+  <ParameterList name="Stepping"/>
+  <ParameterList name="Newton"/>
+  <ParameterList name="Linear Solver"/>
+</ParameterList>)")));
+  EXPECT_EQ(a.stepping.predictor, e.stepping.predictor);
+  EXPECT_EQ(a.stepping.growth, e.stepping.growth);
+  EXPECT_EQ(a.stepping.max_cutbacks, e.stepping.max_cutbacks);
+  EXPECT_EQ(a.newton.max_iterations, e.newton.max_iterations);
+  EXPECT_EQ(a.newton.residual_tolerance, e.newton.residual_tolerance);
+  EXPECT_EQ(a.newton.absolute_tolerance, e.newton.absolute_tolerance);
+  EXPECT_EQ(a.newton.increment_tolerance, e.newton.increment_tolerance);
+  EXPECT_EQ(a.newton.line_search, e.newton.line_search);
+  EXPECT_EQ(a.newton.line_search_max, e.newton.line_search_max);
+  EXPECT_EQ(a.newton.line_search_watchdog, e.newton.line_search_watchdog);
+  EXPECT_EQ(a.newton.forcing, e.newton.forcing);
+  EXPECT_EQ(a.newton.forcing_max, e.newton.forcing_max);
+  EXPECT_EQ(a.linear.method, e.linear.method);
+  EXPECT_EQ(a.linear.preconditioner, e.linear.preconditioner);
+  EXPECT_EQ(a.linear.tolerance, e.linear.tolerance);
+  EXPECT_EQ(a.linear.max_iterations, e.linear.max_iterations);
+  EXPECT_EQ(a.linear.restart, e.linear.restart);
+  EXPECT_EQ(a.linear.overlap, e.linear.overlap);
+  EXPECT_EQ(a.linear.subdomain_solver, e.linear.subdomain_solver);
+  EXPECT_EQ(a.linear.fill_level, e.linear.fill_level);
+  EXPECT_EQ(a.linear.preconditioner_reuse, e.linear.preconditioner_reuse);
+}
+
 TEST_F(Deck, DirichletAllWithoutDimensionKeepsZ) {
   const std::string xml = replace(kMinimalDeck, "</ParameterList>\n</ParameterList>", R"(</ParameterList>
   <ParameterList name="Boundary Conditions">
