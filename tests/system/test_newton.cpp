@@ -291,14 +291,14 @@ TEST(Newton, LiftingSameSolutionFewerIterations) {
   EXPECT_LT(lift.newton_iterations, none.newton_iterations);
 }
 
-// Inexact Newton (Eisenstat-Walker) and a reused MueLu preconditioner (both defaults): the
+// Inexact Newton (Eisenstat-Walker) and a reused MueLu preconditioner (the default): the
 // same solution to the Newton tolerance as exact solves with a fresh preconditioner per
 // iteration, in fewer Krylov iterations.
 TEST(Newton, EisenstatWalkerAndReuseSameSolution) {
   const std::string fresh = param("preconditioner reuse", "int", "0");
   const RunResult fixed = run_block("ew_fixed", 2, "", param("forcing", "string", "fixed"), fresh);
   const RunResult ew = run_block("ew_on", 2, "", param("forcing", "string", "eisenstat-walker"), fresh);
-  const RunResult reuse = run_block("ew_reuse", 2, "");  // the defaults: eisenstat-walker, reuse 20
+  const RunResult reuse = run_block("ew_reuse", 2, "", param("forcing", "string", "eisenstat-walker"));  // reuse 20 (default)
   ASSERT_TRUE(fixed.converged && ew.converged && reuse.converged);
   const double d_ew = rel_diff(ew.displacement, fixed.displacement), d_re = rel_diff(reuse.displacement, fixed.displacement);
   std::printf("[newton] forcing: Newton %d / %d / %d, GMRES %d / %d / %d (fixed / eisenstat-walker / + reuse); |du|/|u| %.2e, %.2e\n",
