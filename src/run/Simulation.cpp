@@ -39,6 +39,7 @@ struct Run {
 void checkpoint(Run& r) {
   Timers::Scope t{r.timers, "checkpoint"};
   write_checkpoint(r.model, r.stepper, r.state, r.checkpoint, r.reporter.out());
+  r.model.linear->rebuild_preconditioner();  // as a run restarted from here will
 }
 
 // --restart: the state of the checkpoint, the interrupted run's CSV rows up to it, the

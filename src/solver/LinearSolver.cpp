@@ -219,7 +219,9 @@ void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
     return;
   }
   if (m.cfg.preconditioner == "none") return;
-  if (same && m.keep_preconditioner()) return;
+  const bool forced = force_rebuild_;
+  force_rebuild_ = false;
+  if (same && !forced && m.keep_preconditioner()) return;
   m.age = 0;
   m.first_iterations = -1;
   ++m.times.builds;

@@ -34,6 +34,11 @@ class LinearSolver {
   // (inexact Newton's forcing term); the direct method ignores it.
   Result solve(const la::Vector& b, la::Vector& x, double tolerance = 0.0);
 
+  // The next setup() builds the preconditioner afresh, however recent it is. Called at
+  // every checkpoint: a run restarted there builds one at its first setup, so with the
+  // uninterrupted run doing the same both stay bitwise equal (preconditioner reuse).
+  void rebuild_preconditioner() { force_rebuild_ = true; }
+
   // The configured relative residual tolerance (Belos pass-through included); 0 for direct.
   double tolerance() const;
 
@@ -50,6 +55,7 @@ class LinearSolver {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  bool force_rebuild_ = false;
 };
 
 }  // namespace stentor
