@@ -81,15 +81,9 @@ bool Stepper::lift(RunState& s, double t_new, NewtonResult& lifted) {
   r.update(1.0, inc, -1.0);  // prescribed rows of r are zero: inc there, -r elsewhere
   LinearSolver::Result lr;
   const NewtonConfig& nc = m_.cfg.newton;
-  try {
-    m_.linear->setup(system_.matrix());
-    lr = m_.linear->solve(r, du, nc.forcing == "eisenstat-walker" ? nc.forcing_max : 0.0);
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception&) {
-    if (map->getComm()->getSize() > 1) throw;  // as in newton_solve
+  std::string failure;  // a failed lifting only falls back to u_n
+  if (!linear_solve(*m_.linear, system_.matrix(), r, du, nc.forcing == "eisenstat-walker" ? nc.forcing_max : 0.0, lr, failure))
     return false;
-  }
   if (!std::isfinite(du.norm2())) return false;
   s.u.update(1.0, du, 1.0);
   lifted.iterations = 1;

@@ -103,6 +103,22 @@ void log_iteration(std::ostream& log, int it, double rn, double step, double alp
 
 }  // namespace
 
+bool linear_solve(LinearSolver& lin, const la::RCP<la::CrsMatrix>& K, const la::Vector& b, la::Vector& x, double tol,
+                  LinearSolver::Result& res, std::string& failure) {
+  try {
+    lin.setup(K);
+    res = lin.solve(b, x, tol);
+    return true;
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    // e.g. MueLu "damping factor needs to be finite", Belos "residual norms is NaN".
+    if (x.getMap()->getComm()->getSize() > 1) throw;
+    failure = "the linear solver failed: " + teuchos_short_message(e.what());
+    return false;
+  }
+}
+
 NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, const NewtonConfig& cfg, std::ostream* log) {
   NewtonResult res;
   la::Vector r(u.getMap()), du(u.getMap()), u_trial(u.getMap()), r_trial(u.getMap());
@@ -133,20 +149,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     LinearSolver::Result lr;
     const double eta = forcing.next(rn, target);
     r.scale(-1.0);
-    try {
-      lin.setup(sys.matrix());
-      lr = lin.solve(r, du, eta);
-    } catch (const InputError&) {
-      throw;
-    } catch (const std::exception& e) {
-      // A preconditioner or Krylov breakdown (MueLu "damping factor needs to be finite",
-      // Belos "residual norms is NaN"): a failed iteration, so the step is cut back. On
-      // several ranks the error may be one rank's alone while the others wait in a
-      // collective: there it ends the run on every rank (main's fail_all_ranks).
-      if (u.getMap()->getComm()->getSize() > 1) throw;
-      res.failure = "the linear solver failed: " + teuchos_short_message(e.what());
-      return res;
-    }
+    if (!linear_solve(lin, sys.matrix(), r, du, eta, lr, res.failure)) return res;
     r.scale(-1.0);
     res.linear_iterations += lr.iterations;
     if (!std::isfinite(du.norm2())) {

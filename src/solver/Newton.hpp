@@ -51,6 +51,14 @@ struct NewtonResult {
   std::string failure;  // why it failed, for the log
 };
 
+// One linear solve of a Newton-like iteration (setup for K, then K x = b at relative
+// tolerance `tol`, 0: the configured one). A preconditioner or Krylov breakdown returns
+// false with `failure` set, so the caller cuts the step back; InputError propagates, and so
+// does any error on several ranks (it may be one rank's alone while the others wait in a
+// collective: main's fail_all_ranks ends the run).
+bool linear_solve(LinearSolver& lin, const la::RCP<la::CrsMatrix>& K, const la::Vector& b, la::Vector& x, double tol,
+                  LinearSolver::Result& res, std::string& failure);
+
 NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, const NewtonConfig& cfg, std::ostream* log);
 
 }  // namespace stentor

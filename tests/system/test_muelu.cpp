@@ -12,12 +12,14 @@
 
 #include <Tpetra_Core.hpp>
 
+#include "RelDiff.hpp"
 #include "deck/Config.hpp"
 #include "solver/LinearSolver.hpp"
 #include "solver/SolverParams.hpp"
 #include "run/Simulation.hpp"
 
 using namespace stentor;
+using stentor::testing::rel_diff;
 namespace fs = std::filesystem;
 
 namespace {
@@ -85,15 +87,6 @@ RunResult run(const std::string& deck, const std::string& prec, const std::strin
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
   return res;
-}
-
-double rel_diff(const std::vector<double>& a, const std::vector<double>& b) {
-  double d2 = 0.0, n2 = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    d2 += (a[i] - b[i]) * (a[i] - b[i]);
-    n2 += b[i] * b[i];
-  }
-  return std::sqrt(d2 / n2);
 }
 
 [[maybe_unused]] void compare(int dim, double size, int steps) {

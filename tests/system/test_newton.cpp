@@ -18,12 +18,14 @@
 
 #include <Tpetra_Core.hpp>
 
+#include "RelDiff.hpp"
 #include "deck/Config.hpp"
 #include "run/Simulation.hpp"
 #include "solver/LinearSolver.hpp"
 #include "solver/Newton.hpp"
 
 using namespace stentor;
+using stentor::testing::rel_diff;
 namespace fs = std::filesystem;
 
 namespace {
@@ -258,15 +260,6 @@ RunResult run_block(const std::string& tag, int steps, const std::string& steppi
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
   return res;
-}
-
-double rel_diff(const std::vector<double>& a, const std::vector<double>& b) {
-  double d2 = 0.0, n2 = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    d2 += (a[i] - b[i]) * (a[i] - b[i]);
-    n2 += b[i] * b[i];
-  }
-  return std::sqrt(d2 / n2);
 }
 
 std::string param(const char* name, const char* type, const char* value) {
