@@ -1,5 +1,7 @@
 #include "assembly/Assembler.hpp"
 
+#include "material/SymEigen.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <set>
@@ -745,7 +747,40 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
   return st;
 }
 
-Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
+Assembler::DofReactions Assembler::dof_reactions() const {
+  DofReactions d;
+  for (std::size_t k = 0; k < owned_dirichlet_dofs_.size() && k < dirichlet_r_.size(); ++k) {
+    const la::LO i = owned_dirichlet_dofs_[k];
+    d.nodes.push_back(dist_.global_node(i / dim_));
+    d.components.push_back(static_cast<int>(i % dim_));
+    d.values.push_back(dirichlet_r_[k]);
+  }
+  return d;
+}
+
+namespace {
+
+// Columns of the cell_fields kernel's result: stress (6), von Mises, J, volume, the history
+// averages (nx), then the requested strains and principal stresses.
+struct CellColumns {
+  int extra = 9, green_lagrange = -1, log_strain = -1, principal = -1, total = 9;
+  CellColumns(int nx, const Assembler::CellFieldRequest& req) {
+    total = extra + nx;
+    if (req.green_lagrange) green_lagrange = total, total += 6;
+    if (req.log_strain) log_strain = total, total += 6;
+    if (req.principal) principal = total, total += 3;
+  }
+};
+
+template <class Row>
+KOKKOS_INLINE_FUNCTION void put_sym(const Row& res, int c, int col, const Mat3& m) {
+  res(c, col) = m(0, 0), res(c, col + 1) = m(1, 1), res(c, col + 2) = m(2, 2);
+  res(c, col + 3) = m(0, 1), res(c, col + 4) = m(1, 2), res(c, col + 5) = m(0, 2);
+}
+
+}  // namespace
+
+Assembler::CellFields Assembler::cell_fields(const la::Vector& u, const CellFieldRequest& req) {
   u_overlap_->doImport(u, *dist_.importer(), Tpetra::INSERT);
   using Law = CiarletGeymonatPlasticity;
   CellFields out;
@@ -757,6 +792,7 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
         extra_index.push_back(i);
       }
   const int nx = static_cast<int>(extra_index.size());
+  const CellColumns col(nx, req);
   Kokkos::View<int*, la::ExecSpace> xcol("extra_columns", extra_index.size());
   {
     auto xh = Kokkos::create_mirror_view(xcol);
@@ -783,13 +819,13 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
     const CellType type = lb.type;
     const int nn = lb.nodes_per_cell;
     auto conn = lb.conn;
-    Kokkos::View<double**, Kokkos::LayoutRight, la::ExecSpace> res("cell_fields", nc, 8 + nx);
+    Kokkos::View<double**, Kokkos::LayoutRight, la::ExecSpace> res("cell_fields", nc, col.total);
     Kokkos::parallel_for(
         "stentor::cell_fields", Kokkos::RangePolicy<la::ExecSpace>(0, nc), KOKKOS_LAMBDA(const int c) {
           double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], N[kMaxCellNodes], dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
           int dofs[kMaxCellDofs];
           gather_cell(c, nn, dim, conn, X, uv, Xe, Ue, dofs);
-          Mat3 sig = Mat3::zero();
+          Mat3 sig = Mat3::zero(), E = Mat3::zero(), L = Mat3::zero();
           double Jm = 0.0, vol = 0.0, acc[CiarletGeymonatPlasticity::kNumHist] = {};
           for (int g = 0; g < q.n; ++g) {
             shape_functions(type, q.xi[g], N, dN);
@@ -807,24 +843,36 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u) {
             } else if (J > 0.0) {
               sig = sig + w * cauchy_stress(F, matmul(F, law_at_point(mat, nn, N, Xe).stress(tmul(F, F))));
             }
+            if (J > 0.0 && col.green_lagrange >= 0) E = E + (0.5 * w) * (tmul(F, F) - Mat3::identity());
+            if (J > 0.0 && col.log_strain >= 0) L = L + w * half_log_spd(matmul(F, transpose(F)));
           }
           sig = (1.0 / vol) * sig;
-          for (int k = 0; k < nx; ++k) res(c, 8 + k) = acc[k] / vol;
-          res(c, 0) = sig(0, 0);
-          res(c, 1) = sig(1, 1);
-          res(c, 2) = sig(2, 2);
-          res(c, 3) = sig(0, 1);
-          res(c, 4) = sig(1, 2);
-          res(c, 5) = sig(0, 2);
+          for (int k = 0; k < nx; ++k) res(c, col.extra + k) = acc[k] / vol;
+          put_sym(res, c, 0, sig);
           res(c, 6) = von_mises(sig);
           res(c, 7) = Jm / vol;
+          res(c, 8) = vol;
+          if (col.green_lagrange >= 0) put_sym(res, c, col.green_lagrange, (1.0 / vol) * E);
+          if (col.log_strain >= 0) put_sym(res, c, col.log_strain, (1.0 / vol) * L);
+          if (col.principal >= 0) {
+            double lam[3];
+            principal_values(sig, lam);
+            for (int k = 0; k < 3; ++k) res(c, col.principal + k) = lam[k];
+          }
         });
     auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), res);
+    auto take = [&](std::vector<double>& v, std::size_t c, int at, int n) {
+      for (int k = 0; at >= 0 && k < n; ++k) v.push_back(h(c, at + k));
+    };
     for (std::size_t c = 0; c < nc; ++c) {
-      for (int k = 0; k < 6; ++k) out.stress.push_back(h(c, k));
-      out.von_mises.push_back(h(c, 6));
-      out.J.push_back(h(c, 7));
-      for (int k = 0; k < nx; ++k) out.extra.push_back(h(c, 8 + k));
+      take(out.stress, c, 0, 6);
+      take(out.von_mises, c, 6, 1);
+      take(out.J, c, 7, 1);
+      take(out.volume, c, 8, 1);
+      take(out.extra, c, col.extra, nx);
+      take(out.green_lagrange, c, col.green_lagrange, 6);
+      take(out.log_strain, c, col.log_strain, 6);
+      take(out.principal, c, col.principal, 3);
     }
   }
   return out;

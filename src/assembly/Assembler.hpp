@@ -121,13 +121,33 @@ class Assembler {
   // With Gauss-point history (has_history()): per cell the average over its Gauss points
   // of each history variable marked for output (kHistory), named in extra_names
   // (0 in blocks without history); `extra` holds extra_names.size() values per cell.
+  // `volume`: reference volume of each cell (the Gauss weights' sum; 2D: per unit thickness).
+  // On request (a deck pays only for what it asks): per Gauss point, averaged as the stress,
+  //   green_lagrange: E = (C - I)/2, 6 per cell in the stress order (xx, yy, zz, xy, yz, xz);
+  //   log_strain: the spatial Hencky strain ln V = ln(b)/2, b = F F^T (material/SymEigen.hpp), 6 per cell;
+  //   principal: the eigenvalues of the cell's (averaged) Cauchy stress, largest first, 3 per cell.
+  // Points with det F <= 0 are left out of the averages of stress and strains (as before).
+  struct CellFieldRequest {
+    bool green_lagrange = false, log_strain = false, principal = false;
+  };
   struct CellFields {
     std::vector<GId> cell_ids;
-    std::vector<double> stress, von_mises, J;
+    std::vector<double> stress, von_mises, J, volume;
     std::vector<std::string> extra_names;
     std::vector<double> extra;
+    std::vector<double> green_lagrange, log_strain, principal;  // empty unless requested
   };
-  CellFields cell_fields(const la::Vector& u);
+  CellFields cell_fields(const la::Vector& u, const CellFieldRequest& req);
+  CellFields cell_fields(const la::Vector& u) { return cell_fields(u, CellFieldRequest()); }
+
+  // The reactions node by node, from the last assemble(): per owned constrained dof its
+  // global node id, component and the residual there (the values reactions() sums).
+  struct DofReactions {
+    std::vector<GId> nodes;
+    std::vector<int> components;
+    std::vector<double> values;
+  };
+  DofReactions dof_reactions() const;
 
  private:
   void build_graph();

@@ -21,6 +21,7 @@
 #include <set>
 #include <sstream>
 
+#include "deck/OutputFields.hpp"
 #include "deck/Schema.hpp"
 #include "material/ElasticConstants.hpp"
 
@@ -62,6 +63,10 @@ double Ramp::operator()(double t, double end_time) const {
     case Piece::Mode::Active: break;
   }
   return ramp_value(p->kind, p->times, p->factors, t - p->start, p->end - p->start);
+}
+
+bool OutputConfig::wants(const std::string& field) const {
+  return fields && std::find(field_names.begin(), field_names.end(), field) != field_names.end();
 }
 
 const MaterialConfig& Config::material(const std::string& name) const {
@@ -287,6 +292,7 @@ class DeckReader {
   void read_newton(const ParameterList& pl);
   void read_linear(const ParameterList& pl);
   void read_output(const ParameterList& pl);
+  void resolve_output();  // after Contact and Stages: field names and output times
   Ramp read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls, const std::string& key = "ramp") const;
   void read_contact(const ParameterList& pl);
   void read_stages(const ParameterList& pl, const ParameterList* stepping);
@@ -1298,6 +1304,11 @@ void DeckReader::read_output(const ParameterList& pl) {
   o.basename = get_string(pl, ls, "basename");
   o.every = get_int(pl, ls, "every");
   o.fields = get_bool(pl, ls, "fields");
+  o.field_list = get_string(pl, ls, "field list");
+  o.times = get_array(pl, ls, "times");
+  for (const char* p : {"field list", "times"})
+    if (!o.fields && pl.isParameter(p))
+      fail("'Output->" + std::string(p) + "' is given but 'Output->fields' is false (no fields are written)");
   o.checkpoint_every = get_int(pl, ls, "checkpoint every");
   if (o.directory.empty()) fail("'Output->directory' must not be empty");
   if (o.basename.empty()) fail("'Output->basename' must not be empty");
@@ -1324,6 +1335,31 @@ void DeckReader::read_output(const ParameterList& pl) {
     }
   }
   if (pl.isSublist("Stent Metrics")) read_stent_metrics(pl.sublist("Stent Metrics"));
+}
+
+void DeckReader::resolve_output() {
+  OutputConfig& o = cfg_.output;
+  OutputDeckTraits traits;
+  traits.dynamic = cfg_.problem.dynamic();
+  traits.contact = !cfg_.contact.empty();
+  for (const auto& c : cfg_.contact) traits.master_surface |= !c.master.empty();
+  for (const auto& b : cfg_.bodies)
+    for (const auto& m : cfg_.materials)
+      if (m.name == b.material && m.plastic()) traits.plastic = true;
+  try {
+    o.field_names = o.fields ? resolve_output_fields(o.field_list, traits) : std::vector<std::string>{};
+  } catch (const std::invalid_argument& e) {
+    fail("'Output->field list' " + std::string(e.what()) + "; got '" + o.field_list + "'");
+  }
+  const double end = cfg_.stepping.end_time;
+  for (std::size_t i = 0; i < o.times.size(); ++i) {
+    const double t = o.times[i];
+    if (!(t > 0.0) || t > end * (1.0 + 1e-12))
+      fail("'Output->times' must lie in (0, end time = " + num(end) + "], got " + num(t) + " at position " + std::to_string(i + 1));
+    if (i > 0 && !(t > o.times[i - 1]))
+      fail("'Output->times' must be strictly increasing, got " + num(o.times[i - 1]) + " then " + num(t) + " at positions " +
+           std::to_string(i) + ", " + std::to_string(i + 1));
+  }
 }
 
 void DeckReader::read_stent_metrics(const ParameterList& sub) {
@@ -1580,6 +1616,7 @@ Config DeckReader::read() {
   if (root.isSublist("Output")) read_output(root.sublist("Output"));
   if (root.isSublist("Contact")) read_contact(root.sublist("Contact"));
   if (root.isSublist("Stages")) read_stages(root.sublist("Stages"), root.isSublist("Stepping") ? &root.sublist("Stepping") : nullptr);
+  resolve_output();
   // "{deck}" in Output->directory (the default results/{deck}): the deck's file name
   // without its extension, so that two decks never share a result folder by default.
   const std::string stem = fs::path(cfg_.deck_path).stem().string();

@@ -168,6 +168,10 @@ struct OutputConfig {
   std::string basename = "stentor";   // "Output"->"basename": file name stem
   int every = 1;                      // "Output"->"every": write fields every N converged steps (and the last)
   bool fields = true;                 // "Output"->"fields": HDF5/XDMF output on/off
+  std::string field_list = "default"; // "Output"->"field list", as given
+  std::vector<std::string> field_names;  // ... resolved (deck/OutputFields.hpp); empty when fields is false
+  std::vector<double> times;          // "Output"->"times": extra output times, increasing, in (0, end time]
+  bool wants(const std::string& field) const;  // fields on and `field` in field_names
   int checkpoint_every = 0;           // "Output"->"checkpoint every": checkpoint every N accepted steps (0: none)
   std::vector<ProbeConfig> probes;    // "Output"->"Probes"
   StentMetricsConfig metrics;         // "Output"->"Stent Metrics"

@@ -386,6 +386,17 @@ std::vector<ListSpec> build_schema() {
                    str("basename", "stentor", "File name stem.").allowed("letters, digits, spaces, `_ . + -`"),
                    integer("every", 1, "Write fields every N converged steps (and the last).").ge(1),
                    boolean("fields", true, "HDF5/XDMF field output on/off."),
+                   str("field list", "default",
+                       "The fields written (docs/deck.md, \"Outputs\"): names separated by commas or spaces; "
+                       "`default` stands for the standard set (displacement, cauchy_stress, von_mises, J, mpi_rank, "
+                       "the plastic and contact fields the deck has), `all` for every field the deck has. An unknown "
+                       "name, or one the deck cannot have (velocity in statics, contact fields without `Contact`), "
+                       "is an error.")
+                       .allowed("field names, `default`, `all`"),
+                   arr("times", "Times [s] at which fields are also written, strictly increasing, in (0, end time]. "
+                                "A step that would pass one is shortened to end on it (the steps after it keep "
+                                "their size). Fields are always written at t = 0, at the end of the run and of "
+                                "every stage."),
                    integer("checkpoint every", 0,
                            "Write a checkpoint (the whole state, `<basename>_checkpoint.h5` in the output folder, "
                            "the one before kept as `<basename>_checkpoint.prev.h5`) every N accepted steps and at the "

@@ -75,41 +75,14 @@
 
 #include "material/CiarletGeymonat.hpp"
 #include "material/MaterialState.hpp"
+#include "material/SymEigen.hpp"
 #include "stentor/tensor.hpp"
 
 namespace stentor {
 namespace plasticity_detail {
 
-// Symmetric eigen-decomposition A = V diag(lam) V^T by cyclic Jacobi rotations
-// (columns of V are the eigenvectors; robust for repeated eigenvalues).
-KOKKOS_INLINE_FUNCTION void sym_eig3(const Mat3& Ain, double lam[3], Mat3& V) {
-  Mat3 A = Ain;
-  V = Mat3::identity();
-  for (int sweep = 0; sweep < 32; ++sweep) {
-    const double off = A(0, 1) * A(0, 1) + A(0, 2) * A(0, 2) + A(1, 2) * A(1, 2);
-    const double dia = A(0, 0) * A(0, 0) + A(1, 1) * A(1, 1) + A(2, 2) * A(2, 2);
-    if (off <= 1e-34 * dia || off == 0.0) break;
-    for (int p = 0; p < 2; ++p)
-      for (int q = p + 1; q < 3; ++q) {
-        if (A(p, q) == 0.0) continue;
-        const double th = (A(q, q) - A(p, p)) / (2.0 * A(p, q));
-        const double t = (th >= 0.0 ? 1.0 : -1.0) / (std::fabs(th) + std::sqrt(th * th + 1.0));
-        const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
-        for (int k = 0; k < 3; ++k) {  // A <- A P, V <- V P
-          const double akp = A(k, p), akq = A(k, q);
-          A(k, p) = c * akp - s * akq, A(k, q) = s * akp + c * akq;
-          const double vkp = V(k, p), vkq = V(k, q);
-          V(k, p) = c * vkp - s * vkq, V(k, q) = s * vkp + c * vkq;
-        }
-        for (int k = 0; k < 3; ++k) {  // A <- P^T A
-          const double apk = A(p, k), aqk = A(q, k);
-          A(p, k) = c * apk - s * aqk, A(q, k) = s * apk + c * aqk;
-        }
-        A(p, q) = A(q, p) = 0.0;
-      }
-  }
-  for (int i = 0; i < 3; ++i) lam[i] = A(i, i);
-}
+// sym_eig3: material/SymEigen.hpp (shared with the output fields).
+using stentor::sym_eig3;
 
 // Principal Mandel stresses tau_A = dW/de_A (split as shape part s_A + common p) and
 // the Hessian Ge_AB = dtau_A/de_B, for principal values c_A of Ce.

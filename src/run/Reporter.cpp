@@ -64,7 +64,8 @@ Gathered gather_on_root(const std::vector<long long>& ids, const std::vector<dou
 // other fields are 0); 0 free, 1 inactive, 2 stick, 3 slip.
 // Master surfaces: contact_master_traction = the reaction force on each master node
 // (summed over ranks) divided by its tributary area (zero on other nodes).
-void write_contact_fields(XdmfWriter& xdmf, std::size_t nn, const Gathered& slaves, const Gathered* masters) {
+// Only the fields of Output->field list are written.
+void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, std::size_t nn, const Gathered& slaves, const Gathered* masters) {
   constexpr int kv = Contact::kNodalValues;
   std::vector<double> status(nn, double(contact::NotSlave)), gap(nn, 0.0), lambda_n(nn, 0.0), pressure(nn, 0.0), lambda_t(3 * nn, 0.0), slip(3 * nn, 0.0);
   for (std::size_t i = 0; i < slaves.ids.size(); ++i) {
@@ -79,13 +80,16 @@ void write_contact_fields(XdmfWriter& xdmf, std::size_t nn, const Gathered& slav
       slip[3 * g + k] = v[7 + k];
     }
   }
-  xdmf.node_field("contact_status", 1, status);
-  xdmf.node_field("contact_gap", 1, gap);
-  xdmf.node_field("contact_lambda_normal", 1, lambda_n);
-  xdmf.node_field("contact_pressure", 1, pressure);
-  xdmf.node_field("contact_lambda_tangent", 3, lambda_t);
-  xdmf.node_field("contact_slip", 3, slip);
-  if (!masters) return;  // no master surface in the deck
+  auto put = [&](const char* name, int k, const std::vector<double>& v) {
+    if (o.wants(name)) xdmf.node_field(name, k, v);
+  };
+  put("contact_status", 1, status);
+  put("contact_gap", 1, gap);
+  put("contact_lambda_normal", 1, lambda_n);
+  put("contact_pressure", 1, pressure);
+  put("contact_lambda_tangent", 3, lambda_t);
+  put("contact_slip", 3, slip);
+  if (!masters || !o.wants("contact_master_traction")) return;  // no master surface in the deck, or not asked for
   constexpr int km = Contact::kMasterValues;
   std::vector<double> traction(3 * nn, 0.0), area(nn, 0.0);
   for (std::size_t i = 0; i < masters->ids.size(); ++i) {
@@ -96,6 +100,63 @@ void write_contact_fields(XdmfWriter& xdmf, std::size_t nn, const Gathered& slav
   for (std::size_t g = 0; g < nn; ++g)
     for (int k = 0; k < 3; ++k) traction[3 * g + k] = area[g] > 0.0 ? traction[3 * g + k] / area[g] : 0.0;
   xdmf.node_field("contact_master_traction", 3, traction);
+}
+
+// Nodal recovery of a cell field (k values per cell, cells in block order): per node the
+// mean of the values of the cells around it weighted by their reference volumes, taken
+// over the cells of one body only, the first body (block order) that has the node, so that
+// nothing is averaged across a material interface.
+std::vector<double> recover_at_nodes(const Mesh& mesh, const std::vector<double>& cell_values, int k, const std::vector<double>& volume) {
+  const std::size_t nn = mesh.num_nodes();
+  std::vector<double> sum(nn * static_cast<std::size_t>(k), 0.0), weight(nn, 0.0);
+  std::vector<int> body(nn, -1);
+  std::size_t c = 0;  // global cell id
+  for (std::size_t b = 0; b < mesh.volumes.size(); ++b) {
+    const CellBlock& blk = mesh.volumes[b];
+    const auto npc = static_cast<std::size_t>(blk.nodes_per_cell);
+    for (std::size_t i = 0; i < blk.num_cells(); ++i, ++c)
+      for (std::size_t a = 0; a < npc; ++a) {
+        const auto n = static_cast<std::size_t>(blk.conn[i * npc + a]);
+        if (body[n] < 0) body[n] = static_cast<int>(b);
+        if (body[n] != static_cast<int>(b)) continue;
+        weight[n] += volume[c];
+        for (int j = 0; j < k; ++j) sum[n * k + j] += volume[c] * cell_values[c * k + j];
+      }
+  }
+  for (std::size_t n = 0; n < nn; ++n)
+    for (int j = 0; j < k; ++j) sum[n * k + j] = weight[n] > 0.0 ? sum[n * k + j] / weight[n] : 0.0;
+  return sum;
+}
+
+// Cell fields of every rank on rank 0: `columns` (name, values per cell) of the local
+// cells, packed per cell, gathered, and unpacked by global cell id into num_cells x k
+// arrays (`owner`: the rank of each cell). Collective.
+struct CellColumn {
+  std::string name;
+  int k;
+  const std::vector<double>* local;
+  std::vector<double> global;
+};
+void gather_cells(const std::vector<GId>& ids, std::vector<CellColumn>& columns, std::size_t num_cells, int nranks,
+                  std::vector<double>& owner) {
+  int kc = 0;
+  for (const auto& col : columns) kc += col.k;
+  std::vector<double> packed;
+  packed.reserve(ids.size() * static_cast<std::size_t>(kc));
+  for (std::size_t c = 0; c < ids.size(); ++c)
+    for (const auto& col : columns)
+      for (int j = 0; j < col.k; ++j) packed.push_back((*col.local)[c * col.k + j]);
+  const Gathered g = gather_on_root(std::vector<long long>(ids.begin(), ids.end()), packed, kc, nranks);
+  if (g.ids.empty()) return;  // not rank 0
+  owner.assign(num_cells, 0.0);
+  for (auto& col : columns) col.global.assign(num_cells * static_cast<std::size_t>(col.k), 0.0);
+  for (std::size_t i = 0; i < g.ids.size(); ++i) {
+    const auto id = static_cast<std::size_t>(g.ids[i]);
+    owner[id] = g.from[i];
+    const double* v = &g.values[i * static_cast<std::size_t>(kc)];
+    for (auto& col : columns)
+      for (int j = 0; j < col.k; ++j) col.global[id * col.k + j] = *v++;
+  }
 }
 
 }  // namespace
@@ -218,18 +279,46 @@ void Reporter::discard() {
 
 void Reporter::write_fields(double t, const la::Vector& u) {
   Timers::Scope s{timers_, "output"};
-  u_all_->doImport(u, *gather_, Tpetra::INSERT);
-  Assembler::CellFields cf = m_.assembler->cell_fields(u);
-  const std::size_t nx = cf.extra_names.size(), kc = 8 + nx;  // + history fields (plasticity)
-  std::vector<double> packed;  // per local cell: stress (6), von Mises, J, extra
-  for (std::size_t c = 0; c < cf.cell_ids.size(); ++c) {
-    packed.insert(packed.end(), cf.stress.begin() + static_cast<std::ptrdiff_t>(6 * c),
-                  cf.stress.begin() + static_cast<std::ptrdiff_t>(6 * c + 6));
-    packed.push_back(cf.von_mises[c]);
-    packed.push_back(cf.J[c]);
-    packed.insert(packed.end(), cf.extra.begin() + static_cast<std::ptrdiff_t>(nx * c), cf.extra.begin() + static_cast<std::ptrdiff_t>(nx * c + nx));
+  const OutputConfig& o = cfg_.output;
+  const bool nodal = o.wants("cauchy_stress_nodal") || o.wants("von_mises_nodal");
+  Assembler::CellFieldRequest req;
+  req.green_lagrange = o.wants("green_lagrange_strain");
+  req.log_strain = o.wants("log_strain");
+  req.principal = o.wants("principal_stress");
+  const Assembler::CellFields cf = m_.assembler->cell_fields(u, req);
+  // What is gathered: the wanted cell fields (and what the nodal recovery reads).
+  std::vector<CellColumn> cols;
+  auto want_cells = [&](const std::string& name, int k, const std::vector<double>& v, bool also) {
+    if (o.wants(name) || also) cols.push_back({name, k, &v, {}});
+  };
+  // In the order written (the standard ones as before field lists; mpi_rank after J).
+  want_cells("cauchy_stress", 6, cf.stress, o.wants("cauchy_stress_nodal"));
+  want_cells("von_mises", 1, cf.von_mises, o.wants("von_mises_nodal"));
+  want_cells("J", 1, cf.J, false);
+  const std::size_t nx = cf.extra_names.size();
+  std::vector<std::vector<double>> extra(nx);  // history averages, one vector per name
+  for (std::size_t k = 0; k < nx; ++k)
+    for (std::size_t c = 0; c < cf.cell_ids.size(); ++c) extra[k].push_back(cf.extra[c * nx + k]);
+  for (std::size_t k = 0; k < nx; ++k) want_cells(cf.extra_names[k], 1, extra[k], false);
+  want_cells("principal_stress", 3, cf.principal, false);
+  want_cells("green_lagrange_strain", 6, cf.green_lagrange, false);
+  want_cells("log_strain", 6, cf.log_strain, false);
+  want_cells("volume", 1, cf.volume, nodal);  // not a field: the recovery's weights
+  std::vector<double> owner;
+  gather_cells(cf.cell_ids, cols, m_.mesh.num_volume_cells(), m_.nranks, owner);
+  std::vector<double> disp = displacement_on_root(u), vel;
+  if (o.wants("velocity")) vel = displacement_on_root(m_.integrator->velocity());
+  Gathered reactions;
+  if (o.wants("reaction_force")) {
+    const Assembler::DofReactions d = m_.assembler->dof_reactions();
+    std::vector<long long> ids;
+    std::vector<double> vals;
+    for (std::size_t i = 0; i < d.nodes.size(); ++i) {
+      ids.push_back(static_cast<long long>(d.nodes[i]) * 3 + d.components[i]);  // node and component
+      vals.push_back(d.values[i]);
+    }
+    reactions = gather_on_root(ids, vals, 1, m_.nranks);
   }
-  const Gathered cells = gather_on_root(std::vector<long long>(cf.cell_ids.begin(), cf.cell_ids.end()), packed, static_cast<int>(kc), m_.nranks);
   Gathered slaves, masters;  // contact fields at slave nodes, reactions at master nodes
   if (m_.contact) {
     const Contact::NodalFields nf = m_.contact->nodal_fields();
@@ -238,29 +327,28 @@ void Reporter::write_fields(double t, const la::Vector& u) {
     masters = gather_on_root(mf.nodes, mf.values, Contact::kMasterValues, m_.nranks);
   }
   if (m_.rank != 0 || !xdmf_) return;
-  const std::size_t nc = m_.mesh.num_volume_cells(), nn = m_.mesh.num_nodes();
-  const int dim = m_.dim;
-  std::vector<double> disp(3 * nn, 0.0), stress(6 * nc), vm(nc), J(nc), owner(nc), extra(nx * nc);
-  auto uh = u_all_->getLocalViewHost(Tpetra::Access::ReadOnly);
-  for (std::size_t i = 0; i < all_dofs_.size(); ++i)
-    disp[3 * static_cast<std::size_t>(all_dofs_[i] / dim) + static_cast<std::size_t>(all_dofs_[i] % dim)] = uh(i, 0);
-  for (std::size_t i = 0; i < cells.ids.size(); ++i) {
-    const auto id = static_cast<std::size_t>(cells.ids[i]);
-    for (int k = 0; k < 6; ++k) stress[6 * id + k] = cells.values[kc * i + k];
-    vm[id] = cells.values[kc * i + 6];
-    J[id] = cells.values[kc * i + 7];
-    for (std::size_t k = 0; k < nx; ++k) extra[k * nc + id] = cells.values[kc * i + 8 + k];
-    owner[id] = cells.from[i];
-  }
+  const std::size_t nn = m_.mesh.num_nodes();
+  const auto column = [&](const std::string& name) -> const CellColumn& {
+    return *std::find_if(cols.begin(), cols.end(), [&](const CellColumn& c) { return c.name == name; });
+  };
   xdmf_->begin_step(t);
-  xdmf_->node_field("displacement", 3, disp);
-  xdmf_->cell_field("cauchy_stress", 6, stress);
-  xdmf_->cell_field("von_mises", 1, vm);
-  xdmf_->cell_field("J", 1, J);
-  xdmf_->cell_field("mpi_rank", 1, owner);
-  for (std::size_t k = 0; k < nx; ++k)
-    xdmf_->cell_field(cf.extra_names[k], 1, std::vector<double>(extra.begin() + static_cast<std::ptrdiff_t>(k * nc), extra.begin() + static_cast<std::ptrdiff_t>((k + 1) * nc)));
-  if (m_.contact) write_contact_fields(*xdmf_, nn, slaves, m_.contact->has_master_surfaces() ? &masters : nullptr);
+  if (o.wants("displacement")) xdmf_->node_field("displacement", 3, disp);
+  if (o.wants("velocity")) xdmf_->node_field("velocity", 3, vel);
+  if (o.wants("reaction_force")) {
+    std::vector<double> rf(3 * nn, 0.0);
+    for (std::size_t i = 0; i < reactions.ids.size(); ++i) rf[static_cast<std::size_t>(reactions.ids[i])] = reactions.values[i];
+    xdmf_->node_field("reaction_force", 3, rf);
+  }
+  if (o.wants("cauchy_stress_nodal"))
+    xdmf_->node_field("cauchy_stress_nodal", 6, recover_at_nodes(m_.mesh, column("cauchy_stress").global, 6, column("volume").global));
+  if (o.wants("von_mises_nodal"))
+    xdmf_->node_field("von_mises_nodal", 1, recover_at_nodes(m_.mesh, column("von_mises").global, 1, column("volume").global));
+  for (const CellColumn& c : cols) {
+    if (o.wants(c.name)) xdmf_->cell_field(c.name, c.k, c.global);
+    if (c.name == "J" && o.wants("mpi_rank")) xdmf_->cell_field("mpi_rank", 1, owner);
+  }
+  if (!o.wants("J") && o.wants("mpi_rank")) xdmf_->cell_field("mpi_rank", 1, owner);
+  if (m_.contact) write_contact_fields(*xdmf_, o, nn, slaves, m_.contact->has_master_surfaces() ? &masters : nullptr);
   xdmf_->end_step();
   write_obstacles(t);
 }
@@ -390,7 +478,7 @@ void Reporter::cutback_line(const RunState& s, double t_new, const NewtonResult&
   out_ << "  step " << s.step + 1 << " t=" << fmt_time(t_new) << ": " << nr.failure << "; cutting dt to " << fmt_time(dt_new) << std::endl;
 }
 
-std::vector<double> Reporter::displacement(const la::Vector& u) {
+std::vector<double> Reporter::displacement_on_root(const la::Vector& u) {
   std::vector<double> d(3 * m_.mesh.num_nodes(), 0.0);
   u_all_->doImport(u, *gather_, Tpetra::INSERT);
   if (m_.rank == 0) {
@@ -398,6 +486,11 @@ std::vector<double> Reporter::displacement(const la::Vector& u) {
     for (std::size_t i = 0; i < all_dofs_.size(); ++i)
       d[3 * static_cast<std::size_t>(all_dofs_[i] / m_.dim) + static_cast<std::size_t>(all_dofs_[i] % m_.dim)] = uh(i, 0);
   }
+  return d;
+}
+
+std::vector<double> Reporter::displacement(const la::Vector& u) {
+  std::vector<double> d = displacement_on_root(u);
   Teuchos::broadcast(*m_.comm, 0, static_cast<int>(d.size()), d.data());
   return d;
 }

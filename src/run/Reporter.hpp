@@ -61,6 +61,9 @@ class Reporter {
 
   // Every rank: the displacement, 3 per mesh node (collective).
   std::vector<double> displacement(const la::Vector& u);
+  // Rank 0: a vector of the dof map (displacement, velocity), 3 per mesh node; zeros
+  // elsewhere (collective).
+  std::vector<double> displacement_on_root(const la::Vector& u);
   // Energy balance, summary line, timers.
   void summary(const RunState& s);
   // Success: plots, then <dir>.partial -> <dir>. Failure: says where the partial results are.

@@ -11,6 +11,7 @@
 // Reporter (progress lines, CSV/HDF5/XDMF, summary, plots).
 #include "run/Simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <memory>
@@ -87,10 +88,31 @@ void initialize(Run& r) {
   if (m.cfg.output.fields) r.reporter.write_fields(0.0, r.state.u);
 }
 
+// Output->times: a time counts as reached by a step ending within round-off of it.
+double output_time_tolerance(const Config& cfg) { return 1e-10 * cfg.stepping.end_time; }
+
+// The first Output->times entry after t (not reached at t), or `end` if none comes before.
+double next_stop(const Config& cfg, double t, double end) {
+  const double tol = output_time_tolerance(cfg);
+  for (double tau : cfg.output.times)
+    if (tau > t + tol) return std::min(tau, end);
+  return end;
+}
+
+// Whether a step from t0 to t1 reached an Output->times entry.
+bool output_time_reached(const Config& cfg, double t0, double t1) {
+  const double tol = output_time_tolerance(cfg);
+  for (double tau : cfg.output.times)
+    if (tau > t0 + tol && tau <= t1 + tol) return true;
+  return false;
+}
+
 // A converged step: history, progress line, result rows and fields. False when the new
-// state is not finite (the run stops before writing it).
+// state is not finite (the run stops before writing it). Fields: every Output->every
+// steps, at Output->times, at the end of the interval (the run, or a stage).
 bool accept_step(Run& r, double dt, const NewtonResult& nr, double end) {
   RunState& s = r.state;
+  const double t0 = s.t;
   const StepRecord rec = r.stepper.accept(s, dt, nr);
   const double energy = r.stepper.last().energy;
   r.reporter.step_line(s, rec, energy);
@@ -107,7 +129,8 @@ bool accept_step(Run& r, double dt, const NewtonResult& nr, double end) {
   r.reporter.history_row(s, rec, energy);
   const bool last = s.t >= end * (1.0 - 1e-12);
   const auto& out = r.model.cfg.output;
-  if (out.fields && (s.step % out.every == 0 || last)) r.reporter.write_fields(s.t, s.u);
+  if (out.fields && (s.step % out.every == 0 || last || output_time_reached(r.model.cfg, t0, s.t)))
+    r.reporter.write_fields(s.t, s.u);
   s.control.accepted();
   if (out.checkpoint_every > 0 && (s.step % out.checkpoint_every == 0 || last)) checkpoint(r);
   return true;
@@ -142,7 +165,7 @@ bool run_interval(Run& r, double end) {
       return false;
     }
     ++s.attempts;
-    const double dt = s.control.propose(end - s.t);
+    const double dt = s.control.propose(next_stop(r.model.cfg, s.t, end) - s.t);  // shortened to an output time
     const NewtonResult nr = r.stepper.solve(s, dt);
     if (nr.converged) {
       if (!accept_step(r, dt, nr, end)) return false;

@@ -826,3 +826,66 @@ TEST(Schema, DocsStructureTableListsEveryTopLevelSublist) {
   }
   EXPECT_EQ(listed, deck_list_spec("").sublists);
 }
+
+// ---------------------------------------------------------------------------
+// Output->field list and Output->times (docs/deck.md, "Outputs").
+
+namespace {
+std::string with_output(const std::string& params, const std::string& more = "") {
+  return replace(kMinimalDeck, "  <ParameterList name=\"Bodies\">",
+                 "  <ParameterList name=\"Output\">" + params + "</ParameterList>\n" + more + "  <ParameterList name=\"Bodies\">");
+}
+}  // namespace
+
+TEST_F(Deck, OutputFieldListDefaultsAndSelections) {
+  {
+    const Config c = read_deck(write(kMinimalDeck));
+    EXPECT_EQ(c.output.field_list, "default");
+    EXPECT_EQ(c.output.field_names, (std::vector<std::string>{"displacement", "cauchy_stress", "von_mises", "J", "mpi_rank"}));
+    EXPECT_TRUE(c.output.times.empty());
+    EXPECT_TRUE(c.output.wants("von_mises"));
+    EXPECT_FALSE(c.output.wants("log_strain"));
+  }
+  {
+    const Config c = read_deck(write(with_output(
+        R"XML(<Parameter name="field list" type="string" value="Log_Strain,displacement  reaction_force"/>
+        <Parameter name="times" type="Array(double)" value="{0.1, 0.5, 1}"/>)XML")));
+    EXPECT_EQ(c.output.field_names, (std::vector<std::string>{"displacement", "reaction_force", "log_strain"}));
+    EXPECT_EQ(c.output.times, (std::vector<double>{0.1, 0.5, 1.0}));
+  }
+  {
+    const Config c = read_deck(write(with_output(R"XML(<Parameter name="field list" type="string" value="default, principal_stress"/>)XML")));
+    EXPECT_EQ(c.output.field_names.size(), 6u);
+    EXPECT_TRUE(c.output.wants("principal_stress"));
+    // all: every field of a static deck without contact or plasticity
+    const Config a = read_deck(write(with_output(R"XML(<Parameter name="field list" type="string" value="all"/>)XML")));
+    EXPECT_EQ(a.output.field_names.size(), 11u);
+    EXPECT_FALSE(a.output.wants("velocity"));
+    EXPECT_FALSE(a.output.wants("contact_gap"));
+  }
+  {  // fields off: nothing wanted
+    const Config c = read_deck(write(with_output(R"XML(<Parameter name="fields" type="bool" value="false"/>)XML")));
+    EXPECT_TRUE(c.output.field_names.empty());
+    EXPECT_FALSE(c.output.wants("displacement"));
+  }
+}
+
+TEST_F(Deck, OutputFieldListAndTimesErrors) {
+  expect_error(with_output(R"XML(<Parameter name="field list" type="string" value="displacement, log_stran"/>)XML"),
+                                       {"'Output->field list'", "'log_stran' is not a field", "did you mean 'log_strain'",
+                                        "valid names: default, all, displacement", "green_lagrange_strain"});
+  expect_error(with_output(R"XML(<Parameter name="field list" type="string" value="velocity"/>)XML"),
+               {"'Output->field list'", "'velocity' needs 'Problem->analysis' = dynamic"});
+  expect_error(with_output(R"XML(<Parameter name="field list" type="string" value="contact_gap"/>)XML"),
+               {"'Output->field list'", "'contact_gap' needs a 'Contact' sublist"});
+  expect_error(with_output(R"XML(<Parameter name="field list" type="string" value="J, j"/>)XML"), {"lists 'j' twice"});
+  expect_error(with_output(R"XML(<Parameter name="field list" type="string" value=" , "/>)XML"), {"names no field"});
+  expect_error(with_output(R"XML(<Parameter name="fields" type="bool" value="false"/>
+      <Parameter name="field list" type="string" value="J"/>)XML"),
+               {"'Output->field list' is given but 'Output->fields' is false"});
+  expect_error(with_output(R"XML(<Parameter name="times" type="Array(double)" value="{0.5, 0.5}"/>)XML"),
+               {"'Output->times' must be strictly increasing, got 0.5 then 0.5 at positions 1, 2"});
+  expect_error(with_output(R"XML(<Parameter name="times" type="Array(double)" value="{0.5, 1.5}"/>)XML"),
+               {"'Output->times' must lie in (0, end time = 1], got 1.5 at position 2"});
+  expect_error(with_output(R"XML(<Parameter name="times" type="Array(double)" value="{0}"/>)XML"), {"'Output->times' must lie in (0"});
+}
