@@ -274,3 +274,42 @@ TEST(OutputFields, CatalogueMatchesLawAndDocs) {
   const std::string section = doc.substr(at, doc.find("\n## ", at + 1) - at);
   for (const auto& f : output_fields()) EXPECT_NE(section.find(std::string("| `") + f.name + "`"), std::string::npos) << f.name;
 }
+
+// velocity (dynamics): a block in free flight keeps its initial velocity at every node,
+// and its displacement is v t.
+TEST(OutputFields, VelocityOfFreeFlight) {
+  const std::string geo = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
+  const std::string deck = R"X(<ParameterList name="stentor">
+  <ParameterList name="Problem"><Parameter name="analysis" type="string" value="dynamic"/></ParameterList>
+  <ParameterList name="Mesh"><Parameter name="file" type="string" value=")X" + geo + R"X("/>
+    <Parameter name="size" type="double" value="0.5"/></ParameterList>
+  <ParameterList name="Materials"><ParameterList name="rubber">
+    <Parameter name="C1" type="double" value="0.5e6"/><Parameter name="D" type="double" value="0.35e6"/>
+    <Parameter name="density" type="double" value="1000"/></ParameterList></ParameterList>
+  <ParameterList name="Bodies"><ParameterList name="block">
+    <Parameter name="material" type="string" value="rubber"/></ParameterList></ParameterList>
+  <ParameterList name="Initial Conditions">
+    <Parameter name="velocity" type="Array(double)" value="{1, -2, 0.5}"/></ParameterList>
+  <ParameterList name="Stepping"><Parameter name="end time" type="double" value="0.01"/>
+    <Parameter name="steps" type="int" value="2"/></ParameterList>
+  <ParameterList name="Linear Solver"><Parameter name="method" type="string" value="direct"/></ParameterList>
+  <ParameterList name="Output"><Parameter name="basename" type="string" value="block"/>
+    <Parameter name="field list" type="string" value="velocity displacement"/></ParameterList>
+</ParameterList>
+)X";
+  const fs::path out = run_deck("velocity", deck);
+  H5 h5(out / "block.h5");
+  const std::vector<double> t = h5.times();
+  ASSERT_EQ(t.size(), 3u);
+  const double v0[3] = {1.0, -2.0, 0.5};
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(h5.names(k), (std::set<std::string>{"displacement", "velocity"}));
+    const auto v = h5.read("/step_" + std::to_string(k) + "/velocity"), u = h5.read("/step_" + std::to_string(k) + "/displacement");
+    ASSERT_EQ(v.size(), u.size());
+    ASSERT_FALSE(v.empty());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      EXPECT_NEAR(v[i], v0[i % 3], 1e-12) << "step " << k << " entry " << i;
+      EXPECT_NEAR(u[i], v0[i % 3] * t[static_cast<std::size_t>(k)], 1e-12) << "step " << k << " entry " << i;
+    }
+  }
+}
