@@ -5,10 +5,13 @@ obstacles of the same output step (from the <basename>_obstacles_<k>.vtp files),
 panel per requested time.
 
 usage: render_section.py RESULTS_DIR BASENAME OUT.png FIELD LABEL T1[:TITLE1] T2[:TITLE2] ...
-  FIELD   a cell field of the HDF5 (von_mises, equivalent_plastic_strain, J, ...)
+  FIELD   a cell field of the HDF5 (von_mises, equivalent_plastic_strain, J, ...), or one
+          component of a multi-component one as NAME[k]: principal_stress[0] (the largest),
+          log_strain[4] (yy of the 3 x 3 row-major tensor), ...
   LABEL   the colour bar's label, with units, e.g. "von Mises stress [MPa]"
   Ti      the output time to show (the nearest output step is taken); TITLEi its caption
-env: SCALE (field multiplier, e.g. 1e-6 for Pa -> MPa), VMAX (colour-bar top), XLIM/YLIM ("a,b").
+env: SCALE (field multiplier, e.g. 1e-6 for Pa -> MPa), VMIN/VMAX (colour-bar range; VMIN
+defaults to 0, or to the smallest value when that is negative), XLIM/YLIM ("a,b").
 Needs Debian's python3-matplotlib, python3-h5py, python3-numpy.
 """
 import os
@@ -55,8 +58,12 @@ def main():
     blocks = sorted(k for k in h5["mesh"] if k.startswith("block_"))
     conn = [h5["mesh/" + b + "/connectivity"][:] for b in blocks]
     steps = [int(np.argmin([abs(t - float(s[0])) for t in times])) for s in shots]
-    vals = [h5["step_%d/%s" % (k, field)][:] * scale for k in steps]
+    m = re.fullmatch(r"(.+)\[(\d+)\]", field)
+    name, comp = (m.group(1), int(m.group(2))) if m else (field, None)
+    vals = [h5["step_%d/%s" % (k, name)][:] for k in steps]
+    vals = [(v if comp is None else v[:, comp]) * scale for v in vals]
     vmax = float(os.environ.get("VMAX", max(v.max() for v in vals) or 1.0))
+    vmin = float(os.environ.get("VMIN", min(0.0, min(v.min() for v in vals))))
     fig, axes = plt.subplots(1, len(shots), figsize=(3.6 * len(shots) + 1.2, 3.9), squeeze=False)
     for ax, (t, title), k, v in zip(axes[0], shots, steps, vals):
         xy = xy0 + h5["step_%d/displacement" % k][:, :2]
@@ -66,7 +73,7 @@ def main():
             tris = np.vstack([c[:, list(s)] for s in sub])
             colours = np.concatenate([v[first:first + len(c)]] * len(sub))
             tri = mtri.Triangulation(xy[:, 0], xy[:, 1], tris)
-            pc = ax.tripcolor(tri, facecolors=colours, cmap="viridis", vmin=0.0, vmax=vmax, edgecolors="none")
+            pc = ax.tripcolor(tri, facecolors=colours, cmap="viridis", vmin=vmin, vmax=vmax, edgecolors="none")
             first += len(c)
         for line in obstacle_lines(os.path.join(res, "%s_obstacles_%d.vtp" % (base, k))):
             ax.plot(line[:, 0], line[:, 1], color="crimson", lw=1.2, label="rigid balloon")

@@ -1,7 +1,5 @@
 #include "assembly/Assembler.hpp"
 
-#include "material/SymEigen.hpp"
-
 #include <algorithm>
 #include <cstdint>
 #include <set>
@@ -11,6 +9,7 @@
 
 #include "assembly/HyperelasticElement.hpp"
 #include "material/ElasticConstants.hpp"
+#include "material/SymEigen.hpp"
 
 namespace stentor {
 namespace {
@@ -778,6 +777,24 @@ KOKKOS_INLINE_FUNCTION void put_sym(const Row& res, int c, int col, const Mat3& 
   res(c, col + 3) = m(0, 1), res(c, col + 4) = m(1, 2), res(c, col + 5) = m(0, 2);
 }
 
+// The kernel's rows (host copy) appended to `out`, field by field.
+template <class Rows>
+void append_cell_rows(const Rows& h, std::size_t nc, const CellColumns& col, int nx, Assembler::CellFields& out) {
+  auto take = [&](std::vector<double>& v, std::size_t c, int at, int n) {
+    for (int k = 0; at >= 0 && k < n; ++k) v.push_back(h(c, at + k));
+  };
+  for (std::size_t c = 0; c < nc; ++c) {
+    take(out.stress, c, 0, 6);
+    take(out.von_mises, c, 6, 1);
+    take(out.J, c, 7, 1);
+    take(out.volume, c, 8, 1);
+    take(out.extra, c, col.extra, nx);
+    take(out.green_lagrange, c, col.green_lagrange, 6);
+    take(out.log_strain, c, col.log_strain, 6);
+    take(out.principal, c, col.principal, 3);
+  }
+}
+
 }  // namespace
 
 Assembler::CellFields Assembler::cell_fields(const la::Vector& u, const CellFieldRequest& req) {
@@ -860,20 +877,7 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u, const CellFiel
             for (int k = 0; k < 3; ++k) res(c, col.principal + k) = lam[k];
           }
         });
-    auto h = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), res);
-    auto take = [&](std::vector<double>& v, std::size_t c, int at, int n) {
-      for (int k = 0; at >= 0 && k < n; ++k) v.push_back(h(c, at + k));
-    };
-    for (std::size_t c = 0; c < nc; ++c) {
-      take(out.stress, c, 0, 6);
-      take(out.von_mises, c, 6, 1);
-      take(out.J, c, 7, 1);
-      take(out.volume, c, 8, 1);
-      take(out.extra, c, col.extra, nx);
-      take(out.green_lagrange, c, col.green_lagrange, 6);
-      take(out.log_strain, c, col.log_strain, 6);
-      take(out.principal, c, col.principal, 3);
-    }
+    append_cell_rows(Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), res), nc, col, nx, out);
   }
   return out;
 }
