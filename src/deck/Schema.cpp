@@ -384,7 +384,7 @@ std::vector<ListSpec> build_schema() {
                       "overrides. A run writes only into a new or empty folder or a Stentor results folder, never "
                       "into the deck's own folder."),
                    str("basename", "stentor", "File name stem.").allowed("letters, digits, spaces, `_ . + -`"),
-                   integer("every", 1, "Write fields every N converged steps (and the last).").ge(1),
+                   integer("every", 1, "Write fields every N converged steps (and at t = 0, at `times`, at the end of every stage and of the run).").ge(1),
                    boolean("fields", true, "HDF5/XDMF field output on/off."),
                    str("field list", "default",
                        "The fields written (docs/deck.md, \"Outputs\"): names separated by commas or spaces; "
