@@ -24,6 +24,7 @@
 #include "CsvSeries.hpp"
 #include "deck/Config.hpp"
 #include "deck/OutputFields.hpp"
+#include "io/Units.hpp"
 #include "material/Plasticity.hpp"
 #include "run/Simulation.hpp"
 
@@ -272,7 +273,24 @@ TEST(OutputFields, CatalogueMatchesLawAndDocs) {
   const auto at = doc.find("\n## Outputs\n");
   ASSERT_NE(at, std::string::npos) << "docs/deck.md has no '## Outputs' section";
   const std::string section = doc.substr(at, doc.find("\n## ", at + 1) - at);
-  for (const auto& f : output_fields()) EXPECT_NE(section.find(std::string("| `") + f.name + "`"), std::string::npos) << f.name;
+  // Each row: | `name` | node/cell | components | SI unit (of the catalogue's quantity) | ...
+  const UnitLabels si = unit_labels("SI", 3);
+  for (const auto& f : output_fields()) {
+    const auto row = section.find(std::string("| `") + f.name + "` |");
+    ASSERT_NE(row, std::string::npos) << f.name;
+    std::vector<std::string> cells;
+    std::istringstream line(section.substr(row + 1, section.find('\n', row) - row - 1));
+    for (std::string c; std::getline(line, c, '|');) cells.push_back(c.substr(c.find_first_not_of(' ') == std::string::npos ? c.size() : c.find_first_not_of(' ')));
+    for (auto& c : cells) c.erase(c.find_last_not_of(' ') + 1);
+    ASSERT_GE(cells.size(), 4u) << f.name;
+    EXPECT_EQ(cells[1], f.where == OutputField::Where::Node ? "node" : "cell") << f.name;
+    EXPECT_EQ(cells[2], std::to_string(f.components)) << f.name;
+    const std::string q = f.quantity;
+    const std::string unit = q == "length" ? si.length : q == "velocity" ? si.velocity : q == "stress" ? si.stress
+                           : q == "force" ? si.force : q == "-" ? "\u2013" : "";
+    EXPECT_EQ(cells[3].substr(0, unit.size()), unit) << f.name << ": " << cells[3];
+    if (unit.empty()) EXPECT_EQ(cells[3], "") << f.name;
+  }
 }
 
 // velocity (dynamics): a block in free flight keeps its initial velocity at every node,
