@@ -10,6 +10,7 @@
 #include <iostream>
 
 #include "io/LogCopy.hpp"
+#include "mesh/NodalRecovery.hpp"
 
 namespace stentor {
 
@@ -100,32 +101,6 @@ void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, std::size_t n
   for (std::size_t g = 0; g < nn; ++g)
     for (int k = 0; k < 3; ++k) traction[3 * g + k] = area[g] > 0.0 ? traction[3 * g + k] / area[g] : 0.0;
   xdmf.node_field("contact_master_traction", 3, traction);
-}
-
-// Nodal recovery of a cell field (k values per cell, cells in block order): per node the
-// mean of the values of the cells around it weighted by their reference volumes, taken
-// over the cells of one body only, the first body (block order) that has the node, so that
-// nothing is averaged across a material interface.
-std::vector<double> recover_at_nodes(const Mesh& mesh, const std::vector<double>& cell_values, int k, const std::vector<double>& volume) {
-  const std::size_t nn = mesh.num_nodes();
-  std::vector<double> sum(nn * static_cast<std::size_t>(k), 0.0), weight(nn, 0.0);
-  std::vector<int> body(nn, -1);
-  std::size_t c = 0;  // global cell id
-  for (std::size_t b = 0; b < mesh.volumes.size(); ++b) {
-    const CellBlock& blk = mesh.volumes[b];
-    const auto npc = static_cast<std::size_t>(blk.nodes_per_cell);
-    for (std::size_t i = 0; i < blk.num_cells(); ++i, ++c)
-      for (std::size_t a = 0; a < npc; ++a) {
-        const auto n = static_cast<std::size_t>(blk.conn[i * npc + a]);
-        if (body[n] < 0) body[n] = static_cast<int>(b);
-        if (body[n] != static_cast<int>(b)) continue;
-        weight[n] += volume[c];
-        for (int j = 0; j < k; ++j) sum[n * k + j] += volume[c] * cell_values[c * k + j];
-      }
-  }
-  for (std::size_t n = 0; n < nn; ++n)
-    for (int j = 0; j < k; ++j) sum[n * k + j] = weight[n] > 0.0 ? sum[n * k + j] / weight[n] : 0.0;
-  return sum;
 }
 
 // Cell fields of every rank on rank 0: `columns` (name, values per cell) of the local

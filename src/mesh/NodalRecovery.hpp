@@ -1,0 +1,20 @@
+// Nodal recovery of cell values (the output fields cauchy_stress_nodal, von_mises_nodal;
+// docs/deck.md, "Outputs"): at each node, the mean of the values of the cells around it
+// weighted by the cells' (reference) volumes, over the cells of one body only: a node that
+// cells of several volume blocks share takes the mean over the cells of the first block
+// (mesh.volumes order, = the output's cell_block) that has it, so nothing is averaged
+// across a material interface. Nodes of no volume cell get 0.
+// A field constant over a body is recovered exactly at its nodes.
+#pragma once
+#include <vector>
+
+#include "mesh/Mesh.hpp"
+
+namespace stentor {
+
+// `cell_values`: k values per cell, `volume`: one per cell, both indexed by the global cell
+// id (CellBlock::cell_id). Returns k values per node.
+std::vector<double> recover_at_nodes(const Mesh& mesh, const std::vector<double>& cell_values, int k,
+                                     const std::vector<double>& volume);
+
+}  // namespace stentor
