@@ -11,7 +11,10 @@ h  = DefineNumber[0.1,  Name "Parameters/h"];     // artery element size
 hs = DefineNumber[0.04, Name "Parameters/hs"];    // strut element size
 n  = DefineNumber[6,    Name "Parameters/n"];     // struts per wall
 Ri = 1.0; T = 0.5; L = 8.0;
-rs = 0.1; p = 1.0; x0 = 1.5;
+rs = 0.1; p = 1.0; x0 = 1.55;  // strut centres half a wall element (h / 2) off the wall's nodes
+// Segments on the 120-degree arcs facing the wall and the axis: odd, so that a facet, not a
+// node, faces each (a strut squeezed node-to-node rolls off it; docs/scenes/README.md, S4).
+nseg = 2 * Floor(2 * Pi * rs / 3 / hs / 2) + 1;
 ang[] = {Pi / 6, 5 * Pi / 6, 7 * Pi / 6, 11 * Pi / 6};
 
 // Walls: j = 0 upper (y in [Ri, Ri + T]), j = 1 lower (mirror).
@@ -60,6 +63,7 @@ For j In {0 : 1}
     Circle(c + 1) = {a + 2, a, a + 3};  // left (150 -> 210)
     Circle(c + 2) = {a + 3, a, a + 4};  // bottom (210 -> 330)
     Circle(c + 3) = {a + 4, a, a + 1};  // right (330 -> 30)
+    Transfinite Curve{c, c + 2} = nseg + 1;
     If (sg > 0)
       sout[] += {c};
       sins[] += {c + 2};

@@ -31,7 +31,7 @@ for mu in 0 0.1 0.2 0.3 0.4; do variant "s4_mu$mu" "$mu" 1; NAMES="$NAMES s4_mu$
 variant s4_mu0.2_eta1e6 0.2 1e6; NAMES="$NAMES s4_mu0.2_eta1e6"
 
 run() {  # name
-  /usr/bin/time -f "%e" -o "$RUNS/$1.time" "$EXE" --output "$RUNS/$1" "$RUNS/$1.xml" > "$RUNS/$1.log" 2>&1 &&
+  /usr/bin/time -f "%e %U" -o "$RUNS/$1.time" "$EXE" --output "$RUNS/$1" "$RUNS/$1.xml" > "$RUNS/$1.log" 2>&1 &&
     echo "== $1: done in $(cat "$RUNS/$1.time") s" || echo "== $1: FAILED (see $RUNS/$1.log)"
 }
 if [ "${S4_SKIP_RUNS:-0}" != 1 ]; then
@@ -51,8 +51,8 @@ def read(path):
 def out(n):  # results folder, or the partial one of a failed run
     d = os.path.join(runs, n)
     return d if os.path.isdir(d) and os.path.exists(os.path.join(d, n + "_energy.csv")) else d + ".partial"
-lines = ["| run | completed | steps | cut-backs | Newton median / max | max \\|balance\\| per step [J/m] | wall [s] |",
-         "|---|---|---|---|---|---|---|"]
+lines = ["| run | completed | steps | cut-backs | Newton iterations | Newton median / max | max \\|balance\\| per step [J/m] | wall [s] | CPU [s] |",
+         "|---|---|---|---|---|---|---|---|---|"]
 stage_lines = ["| run | stage | lumen radius [m] | lumen gain | stent radius [m] | radial recoil | dogboning | foreshortening | max contact pressure [Pa] | max wall von Mises [Pa] | max wall hoop [Pa] | dE [J/m] | W_contact [J/m] | D_visc [J/m] | D_fric [J/m] |",
                "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
 series = {}
@@ -61,15 +61,18 @@ for n in names:
     e, h, s = (read(os.path.join(d, n + suf)) for suf in ("_energy.csv", "_history.csv", "_stages.csv"))
     log = open(os.path.join(runs, n + ".log")).read() if os.path.exists(os.path.join(runs, n + ".log")) else ""
     done = "Results in" in log
-    t = open(os.path.join(runs, n + ".time")).read().split()[-1] if os.path.exists(os.path.join(runs, n + ".time")) else "-"
+    tw = open(os.path.join(runs, n + ".time")).read().split()[-2:] if os.path.exists(os.path.join(runs, n + ".time")) else ["-", "-"]
+    t = " | ".join(tw if len(tw) == 2 else tw + ["-"])  # wall and user CPU seconds (the machine may be shared)
     if e is None or h is None:
-        lines.append("| %s | no output | | | | | %s |" % (n, t)); continue
+        lines.append("| %s | no output | | | | | | %s |" % (n, t)); continue
     series[n] = (e["time"][1:], [e["total"][i + 1] - e["total"][i] for i in range(len(e["total"]) - 1)], e)
     nw = h["newton_iterations"]
     m = re.search(r"Summary: (\d+) steps, (\d+) cut-backs", log)
     cuts = int(m.group(2)) if m else int(h["cutbacks"][-1])
-    lines.append("| %s | %s | %d | %d | %g / %d | %.2e | %s |" % (n, "yes" if done else "no (stopped at t = %.4g)" % h["time"][-1], len(nw),
-                 cuts, statistics.median(nw), max(nw), max(abs(x) for x in e["balance_residual"]), t))
+    m = re.search(r"Summary: \d+ steps, \d+ cut-backs, (\d+) Newton iterations", log)
+    its = m.group(1) if m else "-"  # failed attempts included
+    lines.append("| %s | %s | %d | %d | %s | %g / %d | %.2e | %s |" % (n, "yes" if done else "no (stopped at t = %.4g)" % h["time"][-1], len(nw),
+                 cuts, its, statistics.median(nw), max(nw), max(abs(x) for x in e["balance_residual"]), t))
     for i in range(len(s["stage"]) if s else 0):
         g = lambda k: s[k][i]
         stage_lines.append("| %s | %d | %.4f | %.2f %% | %.4f | %.2f %% | %.2f %% | %.2f %% | %.3g | %.3g | %.3g | %.4g | %.4g | %.3g | %.3g |" % (

@@ -1257,6 +1257,7 @@ void DeckReader::read_newton(const ParameterList& pl) {
   n.line_search_watchdog = get_int(pl, ls, "line search watchdog");
   n.forcing = get_string(pl, ls, "forcing");
   n.forcing_max = get_double(pl, ls, "forcing max");
+  n.max_increment = get_double(pl, ls, "max increment");
 }
 
 void DeckReader::read_linear(const ParameterList& pl) {

@@ -131,6 +131,7 @@ struct NewtonConfig {
   int line_search_watchdog = 2;        // "line search watchdog": see newton_solve
   std::string forcing = "fixed";       // "forcing": fixed | eisenstat-walker (linear tolerance per iteration)
   double forcing_max = 0.1;            // "forcing max": Eisenstat-Walker's upper bound (and first value)
+  double max_increment = 0.0;          // "max increment": largest dof change per iteration (0: no limit)
 };
 
 struct LinearSolverConfig {

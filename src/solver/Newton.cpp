@@ -93,10 +93,22 @@ Trial line_search(NewtonSystem& sys, const la::Vector& u, const la::Vector& du, 
   return t;
 }
 
-void log_iteration(std::ostream& log, int it, double rn, double step, double alpha, const LinearSolver::Result& lr, double eta) {
+// Step-length control (Newton->max increment): du scaled so that no component exceeds
+// `limit` (0: none), before the line search. Returns the factor (1: untouched).
+double limit_increment(la::Vector& du, double limit) {
+  if (!(limit > 0.0)) return 1.0;
+  const double largest = du.normInf();
+  if (largest <= limit) return 1.0;
+  du.scale(limit / largest);
+  return limit / largest;
+}
+
+void log_iteration(std::ostream& log, int it, double rn, double step, double alpha, const LinearSolver::Result& lr, double eta,
+                   double scaled) {
   std::ostringstream os;
   os << "    newton " << std::setw(2) << it << "  |r| " << std::scientific << std::setprecision(3) << rn << "  |du| " << step
      << "  alpha " << std::defaultfloat << alpha << "  linear " << lr.iterations << (lr.converged ? "" : " (not converged)");
+  if (scaled < 1.0) os << "  limited x" << std::setprecision(3) << scaled;
   if (eta > 0.0) os << "  eta " << std::setprecision(2) << eta;
   log << os.str() << "\n";
 }
@@ -156,6 +168,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
       res.failure = "linear solve produced a non-finite increment";
       return res;
     }
+    const double scaled = limit_increment(du, cfg.max_increment);
     Trial t = line_search(sys, u, du, rn, damped_unsettled, cfg, u_trial, r_trial);
     if (t.accepted && t.alpha < 1.0 && t.full_unsettled) ++damped_unsettled;
     else damped_unsettled = 0;
@@ -182,7 +195,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     rn = t.rn;
     res.iterations = it;
     res.residual = rn;
-    if (log) log_iteration(*log, it, rn, step, t.alpha, lr, eta);
+    if (log) log_iteration(*log, it, rn, step, t.alpha, lr, eta, scaled);
     if (!std::isfinite(rn)) {
       res.failure = "residual is not finite";
       return res;

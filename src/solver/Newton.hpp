@@ -10,6 +10,8 @@
 // unless the system's residual needs the tangent, and the tangent at an accepted halved
 // step is assembled only if Newton goes on.
 // Linear tolerance: fixed, or Eisenstat-Walker's forcing term (NewtonConfig::forcing).
+// Step-length control (NewtonConfig::max_increment): an update whose largest component
+// exceeds the limit is scaled down to it before the line search.
 // A trial state the residual cannot be evaluated at (an inverted element) counts as a
 // failed line-search trial; if even the smallest step is inadmissible, or the iteration
 // limit is reached, the solve fails and the caller cuts the time/load step.

@@ -323,6 +323,7 @@ TEST_F(Deck, EmptySublistsGetTheSameDefaultsAsAbsentOnes) {
   EXPECT_EQ(a.newton.line_search_watchdog, e.newton.line_search_watchdog);
   EXPECT_EQ(a.newton.forcing, e.newton.forcing);
   EXPECT_EQ(a.newton.forcing_max, e.newton.forcing_max);
+  EXPECT_EQ(a.newton.max_increment, e.newton.max_increment);
   EXPECT_EQ(a.linear.method, e.linear.method);
   EXPECT_EQ(a.linear.preconditioner, e.linear.preconditioner);
   EXPECT_EQ(a.linear.tolerance, e.linear.tolerance);
