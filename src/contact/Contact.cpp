@@ -361,6 +361,27 @@ void Contact::locate(const Pair& p, Slave& nd, const double* x) const {
   nd.inside = hit.inside;
 }
 
+// Facet hysteresis: a node active at the last evaluation with its projection inside its
+// facet keeps that facet while the projection stays on it or past its edge by at most
+// kFacetBand (parametric; the facet extended). A node that was held at a facet's end
+// (clamped) looks again, as before: switching it to the extended facet would change its
+// conditions (xi fixed vs moving) between evaluations. Where the
+// master surface has a kink (a vertex between two line2 facets, an edge in 3D) the closest
+// facet of a node sitting on the vertex flips between Newton iterates, and with it the
+// normal: the iteration then cycles (measured: Hertz between two cylinders with a slave node
+// over a master vertex, |r| cycling 4.0e-7 -> 2.1e-7 -> 1.0e-7 -> 4.0e-7 for 40 iterations;
+// docs/contact.md, Hertz). Keeping the facet over a small overlap makes the choice
+// piecewise constant along the iteration; the gap against the extended facet differs from
+// the neighbour's by O(band^2 h^2 kappa).
+bool Contact::keep_facet(const Pair& p, Slave& nd, const double* x) const {
+  if (nd.prev_state < contact::Stick || nd.facet < 0 || !nd.inside) return false;
+  const auto hit = p.master->on_facet(nd.facet, dim_, x, master_x_, kFacetBand);
+  if (hit.facet < 0) return false;
+  nd.xi[0] = hit.xi[0], nd.xi[1] = hit.xi[1];
+  nd.inside = true;
+  return true;
+}
+
 // Gap, normal and relative displacement of slave node nd at x against its facet (double);
 // the search radius when it has none.
 double Contact::facet_gap(const Pair& p, const Slave& nd, const double* x, double* n, double* rel) const {
@@ -450,7 +471,7 @@ void Contact::evaluate_nodes(const la::Vector& u, la::Vector& r) {
           // the persistence condition itself decides whether it separates).
           if (pp->persistence && !nd.was_active && nd.d_n + lf * (nd.d_n - nd.d_prev) > gap_tol) return;
           if (pp->master) {
-            locate(*pp, nd, x);
+            if (!keep_facet(*pp, nd, x)) locate(*pp, nd, x);
             if (nd.facet < 0) return;
           }
           contact::NodeInput in;

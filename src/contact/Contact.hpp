@@ -157,6 +157,8 @@ class Contact {
   // Positions of the master nodes at u (3 per master node; imports u's master dofs).
   void update_master_positions(const la::Vector& u, std::vector<double>& xm) const;
   void locate(const Pair& p, Slave& nd, const double* x) const;
+  static constexpr double kFacetBand = 0.02;
+  bool keep_facet(const Pair& p, Slave& nd, const double* x) const;
   double facet_gap(const Pair& p, const Slave& nd, const double* x, double* n, double* rel) const;
   void node_input(const Pair& p, const Slave& nd, const double* x, contact::NodeInput& in) const;
   void read_scales(const la::CrsMatrix& K);
