@@ -12,6 +12,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
@@ -178,7 +179,7 @@ double hertz_ratio() {
 // half-width converges; the peak pressure and the profile keep a ~2.5 % / 3 % error, the
 // one-pass node-to-segment error on non-matching meshes (the patch test's, docs/contact.md):
 // with matching interface meshes (ratio 1) p0 is within 0.6 % and the inner profile within
-// 0.5 % at every level. Tolerances: twice the measured error at hc = 0.004.
+// 0.6 % at every level. Tolerances: about twice the measured errors.
 TEST(ContactBenchmarks, HertzTwoCylinders) {
   const double ratio = hertz_ratio();
   std::vector<HertzCylinders> r;
@@ -196,3 +197,172 @@ TEST(ContactBenchmarks, HertzTwoCylinders) {
   }
 }
 
+
+// ---------------------------------------------------------------------------------------
+// 2. Ironing.
+namespace {
+
+// Node field `name` (ncomp values per node) of output step k of an HDF5 result, and its time.
+std::vector<double> node_field(const fs::path& h5, int k, const std::string& name, double* time = nullptr) {
+  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  std::vector<double> v;
+  if (f < 0) return v;
+  const std::string group = "/step_" + std::to_string(k), path = group + "/" + name;
+  if (H5Lexists(f, group.c_str(), H5P_DEFAULT) > 0 && H5Lexists(f, path.c_str(), H5P_DEFAULT) > 0) {
+    const hid_t d = H5Dopen2(f, path.c_str(), H5P_DEFAULT);
+    const hid_t sp = H5Dget_space(d);
+    v.resize(static_cast<std::size_t>(H5Sget_simple_extent_npoints(sp)));
+    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Sclose(sp);
+    H5Dclose(d);
+    if (time) {
+      const hid_t g = H5Gopen2(f, group.c_str(), H5P_DEFAULT);
+      const hid_t a = H5Aopen(g, "time", H5P_DEFAULT);
+      H5Aread(a, H5T_NATIVE_DOUBLE, time);
+      H5Aclose(a);
+      H5Gclose(g);
+    }
+  }
+  H5Fclose(f);
+  return v;
+}
+
+struct IroningResult {
+  int steps = 0, newton_max = 0, cutbacks = 0, window_steps = 0, window_stick = 0;
+  double ratio_mean = 0, ratio_min = 1e300, ratio_max = 0;  // |F_x| / |F_y| (history totals) in the window
+  double coulomb = 0;      // max over window steps of |sum |lambda_t| - mu sum |lambda_n|| / (mu sum |lambda_n|)
+  double D = 0;            // frictional dissipation over the window: sum over steps and nodes of lambda_t . slip
+  double W_t = 0;          // work of the die's horizontal support force over the window (trapezoid)
+  double dW = 0;           // change of stored energy over the window
+  double D_min_step = 0;   // the smallest per-step dissipation (>= 0)
+  double Fx = 0, Fy = 0;   // window means of the contact force on the slab
+};
+
+constexpr double kMu = 0.3, kWindow = 2.5;  // steady sliding: the die has slid 1.5 (of 4)
+
+// inputs/ironing.xml on an nx x ny slab and an nd-facet die, in `steps` load steps.
+IroningResult ironing(int nx, int ny, int nd, int steps) {
+  const std::string tag = "ironing_" + std::to_string(nx) + "_" + std::to_string(ny) + "_" + std::to_string(nd) + "_" + std::to_string(steps);
+  Config cfg = read_deck(kInputs + "ironing.xml");
+  cfg.mesh.file = geo_variant("ironing.geo",
+                              {{"nx = DefineNumber[36", "nx = DefineNumber[" + std::to_string(nx)},
+                               {"ny = DefineNumber[12", "ny = DefineNumber[" + std::to_string(ny)},
+                               {"nd = DefineNumber[60", "nd = DefineNumber[" + std::to_string(nd)}},
+                              tag + ".geo");
+  cfg.stepping.num_steps = steps;
+  RunOptions opts;
+  const fs::path dir = kDir / tag;
+  opts.output_dir = dir.string();
+  RunResult res;
+  EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
+  IroningResult out;
+  out.cutbacks = res.cutbacks;
+  const auto h = stentor::testing::read_csv(dir / "ironing_history.csv");
+  const fs::path h5 = dir / "ironing.h5";
+  const auto& t = h["time"];
+  out.steps = static_cast<int>(t.size());
+  for (double n : h["newton_iterations"]) out.newton_max = std::max(out.newton_max, static_cast<int>(n));
+  const std::size_t nn = res.mesh.num_nodes();
+  // Per step, for the plots of perf/scenes/run_ironing.sh: cumulative frictional dissipation
+  // (from the fields) and work of the die's supports (trapezoid, from the history).
+  std::ofstream csv(kDir / (tag + "_dissipation.csv"));  // beside the results folder (not one of its files)
+  csv << "time,friction_dissipation,support_work,strain_energy,sum_abs_lambda_t,sum_abs_lambda_n\n";
+  double D_cum = 0, W_cum = 0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    // Output step i + 1 is the state after history row i (step 0: the initial state).
+    double t5 = -1;
+    const auto status = node_field(h5, static_cast<int>(i + 1), "contact_status", &t5);
+    const auto ln = node_field(h5, static_cast<int>(i + 1), "contact_lambda_normal");
+    const auto lt = node_field(h5, static_cast<int>(i + 1), "contact_lambda_tangent");
+    const auto sl = node_field(h5, static_cast<int>(i + 1), "contact_slip");
+    EXPECT_NEAR(t5, t[i], 1e-12);
+    if (status.size() != nn || lt.size() != 3 * nn || sl.size() != 3 * nn) {
+      ADD_FAILURE() << "missing contact fields at output step " << i + 1;
+      return out;
+    }
+    double Dk = 0, sum_t = 0, sum_n = 0;
+    for (std::size_t n = 0; n < nn; ++n) {
+      if (status[n] < 2) continue;  // not an active slave node
+      Dk += lt[3 * n] * sl[3 * n] + lt[3 * n + 1] * sl[3 * n + 1] + lt[3 * n + 2] * sl[3 * n + 2];
+      sum_t += std::hypot(lt[3 * n], lt[3 * n + 1]);
+      sum_n += std::abs(ln[n]);
+    }
+    out.D_min_step = std::min(out.D_min_step, Dk);
+    D_cum += Dk;
+    {
+      const double t0 = i > 0 ? t[i - 1] : 0.0;
+      const double rx0 = i > 0 ? h["reaction_slide_x"][i - 1] : 0.0, ry0 = i > 0 ? h["reaction_press_y"][i - 1] : 0.0;
+      // Die ends: y = -1.4 min(t, 1), x = 4 max(t - 1, 0) / 4.
+      const double dy = -1.4 * (std::min(t[i], 1.0) - std::min(t0, 1.0)), dx = std::max(t[i] - 1.0, 0.0) - std::max(t0 - 1.0, 0.0);
+      W_cum += 0.5 * (h["reaction_slide_x"][i] + rx0) * dx + 0.5 * (h["reaction_press_y"][i] + ry0) * dy;
+    }
+    csv << t[i] << "," << D_cum << "," << W_cum << "," << h["strain_energy"][i] << "," << sum_t << "," << sum_n << "\n";
+    if (t[i] <= kWindow + 1e-9) continue;
+    const double Fx = h["contact_iron_force_x"][i], Fy = h["contact_iron_force_y"][i];
+    ++out.window_steps;
+    out.window_stick += h["contact_iron_stick"][i] > 0;
+    out.D += Dk;
+    out.W_t += 0.5 * (h["reaction_slide_x"][i] + h["reaction_slide_x"][i - 1]) * 4.0 * (t[i] - t[i - 1]) / 4.0;  // die x: 4 (t - 1) / 4
+    out.Fx += Fx, out.Fy += Fy;
+    const double ratio = std::abs(Fx / Fy);
+    out.ratio_mean += ratio;
+    out.ratio_min = std::min(out.ratio_min, ratio);
+    out.ratio_max = std::max(out.ratio_max, ratio);
+    if (h["contact_iron_stick"][i] == 0) out.coulomb = std::max(out.coulomb, std::abs(sum_t - kMu * sum_n) / (kMu * sum_n));
+  }
+  std::size_t i0 = 0;
+  while (t[i0] < kWindow - 1e-9) ++i0;
+  out.dW = h["strain_energy"].back() - h["strain_energy"][i0];
+  out.ratio_mean /= out.window_steps;
+  out.Fx /= out.window_steps, out.Fy /= out.window_steps;
+  std::printf("[ironing] %dx%d slab, %d die facets, %d steps (%d cut-backs, max %d Newton): window t > %.1f (%d steps, %d with a "
+              "sticking node): F = (%.4f, %.4f), |F_x/F_y| mean %.4f (%.4f .. %.4f); sum|lambda_t| / (mu sum|lambda_n|) - 1 max "
+              "%.2e; D_fric %.5f, die work %.5f, stored energy change %+.5f: (W - dE - D) / D = %+.2e; min step D %.2e\n",
+              nx, ny, nd, steps, out.cutbacks, out.newton_max, kWindow, out.window_steps, out.window_stick, out.Fx, out.Fy, out.ratio_mean,
+              out.ratio_min, out.ratio_max, out.coulomb, out.D, out.W_t, out.dW, (out.W_t - out.dW - out.D) / out.D, out.D_min_step);
+  return out;
+}
+
+}  // namespace
+
+// Runs: STENTOR_IRONING_RUNS (e.g. "36 12 60 100; 72 24 120 200", as perf/scenes/run_ironing.sh
+// sets it: slab cells along x and y, die facets, load steps), else the coarse "18 6 60 50".
+std::vector<std::array<int, 4>> ironing_runs() {
+  std::vector<std::array<int, 4>> runs;
+  if (const char* env = std::getenv("STENTOR_IRONING_RUNS")) {
+    std::string s(env);
+    std::replace(s.begin(), s.end(), ';', '\n');
+    std::istringstream in(s);
+    for (std::string line; std::getline(in, line);) {
+      std::istringstream l(line);
+      std::array<int, 4> r{};
+      if (l >> r[0] >> r[1] >> r[2] >> r[3]) runs.push_back(r);
+    }
+  }
+  if (runs.empty()) runs.push_back({18, 6, 60, 50});
+  return runs;
+}
+
+TEST(ContactBenchmarks, IroningFrictionForcesAndDissipation) {
+  for (const auto& run : ironing_runs()) {
+    const IroningResult r = ironing(run[0], run[1], run[2], run[3]);
+    EXPECT_LE(r.cutbacks, 2);  // 0 on the ctest mesh, 1 at 36 x 12 / 100 steps
+    EXPECT_LE(r.newton_max, 20);
+    // Steady sliding: every active node slips, and the tangential nodal forces add up to mu
+    // times the normal ones (Coulomb at each node; measured 1e-10).
+    EXPECT_EQ(r.window_stick, 0);
+    EXPECT_LT(r.coulomb, 1e-8);
+    // The resultant on the die: |F_x / F_y| = 0.32 (coarse) .. 0.33: above mu, since the
+    // pressure is higher on the die's leading side, where the normal leans against the motion
+    // (ploughing); asserted within 15 % of mu.
+    EXPECT_NEAR(r.ratio_mean / kMu, 1.0, 0.15);
+    // Dissipation >= 0 every step, and equal to the work of the die's drive less the change
+    // of stored energy (the slab ends where it started in a steady state). Measured +0.6 %
+    // here (18 x 6 slab, 60 die facets, 50 steps), +0.08 % at 36 x 12 / 100 steps: the rest is
+    // the normal work of node-to-segment over the die's facet kinks and of nodes entering
+    // contact within a load step (docs/contact.md, Ironing).
+    EXPECT_GT(r.D, 0.5);
+    EXPECT_GE(r.D_min_step, -1e-12 * r.D);
+    EXPECT_NEAR((r.W_t - r.dW) / r.D, 1.0, 0.02);
+  }
+}
