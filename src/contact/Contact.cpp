@@ -309,7 +309,7 @@ Contact::NodalFields Contact::step_history(std::size_t pair) const {
   for (const auto& nd : pairs_[pair].nodes) {
     h.nodes.push_back(nd.gid);
     h.values.insert(h.values.end(), {nd.d_n, nd.d_prev, nd.was_active ? 1.0 : 0.0, double(nd.prev_state), double(nd.prev_facet), nd.scale,
-                                         double(nd.facet)});
+                                         double(nd.facet), nd.inside ? 1.0 : 0.0});
   }
   return h;
 }
@@ -330,6 +330,7 @@ long Contact::restore_step_history(std::size_t pair, const NodalFields& sorted) 
     nd.prev_facet = static_cast<int>(v[4]);
     nd.scale = v[5];
     nd.facet = static_cast<int>(v[6]);
+    nd.inside = v[7] != 0.0;  // the facet hysteresis (keep_facet) reads it
   }
   return missing;
 }

@@ -238,6 +238,29 @@ struct IroningResult {
   double Fx = 0, Fy = 0;   // window means of the contact force on the slab
 };
 
+// Over the active slave nodes of output step k: the step's frictional dissipation
+// sum lambda_t . slip, and sum |lambda_t|, sum |lambda_n|.
+struct StepSums {
+  bool ok = false;
+  double time = -1, D = 0, sum_t = 0, sum_n = 0;
+};
+StepSums step_sums(const fs::path& h5, int k, std::size_t nn) {
+  StepSums out;
+  const auto status = node_field(h5, k, "contact_status", &out.time);
+  const auto ln = node_field(h5, k, "contact_lambda_normal");
+  const auto lt = node_field(h5, k, "contact_lambda_tangent");
+  const auto sl = node_field(h5, k, "contact_slip");
+  if (status.size() != nn || ln.size() != nn || lt.size() != 3 * nn || sl.size() != 3 * nn) return out;
+  out.ok = true;
+  for (std::size_t n = 0; n < nn; ++n) {
+    if (status[n] < 2) continue;  // not an active slave node
+    out.D += lt[3 * n] * sl[3 * n] + lt[3 * n + 1] * sl[3 * n + 1] + lt[3 * n + 2] * sl[3 * n + 2];
+    out.sum_t += std::hypot(lt[3 * n], lt[3 * n + 1]);
+    out.sum_n += std::abs(ln[n]);
+  }
+  return out;
+}
+
 constexpr double kMu = 0.3, kWindow = 2.5;  // steady sliding: the die has slid 1.5 (of 4)
 
 // inputs/ironing.xml on an nx x ny slab and an nd-facet die, in `steps` load steps.
@@ -270,23 +293,13 @@ IroningResult ironing(int nx, int ny, int nd, int steps) {
   double D_cum = 0, W_cum = 0;
   for (std::size_t i = 0; i < t.size(); ++i) {
     // Output step i + 1 is the state after history row i (step 0: the initial state).
-    double t5 = -1;
-    const auto status = node_field(h5, static_cast<int>(i + 1), "contact_status", &t5);
-    const auto ln = node_field(h5, static_cast<int>(i + 1), "contact_lambda_normal");
-    const auto lt = node_field(h5, static_cast<int>(i + 1), "contact_lambda_tangent");
-    const auto sl = node_field(h5, static_cast<int>(i + 1), "contact_slip");
-    EXPECT_NEAR(t5, t[i], 1e-12);
-    if (status.size() != nn || lt.size() != 3 * nn || sl.size() != 3 * nn) {
+    const StepSums st = step_sums(h5, static_cast<int>(i + 1), nn);
+    EXPECT_NEAR(st.time, t[i], 1e-12);
+    if (!st.ok) {
       ADD_FAILURE() << "missing contact fields at output step " << i + 1;
       return out;
     }
-    double Dk = 0, sum_t = 0, sum_n = 0;
-    for (std::size_t n = 0; n < nn; ++n) {
-      if (status[n] < 2) continue;  // not an active slave node
-      Dk += lt[3 * n] * sl[3 * n] + lt[3 * n + 1] * sl[3 * n + 1] + lt[3 * n + 2] * sl[3 * n + 2];
-      sum_t += std::hypot(lt[3 * n], lt[3 * n + 1]);
-      sum_n += std::abs(ln[n]);
-    }
+    const double Dk = st.D, sum_t = st.sum_t, sum_n = st.sum_n;
     out.D_min_step = std::min(out.D_min_step, Dk);
     D_cum += Dk;
     {
