@@ -1,11 +1,15 @@
 // Two unit-square blocks stacked at z = 0.5 (hexahedra, structured, NON-matching on the
 // interface): the 3D contact patch test. Lower block: nl x nl x 2 hex8, upper: nu x nu x 2.
+// tet = 1: tetrahedra instead (unstructured inside, structured triangles on every face, so
+// the interface facets are tri3, or tri6 with Mesh->order 2; nl = nu gives matching
+// interface triangulations).
 // Physical groups: volumes "lower", "upper"; surfaces "base" (z = 0), "lower_top" and
 // "upper_bottom" (the interface sides), "upper_top" (z = 1), "sym_x" (x = 0, both
 // blocks), "sym_y" (y = 0, both blocks).
 SetFactory("OpenCASCADE");
 nl = DefineNumber[3, Name "Parameters/nl"];
 nu = DefineNumber[4, Name "Parameters/nu"];
+tet = DefineNumber[0, Name "Parameters/tet"];
 Box(1) = {0, 0, 0, 1, 1, 0.5};
 Box(2) = {0, 0, 0.5, 1, 1, 0.5};   // no BooleanFragments: two separate bodies
 For v In {1:2}
@@ -23,8 +27,10 @@ For v In {1:2}
     EndIf
   EndFor
   Transfinite Surface{s[]};
-  Recombine Surface{s[]};
-  Transfinite Volume{v};
+  If (tet == 0)
+    Recombine Surface{s[]};
+    Transfinite Volume{v};
+  EndIf
 EndFor
 // Faces by position, then by body.
 e = 1e-3;  // OCC bounding boxes are padded by a small tolerance

@@ -98,11 +98,11 @@ class Contact {
   // Restart (src/run/Restart.cpp): what one step hands to the next besides u, per owned
   // slave node of a pair (kHistoryValues values: d_n, d_{n-1}, active at the end of the
   // last step, state and master facet of the last evaluation, which the next active-set
-  // change test compares with, the stiffness scale s_p, and the master facet found after
-  // the step), and the size of the last
+  // change test compares with, the stiffness scale s_p, the master facet found after
+  // the step and whether the projection on it was inside it), and the size of the last
   // accepted step (leapfrog factor). initialize() sets everything else that lasts (end
   // time, master positions), begin_step() the rest.
-  static constexpr int kHistoryValues = 7;
+  static constexpr int kHistoryValues = 8;
   std::size_t num_pairs() const { return pairs_.size(); }
   const std::string& pair_name(std::size_t pair) const { return pairs_[pair].cfg.name; }
   NodalFields step_history(std::size_t pair) const;
@@ -157,6 +157,8 @@ class Contact {
   // Positions of the master nodes at u (3 per master node; imports u's master dofs).
   void update_master_positions(const la::Vector& u, std::vector<double>& xm) const;
   void locate(const Pair& p, Slave& nd, const double* x) const;
+  static constexpr double kFacetBand = 0.02;
+  bool keep_facet(const Pair& p, Slave& nd, const double* x) const;
   double facet_gap(const Pair& p, const Slave& nd, const double* x, double* n, double* rel) const;
   void node_input(const Pair& p, const Slave& nd, const double* x, contact::NodeInput& in) const;
   void read_scales(const la::CrsMatrix& K);

@@ -127,8 +127,11 @@ KOKKOS_INLINE_FUNCTION void frame(CellType t, int nn, int dim, double orient, co
 // Closest-point projection of xs on the facet: Gauss-Newton on the tangential equations
 // g_k = a_k . (x_s - x_m) = 0 with the matrix a_k . a_l (exact for flat facets; for curved
 // ones it converges to the same root). Returns whether the projection lies inside the
-// facet; xi is clamped to the facet otherwise.
-KOKKOS_INLINE_FUNCTION bool project(CellType t, int nn, int dim, const double (*x)[3], const double xs[3], double xi[2]) {
+// facet; xi is clamped to the facet otherwise. band > 0: a projection past the facet's
+// edge by at most `band` (parametric) also counts as inside and keeps its xi (the facet
+// extended; Contact's facet hysteresis).
+KOKKOS_INLINE_FUNCTION bool project(CellType t, int nn, int dim, const double (*x)[3], const double xs[3], double xi[2],
+                                    double band = 0.0) {
   centre(t, xi);
   const int nk = dim - 1;
   for (int it = 0; it < 20; ++it) {
@@ -154,6 +157,10 @@ KOKKOS_INLINE_FUNCTION bool project(CellType t, int nn, int dim, const double (*
     // Far outside: stop early (the facet is not the closest one).
     if (std::abs(xi[0]) > 10.0 || std::abs(xi[1]) > 10.0) break;
     if (std::abs(dxi[0]) + std::abs(dxi[1]) < 1e-14) break;
+  }
+  if (band > 0.0) {
+    double c[2] = {xi[0], xi[1]};
+    if (clamp(t, c, band)) return true;
   }
   return clamp(t, xi, 1e-10);
 }

@@ -70,6 +70,29 @@ void MasterSurface::build(const std::vector<double>& x) {
   }
 }
 
+MasterSurface::Hit MasterSurface::on_facet(int f, int dim, const double xs[3], const std::vector<double>& x, double band) const {
+  Hit hit;
+  const Facet& fc = facets_[static_cast<std::size_t>(f)];
+  double xa[facet::kMaxNodes][3];
+  for (int a = 0; a < fc.nn; ++a)
+    for (int c = 0; c < 3; ++c) xa[a][c] = x[3 * static_cast<std::size_t>(fc.node[a]) + static_cast<std::size_t>(c)];
+  double xi[2];
+  if (!facet::project(fc.type, fc.nn, dim, xa, xs, xi, band)) return hit;
+  facet::Frame<double> fr;
+  facet::frame(fc.type, fc.nn, dim, fc.orient, xa, xi, fr);
+  double d2 = 0.0, d = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    d2 += (xs[c] - fr.xm[c]) * (xs[c] - fr.xm[c]);
+    d += fr.n[c] * (xs[c] - fr.xm[c]);
+  }
+  if (std::sqrt(d2) > search_radius() || d < -h_) return hit;
+  hit.facet = f;
+  hit.xi[0] = xi[0], hit.xi[1] = xi[1];
+  hit.inside = true;
+  hit.dist = std::sqrt(d2);
+  return hit;
+}
+
 MasterSurface::Hit MasterSurface::closest(int dim, const double xs[3], const std::vector<double>& x) const {
   Hit best;
   best.dist = 1e300;

@@ -49,6 +49,9 @@ class MasterSurface {
   };
   // Closest facet to xs within the search radius (facet -1: none). Thread-safe after build().
   Hit closest(int dim, const double xs[3], const std::vector<double>& x) const;
+  // The projection of xs on facet f, extended by `band` (parametric) past its edges; facet
+  // -1 when it falls outside that, or xs is beyond the search radius or more than h behind.
+  Hit on_facet(int f, int dim, const double xs[3], const std::vector<double>& x, double band) const;
 
  private:
   void cell_of(const double* p, long long* i) const;

@@ -105,6 +105,7 @@ struct NodeInput {
 struct LawParams {
   bool persistence = true;
   double dt = 1.0, cn = 1.0, ct = 1.0, mu = 0.0, sp = 1.0;
+  double release = 0.0;  // an active node is released when lambda_nu + c_nu g > release (>= 0)
 };
 
 // Results of one evaluation (double): values and derivatives with respect to y.
@@ -230,7 +231,7 @@ KOKKOS_INLINE_FUNCTION int conditions(const NodeInput& in, const LawParams& p, c
   if (p.persistence) g = in.nm == 0 ? d - in.d_n : dot3(n, rel);
   const T rn = dot3(n, r);
   const T lam_n = -rn;
-  if (value(lam_n) + p.cn * value(g) / (p.persistence ? p.dt : 1.0) > 0.0) return Inactive;
+  if (value(lam_n) + p.cn * value(g) / (p.persistence ? p.dt : 1.0) > p.release) return Inactive;
   T t[2][3];
   tangents(dim, n, in.nm ? a1 : static_cast<const T*>(nullptr), t);
   const T reln = dot3(n, rel);
