@@ -4,8 +4,9 @@
 For each scene (S1(a): the ring thrown at the rigid plane, frictionless; S1(c): the same
 with mu = 0.3; S3: the ring on the deformable foundation, frictionless), each time scheme
 (gonzalez, midpoint, newmark, hht) and each contact condition (persistence, gap) the scene
-runs to T at dt = T/N for N in NS, with no cut-back (Stepping->max cutbacks = 0: every run
-uses the dt it names; a step that fails ends the run with exit 3, recorded as failed).
+runs to T at dt = T/N for N in NS, by default with no cut-back (Stepping->max cutbacks = 0:
+every run uses the dt it names; a step that fails ends the run with exit 3, recorded as
+failed); CUTBACKS="" allows the deck's cut-backs (S3 needs them, see the README).
 Errors are measured in quantities that converge through the impacts, at T, against a
 reference run of the same scene (gonzalez + persistence at N = NREF; a run at NREF/2 shows
 the reference's own error):
@@ -19,8 +20,11 @@ Cost: wall time and CPU time (user + system) of the run.
   perf/studies/contact_precision.py [stentor]        (default build-dev/stentor)
 Environment: SCENES="s1a s1c s3", SCHEMES="gonzalez midpoint newmark hht",
   FORMS="persistence gap", NS="50 100 200 400", NREF=3200, T=0.2, SIZE=0.05 (ring mesh
-  size), WORK=<folder for the runs> (default /tmp/stentor_contact_precision),
-  PLOT_ONLY=1 (redraw from docs/studies/contact_precision.csv).
+  size), CUTBACKS=0 (Stepping->max cutbacks; empty: the deck's default, then dt is the
+  largest step), WORK=<folder for the runs> (default /tmp/stentor_contact_precision),
+  PLOT_ONLY=1 (redraw from docs/studies/contact_precision.csv), REUSE=1 (load the outcome of
+  runs already made in WORK instead of running them again).
+The CSV keeps the rows of scenes not run this time.
 Writes docs/studies/contact_precision.csv and contact_precision_<scene>.png.
 """
 import math
@@ -40,6 +44,8 @@ NREF = int(env("NREF", "3200"))
 T = float(env("T", "0.2"))
 SIZE = float(env("SIZE", "0.05"))
 WORK = os.path.abspath(env("WORK", "/tmp/stentor_contact_precision"))
+REUSE = bool(env("REUSE"))
+CUTBACKS = env("CUTBACKS", "0")  # Stepping->max cutbacks; "" keeps the deck's default
 OUT = os.path.join(sl.ROOT, "docs", "studies")
 CSV = os.path.join(OUT, "contact_precision.csv")
 TOP = (0.0, 2.1)  # the ring's top point (inputs/ring.geo: centre (0, 1.1), Ro = 1)
@@ -61,7 +67,8 @@ def deck(scene, scheme, form, n):
     d.set("Contact/%s/friction" % pair, mu)
     d.set("Stepping/end time", T)
     d.set("Stepping/steps", n)
-    d.set("Stepping/max cutbacks", 0, "int")
+    if CUTBACKS != "":
+        d.set("Stepping/max cutbacks", int(CUTBACKS), "int")
     d.set("Output/basename", "run")
     d.set("Output/fields", False, "bool")
     d.set("Output/Probes/top/point", TOP, "Array(double)")
@@ -70,9 +77,10 @@ def deck(scene, scheme, form, n):
 
 def measure(scene, scheme, form, n):
     name, path = deck(scene, scheme, form, n)
-    r = sl.run(STENTOR, path, os.path.join(WORK, scene, name), name, limit_s=900)
+    r = sl.run(STENTOR, path, os.path.join(WORK, scene, name), name, limit_s=900, reuse=REUSE)
     h, e = r.csv("history", "run"), r.csv("energy", "run")
     row = {"scene": scene, "scheme": scheme, "formulation": form, "N": n, "dt": T / n, "rc": r.rc, "steps": r.steps,
+           "cutbacks": r.cutbacks,
            "newton": r.newton, "wall_s": r.wall, "cpu_s": r.cpu}
     done = r.rc == 0 and h and e and abs(h["time"][-1] - T) < 1e-9 * T
     if done:
@@ -81,15 +89,15 @@ def measure(scene, scheme, form, n):
         row.update(u_x=h["u_top_x"][-1], u_y=h["u_top_y"][-1], p_x=e["momentum_x"][-1], p_y=e["momentum_y"][-1],
                    p0_x=e["momentum_x"][0], p0_y=e["momentum_y"][0],
                    drift=max(abs(x - e0) for x in d) / e0, balance=max(abs(x) for x in e["balance_residual"]) / e0)
-    print("  %-4s %-9s %-11s N=%-5d rc=%d newton=%-6d wall=%7.1f s cpu=%7.1f s%s" %
-          (scene, scheme, form, n, r.rc, r.newton, r.wall, r.cpu,
-           "  drift %.1e" % row["drift"] if done else "  (failed: %s)" % r.log.strip().splitlines()[-1][:100]
-           if r.log.strip() else ""), flush=True)
+    print("  %-4s %-9s %-11s N=%-5d rc=%d cut-backs=%-4d newton=%-6d wall=%7.1f s cpu=%7.1f s%s" %
+          (scene, scheme, form, n, r.rc, r.cutbacks, r.newton, r.wall, r.cpu,
+           "  drift %.1e" % row["drift"] if done else "  (failed: %s)" % r.failure()[:120]), flush=True)
+    row["failure"] = "" if done else r.failure()
     return row
 
 
-HEADER = ["scene", "scheme", "formulation", "N", "dt", "rc", "steps", "newton", "wall_s", "cpu_s", "u_x", "u_y", "p_x",
-          "p_y", "probe_error", "impulse_error", "drift", "balance", "reference"]
+HEADER = ["scene", "scheme", "formulation", "N", "dt", "rc", "steps", "cutbacks", "newton", "wall_s", "cpu_s", "u_x", "u_y", "p_x",
+          "p_y", "probe_error", "impulse_error", "drift", "balance", "reference", "failure"]
 
 
 def errors(rows):
@@ -154,7 +162,10 @@ def main():
                 for n in NS:
                     rows.append(measure(scene, scheme, form, n))
     os.makedirs(OUT, exist_ok=True)
-    sl.write_csv(CSV, HEADER, errors(rows))
+    # rows of scenes not run this time are kept (studies run scene by scene)
+    kept = [[r.get(k, "") for k in HEADER] for r in (sl.read_rows(CSV) if os.path.exists(CSV) else [])
+            if r["scene"] not in SCENES]
+    sl.write_csv(CSV, HEADER, kept + errors(rows))
     with open(os.path.join(OUT, "contact_precision_machine.txt"), "w") as f:
         f.write(sl.banner(STENTOR) + "\n")
     plot()

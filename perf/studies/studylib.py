@@ -12,6 +12,7 @@ Standard library only (matplotlib is imported by the plotting scripts, not here)
 Run `python3 perf/studies/studylib.py banner [stentor]` to print the banner from bash.
 """
 import csv
+import json
 import os
 import platform
 import re
@@ -124,13 +125,38 @@ class Run:
         self.steps, self.cutbacks, self.newton = (int(m.group(i)) for i in (1, 2, 3)) if m else (0, 0, 0)
         self.timed_out = rc == 124
 
+    def save(self, path):
+        """The outcome as JSON (the log is next to the deck): a study rerun with REUSE=1 loads it."""
+        with open(path, "w") as f:
+            json.dump({"name": self.name, "folder": self.folder, "rc": self.rc, "wall": self.wall, "cpu": self.cpu}, f)
+
+    @staticmethod
+    def load(path):
+        with open(path) as f:
+            d = json.load(f)
+        log_path = os.path.join(os.path.dirname(path), d["name"] + ".log")
+        log = open(log_path).read() if os.path.exists(log_path) else ""
+        return Run(d["name"], d["folder"], d["rc"], d["wall"], d["cpu"], log)
+
+    def failure(self):
+        """The run's failure line (FAILED: ... or error: ...), else its last log line."""
+        m = re.search(r"^(FAILED:|error:|Error:)[^\n]*", self.log, re.M)
+        if m:
+            return m.group(0)
+        lines = self.log.strip().splitlines()
+        return lines[-1] if lines else ""
+
     def csv(self, kind, basename):
         """Columns of <basename>_<kind>.csv (kind = history | energy) as float lists."""
         return read_csv(os.path.join(self.folder, "%s_%s.csv" % (basename, kind)))
 
 
-def run(stentor, deck_path, out_dir, name, limit_s=600, extra_args=()):
-    """Run `stentor --output out_dir deck` with a wall-time limit; CPU time from rusage."""
+def run(stentor, deck_path, out_dir, name, limit_s=600, extra_args=(), reuse=False):
+    """Run `stentor --output out_dir deck` with a wall-time limit; CPU time from rusage.
+    reuse: load the outcome saved by an earlier run of the same deck (<deck>.json) if any."""
+    meta = os.path.splitext(deck_path)[0] + ".json"
+    if reuse and os.path.exists(meta):
+        return Run.load(meta)
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.monotonic()
     cmd = ["timeout", str(limit_s), stentor, "--overwrite", "--output", out_dir, *extra_args, deck_path]
@@ -141,7 +167,9 @@ def run(stentor, deck_path, out_dir, name, limit_s=600, extra_args=()):
     log = p.stdout + p.stderr
     with open(os.path.join(os.path.dirname(os.path.abspath(deck_path)), name + ".log"), "w") as f:
         f.write(log)
-    return Run(name, out_dir, p.returncode, wall, cpu, log)
+    r = Run(name, out_dir, p.returncode, wall, cpu, log)
+    r.save(meta)
+    return r
 
 
 def read_csv(path):
