@@ -38,7 +38,7 @@ if [ $plot_only -eq 0 ] && [ $no_run -eq 0 ]; then
     echo "necking.sh: $bin not found; build it first (cmake --build build --target stentor)" >&2
     exit 2
   fi
-  echo "== machine: $(nproc) cores, $(uname -n); stentor $bin ($(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo '?')), $NP rank(s)"
+  python3 "$here/studylib.py" banner "$bin" | sed 's/^/== /'; echo "== $NP rank(s)"
   echo "== run in $WORK"
   start=$(date +%s)
   if [ "$NP" -gt 1 ]; then run=(mpirun -np "$NP" "$bin"); else run=("$bin"); fi

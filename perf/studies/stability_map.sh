@@ -53,8 +53,7 @@ if [ ! -x "$bin" ]; then
 fi
 mkdir -p "$decks" "$outdir" "$WORK"
 
-echo "== machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(uname -sr)"
-echo "== stentor: $bin ($(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo '?'))"
+python3 "$here/studylib.py" banner "$bin" | sed 's/^/== /'  # the machine banner shared by the studies
 echo "== runs in $WORK"
 
 # Deck template: @SCHEME@, @N@, @C1@, @C2@, @D@ are replaced per run (base: C1 = 1e4,

@@ -45,8 +45,7 @@ fi
 mkdir -p "$decks" "$outdir" "$WORK"
 rm -f "$decks"/*.xml
 
-echo "== machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ *//'), $(uname -sr)"
-echo "== stentor: $bin ($(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo '?'))"
+python3 "$here/studylib.py" banner "$bin" | sed 's/^/== /'  # the machine banner shared by the studies
 echo "== runs in $WORK"
 
 # Deck template: @SCHEME@ and @N@ are replaced per run. The mesh path is relative to the

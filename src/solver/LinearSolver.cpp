@@ -1,6 +1,9 @@
 #include "solver/LinearSolver.hpp"
 
 #include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <exception>
 
 #include <BelosLinearProblem.hpp>
 #include <BelosPseudoBlockGmresSolMgr.hpp>
@@ -33,6 +36,7 @@ struct LinearSolver::Impl {
   LinearSolverConfig cfg;
   la::RCP<const la::Comm> comm;
   la::RCP<la::CrsMatrix> A;
+  la::RCP<la::CrsMatrix> A_last;  // the matrix of the last setup() (kept through a fallback)
   la::RCP<Ifpack2::Preconditioner<la::SC, la::LO, la::GO, la::Node>> prec;  // schwarz
   la::RCP<la::Operator> mg;  // muelu (a MueLu::TpetraOperator)
   bool prec_initialized = false;
@@ -106,6 +110,7 @@ struct LinearSolver::Impl {
   // Preconditioner reuse (cfg.preconditioner_reuse): setups since the last build, the
   // iterations of the first solve after it (-1: none yet) and the last solve's outcome.
   int age = 0, first_iterations = -1, last_iterations = 0;
+  bool fresh = false;  // the last setup built the preconditioner (not reused)
   bool last_converged = true;
   bool keep_preconditioner() {
     const bool built = !prec.is_null() || !mg.is_null();
@@ -193,10 +198,57 @@ struct Clock {
 const LinearSolver::Times& LinearSolver::times() const { return impl_->times; }
 
 void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
+  Clock clock{impl_->times.setup, impl_->times.setups};
+  for (;;) {
+    try {
+      setup_once(A);
+      return;
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      if (impl_->comm->getSize() > 1 || !fall_back("set-up failed (" + teuchos_short_message(e.what()) + ")")) throw;
+    }
+  }
+}
+
+// One step down muelu -> schwarz (RILUK) -> direct; false where none is left. The next
+// setup_once() builds the new configuration from scratch.
+bool LinearSolver::fall_back(const std::string& why) {
   Impl& m = *impl_;
-  Clock clock{m.times.setup, m.times.setups};
+  const std::string from = description();
+  if (m.cfg.method == "direct") return false;
+  if (m.cfg.preconditioner == "muelu") {
+    m.cfg.preconditioner = "schwarz";
+    m.cfg.subdomain_solver = "RILUK";
+  } else {
+#ifdef STENTOR_HAVE_AMESOS2
+    m.cfg.method = "direct";
+#else
+    return false;
+#endif
+  }
+  m.auto_chosen = false;
+  m.mg = Teuchos::null;
+  m.prec = Teuchos::null;
+  m.A = Teuchos::null;  // not "the same matrix": the new preconditioner starts afresh
+#ifdef STENTOR_HAVE_AMESOS2
+  m.direct = Teuchos::null;
+#endif
+  m.age = 0;
+  m.first_iterations = -1;
+  m.last_converged = true;
+  ++m.times.fallbacks;
+  if (m.comm->getRank() == 0)
+    std::cout << "warning: linear solver " << from << ": " << why << "; using " << description() << " from here on\n"
+              << std::flush;
+  return true;
+}
+
+void LinearSolver::setup_once(const la::RCP<la::CrsMatrix>& A) {
+  Impl& m = *impl_;
   const bool same = (m.A.get() == A.get());
   m.A = A;
+  m.A_last = A;
   if (m.cfg.method == "direct") {
 #ifdef STENTOR_HAVE_AMESOS2
     if (m.comm->getSize() > 1) {
@@ -218,12 +270,15 @@ void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
 #endif
     return;
   }
+  m.fresh = true;
   if (m.cfg.preconditioner == "none") return;
+  m.fresh = false;
   const bool forced = force_rebuild_;
   force_rebuild_ = false;
   if (same && !forced && m.keep_preconditioner()) return;
   m.age = 0;
   m.first_iterations = -1;
+  m.fresh = true;
   ++m.times.builds;
   if (m.cfg.preconditioner == "muelu") {
 #ifdef STENTOR_HAVE_MUELU
@@ -256,8 +311,42 @@ double LinearSolver::tolerance() const {
 }
 
 LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x, double tolerance) {
+  Clock clock{impl_->times.solve, impl_->times.solves};
+  for (;;) {
+    Result res;
+    std::string why;
+    std::exception_ptr error;
+    try {
+      res = solve_once(b, x, tolerance);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      if (impl_->comm->getSize() > 1) throw;
+      why = "the solve failed (" + teuchos_short_message(e.what()) + ")";
+      error = std::current_exception();
+    }
+    // An unconverged but finite result is Newton's to judge (an inexact step); a
+    // non-finite one is a breakdown (collective norms: every rank agrees).
+    if (why.empty() && impl_->cfg.method != "direct" && !(std::isfinite(res.residual) && std::isfinite(x.norm2())))
+      why = "GMRES ended with a non-finite residual";
+    // Less than one digit gained with a preconditioner built for this very matrix: no use
+    // as a Newton direction, and rebuilding it would give the same.
+    if (why.empty() && impl_->cfg.method != "direct" && !res.converged && impl_->fresh && res.residual > 0.1) {
+      std::ostringstream os;
+      os << "GMRES gained less than one digit (relative residual " << std::setprecision(3) << res.residual << " after "
+         << res.iterations << " iterations) with a freshly built preconditioner";
+      why = os.str();
+    }
+    if (why.empty() || !fall_back(why)) {
+      if (error) std::rethrow_exception(error);
+      return res;
+    }
+    setup_once(impl_->A_last);  // the same matrix with the new configuration, then solve again
+  }
+}
+
+LinearSolver::Result LinearSolver::solve_once(const la::Vector& b, la::Vector& x, double tolerance) {
   Impl& m = *impl_;
-  Clock clock{m.times.solve, m.times.solves};
   Result res;
   x.putScalar(0.0);
   if (m.cfg.method == "direct") {

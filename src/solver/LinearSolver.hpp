@@ -1,7 +1,18 @@
-// The linear solve inside each Newton iteration: Belos GMRES preconditioned by Ifpack2
-// additive Schwarz (ILU subdomain solves) by default, or a direct solve (Amesos2 KLU2).
-// The matrix graph never changes, so symbolic work (Schwarz overlap, ILU pattern, KLU
-// symbolic factorization) is done once; numeric work once per Newton iteration.
+// The linear solve inside each Newton iteration: Belos GMRES preconditioned by MueLu
+// (smoothed aggregation; the default where Trilinos has it) or Ifpack2 additive Schwarz
+// (ILU subdomain solves), or a direct solve (Amesos2 KLU2). The matrix graph never
+// changes, so symbolic work (Schwarz overlap, ILU pattern, KLU symbolic factorization)
+// is done once; numeric work once per Newton iteration.
+//
+// Fallback: when the preconditioner set-up or a solve throws (one rank: e.g. MueLu's
+// "damping factor needs to be finite" on a matrix with zero diagonal entries, an ILU
+// breakdown), or a GMRES solve ends with a non-finite residual or solution, or gains less
+// than one digit (relative residual > 0.1) with a preconditioner built for this very
+// matrix (any rank count: those norms are global, so every rank sees it), the solver moves one step down
+// the chain muelu -> schwarz (RILUK) -> direct (KLU2) for the rest of the run, solves the
+// same system again, and prints one warning line on rank 0. Only a failure of the last
+// link reaches Newton (a failed iteration: cut-back). On several ranks an exception is
+// still rethrown (the other ranks may be inside a collective of the package).
 #pragma once
 #include <memory>
 #include <string>
@@ -49,12 +60,16 @@ class LinearSolver {
   struct Times {
     double setup = 0.0, solve = 0.0;
     long setups = 0, solves = 0, builds = 0;
+    int fallbacks = 0;  // steps taken down the fallback chain
   };
   const Times& times() const;
 
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  void setup_once(const la::RCP<la::CrsMatrix>& A);
+  Result solve_once(const la::Vector& b, la::Vector& x, double tolerance);
+  bool fall_back(const std::string& why);
   bool force_rebuild_ = false;
 };
 

@@ -253,3 +253,52 @@ TEST(MueLu, PassThroughSublist) {
   EXPECT_THROW(run_simulation(cfg, opts), InputError);
 }
 #endif  // STENTOR_HAVE_MUELU
+
+#if defined(STENTOR_HAVE_MUELU) && defined(STENTOR_HAVE_AMESOS2)
+// The fallback chain (LinearSolver.hpp): a nonsingular system with zero diagonal entries,
+// the saddle point [[K, I], [I, 0]] (K the 1D Laplacian tridiag(-1, 2, -1)): MueLu's
+// prolongator damping divides by the diagonal ("Prolongator damping factor needs to be
+// finite", the set-up throws), Schwarz/RILUK(1) leaves GMRES at a relative residual of 0.2
+// after 40 iterations. The solver steps down twice, to KLU2, which solves it.
+TEST(LinearSolver, FallbackChainSolvesWhatMueLuAndIluCannot) {
+  auto comm = Tpetra::getDefaultComm();
+  if (comm->getSize() > 1) GTEST_SKIP() << "one-rank test (a throwing set-up is rethrown on several ranks)";
+  const int m = 2000, n = 2 * m;  // above MueLu's coarse size (2000 rows), so it builds a hierarchy
+  auto map = Teuchos::rcp(new la::Map(n, 0, comm));
+  auto A = Teuchos::rcp(new la::CrsMatrix(map, 4));
+  for (la::GO i = 0; i < m; ++i) {
+    std::vector<la::GO> c = {i, i + m};
+    std::vector<la::SC> v = {2.0, 1.0};
+    if (i > 0) c.push_back(i - 1), v.push_back(-1.0);
+    if (i < m - 1) c.push_back(i + 1), v.push_back(-1.0);
+    A->insertGlobalValues(i, Teuchos::ArrayView<const la::GO>(c), Teuchos::ArrayView<const la::SC>(v));
+    const std::vector<la::GO> c2 = {i};
+    const std::vector<la::SC> v2 = {1.0};
+    A->insertGlobalValues(i + m, Teuchos::ArrayView<const la::GO>(c2), Teuchos::ArrayView<const la::SC>(v2));
+  }
+  A->fillComplete();
+  // x* = (1, 2, ..., n); b = A x*.
+  la::Vector xs(map), b(map), x(map);
+  {
+    auto h = xs.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (int i = 0; i < n; ++i) h(i, 0) = i + 1.0;
+  }
+  A->apply(xs, b);
+  LinearSolverConfig cfg;
+  cfg.method = "gmres";
+  cfg.preconditioner = "muelu";
+  cfg.max_iterations = 40;
+  cfg.restart = 40;
+  LinearSolver lin(cfg, comm);
+  std::vector<double> xyz(3 * m, 0.0);  // 2D: n rows = m "nodes" of 2 dofs each
+  for (int k = 0; k < m; ++k) xyz[3 * k] = k, xyz[3 * k + 1] = k % 2;
+  lin.set_node_coordinates(2, xyz);
+  lin.setup(A);
+  const LinearSolver::Result r = lin.solve(b, x);
+  x.update(-1.0, xs, 1.0);
+  EXPECT_LT(x.normInf(), 1e-10 * n) << lin.description();
+  EXPECT_TRUE(r.converged) << r.residual;
+  EXPECT_GE(lin.times().fallbacks, 1) << "the system was solved without a fallback: the test no longer exercises it";
+  EXPECT_NE(lin.description().find("direct"), std::string::npos) << lin.description();
+}
+#endif

@@ -1,0 +1,176 @@
+#!/usr/bin/python3
+"""Error against run time for the contact scenes (docs/studies/README.md, section 3).
+
+For each scene (S1(a): the ring thrown at the rigid plane, frictionless; S1(c): the same
+with mu = 0.3; S3: the ring on the deformable foundation, frictionless), each time scheme
+(gonzalez, midpoint, newmark, hht) and each contact condition (persistence, gap) the scene
+runs to T at dt = T/N for N in NS, by default with no cut-back (Stepping->max cutbacks = 0:
+every run uses the dt it names; a step that fails ends the run with exit 3, recorded as
+failed); CUTBACKS="" allows the deck's cut-backs (S3 needs them, see the README).
+Errors are measured in quantities that converge through the impacts, at T, against a
+reference run of the same scene (gonzalez + persistence at N = NREF; a run at NREF/2 shows
+the reference's own error):
+  probe  |u_top(T) - u_top,ref(T)|, the displacement of the ring's top node [m]
+  impulse |p(T) - p_ref(T)| / |p_ref(T) - p(0)|: the total contact impulse received by the
+          ring up to T (its momentum change; no other force acts on it), relative
+  drift  max over the run of |E + D - E0| / E0 (D: friction dissipation), the energy error
+  balance max over the run of |balance residual| / E0 (the discrete work identity)
+Cost: wall time and CPU time (user + system) of the run.
+
+  perf/studies/contact_precision.py [stentor]        (default build-dev/stentor)
+Environment: SCENES="s1a s1c s3", SCHEMES="gonzalez midpoint newmark hht",
+  FORMS="persistence gap", NS="50 100 200 400", NREF=3200, T=0.2, SIZE=0.05 (ring mesh
+  size), CUTBACKS=0 (Stepping->max cutbacks; empty: the deck's default, then dt is the
+  largest step), WORK=<folder for the runs> (default /tmp/stentor_contact_precision),
+  PLOT_ONLY=1 (redraw from docs/studies/contact_precision.csv), REUSE=1 (load the outcome of
+  runs already made in WORK instead of running them again).
+The CSV keeps the rows of scenes not run this time.
+Writes docs/studies/contact_precision.csv and contact_precision_<scene>.png.
+"""
+import math
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import studylib as sl  # noqa: E402
+
+env = os.environ.get
+STENTOR = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(sl.ROOT, "build-dev", "stentor"))
+SCENES = env("SCENES", "s1a s1c s3").split()
+SCHEMES = env("SCHEMES", "gonzalez midpoint newmark hht").split()
+FORMS = env("FORMS", "persistence gap").split()
+NS = [int(n) for n in env("NS", "50 100 200 400").split()]
+NREF = int(env("NREF", "3200"))
+T = float(env("T", "0.2"))
+SIZE = float(env("SIZE", "0.05"))
+WORK = os.path.abspath(env("WORK", "/tmp/stentor_contact_precision"))
+REUSE = bool(env("REUSE"))
+CUTBACKS = env("CUTBACKS", "0")  # Stepping->max cutbacks; "" keeps the deck's default
+OUT = os.path.join(sl.ROOT, "docs", "studies")
+CSV = os.path.join(OUT, "contact_precision.csv")
+TOP = (0.0, 2.1)  # the ring's top point (inputs/ring.geo: centre (0, 1.1), Ro = 1)
+
+SCENE = {  # deck, friction, label
+    "s1a": ("s1_ring.xml", "floor", 0.0, "S1(a): ring on a rigid plane, frictionless"),
+    "s1c": ("s1_ring.xml", "floor", 0.3, "S1(c): ring on a rigid plane, mu = 0.3"),
+    "s3": ("s3_ring_foundation.xml", "impact", 0.0, "S3: ring on a deformable foundation, frictionless"),
+}
+
+
+def deck(scene, scheme, form, n):
+    name = "%s_%s_%s_N%d" % (scene, scheme, form, n)
+    src, pair, mu, _ = SCENE[scene]
+    d = sl.Deck(os.path.join(sl.INPUTS, src))
+    d.set("Mesh/size", SIZE, "double")
+    d.set("Time Integration/scheme", scheme)
+    d.set("Contact/%s/formulation" % pair, form)
+    d.set("Contact/%s/friction" % pair, mu)
+    d.set("Stepping/end time", T)
+    d.set("Stepping/steps", n)
+    if CUTBACKS != "":
+        d.set("Stepping/max cutbacks", int(CUTBACKS), "int")
+    d.set("Output/basename", "run")
+    d.set("Output/fields", False, "bool")
+    d.set("Output/Probes/top/point", TOP, "Array(double)")
+    return name, d.write(os.path.join(WORK, scene, name + ".xml"))
+
+
+def measure(scene, scheme, form, n):
+    name, path = deck(scene, scheme, form, n)
+    r = sl.run(STENTOR, path, os.path.join(WORK, scene, name), name, limit_s=900, reuse=REUSE)
+    h, e = r.csv("history", "run"), r.csv("energy", "run")
+    row = {"scene": scene, "scheme": scheme, "formulation": form, "N": n, "dt": T / n, "rc": r.rc, "steps": r.steps,
+           "cutbacks": r.cutbacks,
+           "newton": r.newton, "wall_s": r.wall, "cpu_s": r.cpu}
+    done = r.rc == 0 and h and e and abs(h["time"][-1] - T) < 1e-9 * T
+    if done:
+        e0 = e["total"][0]
+        d = [e["total"][k] + e.get("friction_dissipation", [0.0] * len(e["total"]))[k] for k in range(len(e["total"]))]
+        row.update(u_x=h["u_top_x"][-1], u_y=h["u_top_y"][-1], p_x=e["momentum_x"][-1], p_y=e["momentum_y"][-1],
+                   p0_x=e["momentum_x"][0], p0_y=e["momentum_y"][0],
+                   drift=max(abs(x - e0) for x in d) / e0, balance=max(abs(x) for x in e["balance_residual"]) / e0)
+    print("  %-4s %-9s %-11s N=%-5d rc=%d cut-backs=%-4d newton=%-6d wall=%7.1f s cpu=%7.1f s%s" %
+          (scene, scheme, form, n, r.rc, r.cutbacks, r.newton, r.wall, r.cpu,
+           "  drift %.1e" % row["drift"] if done else "  (failed: %s)" % r.failure()[:120]), flush=True)
+    row["failure"] = "" if done else r.failure()
+    return row
+
+
+HEADER = ["scene", "scheme", "formulation", "N", "dt", "rc", "steps", "cutbacks", "newton", "wall_s", "cpu_s", "u_x", "u_y", "p_x",
+          "p_y", "probe_error", "impulse_error", "drift", "balance", "reference", "failure"]
+
+
+def errors(rows):
+    out = []
+    for scene in SCENES:
+        rs = [r for r in rows if r["scene"] == scene]
+        ref = next(r for r in rs if r["scheme"] == "gonzalez" and r["formulation"] == "persistence" and r["N"] == NREF)
+        for r in rs:
+            r["reference"] = int(r["scheme"] == "gonzalez" and r["formulation"] == "persistence" and r["N"] >= NREF // 2)
+            if "u_x" in r and "u_x" in ref:
+                r["probe_error"] = math.hypot(r["u_x"] - ref["u_x"], r["u_y"] - ref["u_y"])
+                j = math.hypot(ref["p_x"] - ref["p0_x"], ref["p_y"] - ref["p0_y"])
+                r["impulse_error"] = math.hypot(r["p_x"] - ref["p_x"], r["p_y"] - ref["p_y"]) / j
+            out.append([r.get(k, "") for k in HEADER])
+    return out
+
+
+def plot():
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = sl.read_rows(CSV)
+    for scene in sorted({r["scene"] for r in rows}):
+        fig, ax = plt.subplots(1, 3, figsize=(16, 5))
+        for scheme in SCHEMES:
+            for form, style in (("persistence", "-o"), ("gap", "--s")):
+                pts = [r for r in rows if r["scene"] == scene and r["scheme"] == scheme and r["formulation"] == form
+                       and r["reference"] == "0" and r["probe_error"] != ""]
+                pts.sort(key=lambda r: float(r["dt"]))
+                if not pts:
+                    continue
+                lbl = "%s + %s" % (scheme, form)
+                ax[0].loglog([float(r["cpu_s"]) for r in pts], [float(r["probe_error"]) for r in pts], style, label=lbl)
+                ax[1].loglog([float(r["dt"]) * 1e3 for r in pts], [float(r["impulse_error"]) for r in pts], style,
+                             label=lbl)
+                ax[2].loglog([float(r["dt"]) * 1e3 for r in pts], [max(float(r["drift"]), 1e-16) for r in pts], style,
+                             label=lbl)
+        ax[0].set(xlabel="CPU time of the run [s]", ylabel="probe displacement error at T [m]",
+                  title="error against cost")
+        ax[1].set(xlabel="time step [ms]", ylabel="contact impulse error at T (relative)", title="impulse")
+        ax[2].set(xlabel="time step [ms]", ylabel="max |E + D - E0| / E0", title="energy error (1e-16 floor)")
+        for a in ax:
+            a.grid(True, which="both", alpha=0.3)
+        ax[0].legend(fontsize=8)
+        fig.suptitle("%s, T = %g s, reference gonzalez + persistence, N = %d" % (SCENE[scene][3], T, NREF))
+        fig.tight_layout()
+        fig.savefig(os.path.join(OUT, "contact_precision_%s.png" % scene), dpi=90)
+        plt.close(fig)
+
+
+def main():
+    if env("PLOT_ONLY"):
+        plot()
+        return
+    print(sl.banner(STENTOR), flush=True)
+    rows = []
+    for scene in SCENES:
+        print("== %s: reference gonzalez + persistence N = %d and %d" % (scene, NREF, NREF // 2), flush=True)
+        rows += [measure(scene, "gonzalez", "persistence", NREF), measure(scene, "gonzalez", "persistence", NREF // 2)]
+        for scheme in SCHEMES:
+            for form in FORMS:
+                for n in NS:
+                    rows.append(measure(scene, scheme, form, n))
+    os.makedirs(OUT, exist_ok=True)
+    # rows of scenes not run this time are kept (studies run scene by scene)
+    kept = [[r.get(k, "") for k in HEADER] for r in (sl.read_rows(CSV) if os.path.exists(CSV) else [])
+            if r["scene"] not in SCENES]
+    sl.write_csv(CSV, HEADER, kept + errors(rows))
+    with open(os.path.join(OUT, "contact_precision_machine.txt"), "w") as f:
+        f.write(sl.banner(STENTOR) + "\n")
+    plot()
+    print("== wrote %s and contact_precision_<scene>.png" % CSV)
+
+
+if __name__ == "__main__":
+    main()
