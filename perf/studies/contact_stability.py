@@ -19,7 +19,8 @@ Environment: SCHEMES="gonzalez midpoint newmark hht", CONTRASTS="1 400 1e4", SPE
   DIRECTION="0.514 -0.857" (unit vector of the throw),
   FACTORS="1 4 16", OTHER_CONTRASTS (for the combinations other than gonzalez +
   persistence; default CONTRASTS), DT0=0.001, T=0.1, SIZE=0.1 (ring mesh size), LIMIT=300,
-  WORK=<run folder> (default /tmp/stentor_contact_stability), PLOT_ONLY=1.
+  WORK=<run folder> (default /tmp/stentor_contact_stability), PLOT_ONLY=1,
+  CSV=<file> (default docs/studies/contact_stability.csv; the PNG takes its name).
 Writes docs/studies/contact_stability.csv and contact_stability.png.
 """
 import os
@@ -43,7 +44,8 @@ SIZE = float(env("SIZE", "0.1"))
 LIMIT = int(env("LIMIT", "300"))
 WORK = os.path.abspath(env("WORK", "/tmp/stentor_contact_stability"))
 OUT = os.path.join(sl.ROOT, "docs", "studies")
-CSV = os.path.join(OUT, "contact_stability.csv")
+CSV = os.path.abspath(env("CSV", os.path.join(OUT, "contact_stability.csv")))
+PNG = os.path.splitext(CSV)[0] + ".png"
 ARTERY = (0.5e6, 0.005e6, 0.35e6)
 # S3's direction (3, -5)/|(3, -5)|. Straight down (DIRECTION="0 -1") the ring's lowest node
 # lands exactly on a foundation node and Newton cycles there (docs/studies/README.md).
@@ -120,7 +122,8 @@ def plot():
             o = r["outcome"]
             grid[i][j] = 0 if o == "completed" and int(r["cutbacks"]) == 0 else 1 if o == "completed" else \
                 3 if o == "killed" else 2
-            text[i][j] = ("%s/%d\n%.0e" % (r["newton_per_step"][:3], int(r["cutbacks"]), float(r["drift"]))
+            nps = float(r["newton_per_step"]) if r["newton_per_step"] else 0.0
+            text[i][j] = ("%s/%d\n%.0e" % ("%.1f" % nps if nps < 10 else "%.0f" % nps, int(r["cutbacks"]), float(r["drift"]))
                           if o == "completed" and r["drift"] else o)
         ax.imshow(grid, cmap=cmap, norm=BoundaryNorm([-0.5, 0.5, 1.5, 2.5, 3.5], 4), aspect="auto", origin="lower")
         for i in range(len(facs)):
@@ -135,7 +138,7 @@ def plot():
                  "max|E-E0|/E0. Green: completed; yellow: with cut-backs; orange: exit 3; red: killed" % T,
                  fontsize=9)
     fig.tight_layout()
-    fig.savefig(os.path.join(OUT, "contact_stability.png"), dpi=90)
+    fig.savefig(PNG, dpi=90)
     plt.close(fig)
 
 
@@ -152,10 +155,10 @@ def main():
                     rows.append(measure(s, f, c, v, k))
     os.makedirs(OUT, exist_ok=True)
     sl.write_csv(CSV, HEADER, rows)
-    with open(os.path.join(OUT, "contact_stability_machine.txt"), "w") as fh:
+    with open(os.path.splitext(CSV)[0] + "_machine.txt", "w") as fh:
         fh.write(sl.banner(STENTOR) + "\n")
     plot()
-    print("== wrote %s and contact_stability.png" % CSV)
+    print("== wrote %s and %s" % (CSV, PNG))
 
 
 if __name__ == "__main__":

@@ -110,8 +110,10 @@ def banner(stentor):
         load = "%.2f %.2f %.2f" % os.getloadavg()
     except OSError:
         load = "?"
-    return ("machine: %d cores, %s, %s %s; load average %s\nstentor: %s (commit %s)\ndate: %s" %
-            (os.cpu_count() or 0, cpu, platform.system(), platform.release(), load, stentor, git_commit(),
+    built = os.environ.get("STENTOR_COMMIT", "")  # the commit the executable was built from, if known
+    return ("machine: %d cores, %s, %s %s; load average %s\nstentor: %s%s (scripts at commit %s)\ndate: %s" %
+            (os.cpu_count() or 0, cpu, platform.system(), platform.release(), load, stentor,
+             " built from " + built if built else "", git_commit(),
              time.strftime("%Y-%m-%d %H:%M:%S %Z")))
 
 
