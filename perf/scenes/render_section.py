@@ -11,7 +11,8 @@ usage: render_section.py RESULTS_DIR BASENAME OUT.png FIELD LABEL T1[:TITLE1] T2
   LABEL   the colour bar's label, with units, e.g. "von Mises stress [MPa]"
   Ti      the output time to show (the nearest output step is taken); TITLEi its caption
 env: SCALE (field multiplier, e.g. 1e-6 for Pa -> MPa), VMIN/VMAX (colour-bar range; VMIN
-defaults to 0, or to the smallest value when that is negative), XLIM/YLIM ("a,b").
+defaults to 0, or to the smallest value when that is negative), XLIM/YLIM ("a,b"),
+OBSTACLE_LABEL (legend of the rigid obstacles, default "rigid balloon").
 Needs Debian's python3-matplotlib, python3-h5py, python3-numpy.
 """
 import os
@@ -76,7 +77,7 @@ def main():
             pc = ax.tripcolor(tri, facecolors=colours, cmap="viridis", vmin=vmin, vmax=vmax, edgecolors="none")
             first += len(c)
         for line in obstacle_lines(os.path.join(res, "%s_obstacles_%d.vtp" % (base, k))):
-            ax.plot(line[:, 0], line[:, 1], color="crimson", lw=1.2, label="rigid balloon")
+            ax.plot(line[:, 0], line[:, 1], color="crimson", lw=1.2, label=os.environ.get("OBSTACLE_LABEL", "rigid balloon"))
         ax.set_aspect("equal")
         ax.set_title(("%s (t = %.3g s)" if title else "%st = %.3g s") % (title, times[k]), fontsize=10)
         ax.set_xlabel("x [m]")
