@@ -20,6 +20,7 @@
 #include "io/LogCopy.hpp"
 #include "io/WriteError.hpp"
 #include "run/Simulation.hpp"
+#include "solver/SolverFailure.hpp"
 
 namespace {
 
@@ -205,6 +206,8 @@ int main(int argc, char** argv) {
     stentor::log_copy::stop();
     std::fflush(nullptr);
     std::_Exit(code);
+  } catch (const stentor::LinearSolverFailure& e) {
+    return fail_all_ranks(rank, size, 3, std::string("stentor: error: the linear solver failed: ") + e.what() + "\n");
   } catch (const std::bad_alloc&) {
     return fail_all_ranks(rank, size, 1, "stentor: out of memory on rank " + std::to_string(rank) + "\n");
   } catch (const std::exception& e) {

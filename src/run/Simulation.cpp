@@ -63,20 +63,27 @@ void resume(Run& r, const Restart& rs) {
   if (r.model.cfg.output.checkpoint_every > 0) checkpoint(r);
 }
 
+// The error for a non-finite initial state ("" when it is finite).
+std::string nonfinite_initial_state(const Model& m, const Stepper& stepper, const RunState& s, const EnergyAudit& au0) {
+  const std::string bad = stepper.nonfinite(s, &au0);
+  if (bad.empty()) return "";
+  std::ostringstream kinetic;
+  kinetic << std::scientific;
+  kinetic.precision(3);
+  kinetic << au0.kinetic;
+  return m.cfg.deck_path + ": 'Initial Conditions' give a non-finite initial " + bad + " (kinetic energy " + kinetic.str() +
+         "); use smaller initial values";
+}
+
 // u_0, v_0 and the contact history at t = 0; the fields at t = 0.
 void initialize(Run& r) {
   const Model& m = r.model;
   if (m.dynamic) {
     const EnergyAudit au0 = r.stepper.initialize_dynamics(r.state);
-    const std::string bad = r.stepper.nonfinite(r.state, &au0);
+    const std::string bad = nonfinite_initial_state(m, r.stepper, r.state, au0);
     if (!bad.empty()) {
       r.reporter.discard();  // an input error: nothing worth keeping was written
-      std::ostringstream kinetic;
-      kinetic << std::scientific;
-      kinetic.precision(3);
-      kinetic << au0.kinetic;
-      throw InputError(m.cfg.deck_path + ": 'Initial Conditions' give a non-finite initial " + bad + " (kinetic energy " +
-                       kinetic.str() + "); use smaller initial values");
+      throw InputError(bad);
     }
     r.reporter.energy_row(0, 0.0, au0, r.state.energy);
   }
@@ -86,6 +93,27 @@ void initialize(Run& r) {
   }
   r.reporter.initial_metrics(r.state);
   if (m.cfg.output.fields) r.reporter.write_fields(0.0, r.state.u);
+}
+
+// --check: every check a run makes before its first step, and nothing written: the names
+// in the mesh (done by Model), the stent metrics' groups, the contact pairs and the time
+// scheme (discretise: slave sets, facet types, persistence in statics), the initial state
+// (finite energy; the initial acceleration with Newmark/HHT) and initial penetrations.
+void check_before_first_step(Model& model, Reporter& reporter, Timers& timers) {
+  const Config& cfg = model.cfg;
+  if (cfg.output.metrics.enabled) StentMetrics groups(model);  // throws InputError
+  model.discretise(timers);
+  Stepper stepper(model, timers, nullptr, nullptr);
+  const SteppingConfig& st = cfg.stepping;
+  RunState state(model.dist->owned_map(), StepControl(st.end_time / st.num_steps, st.max_cutbacks, st.growth, st.min_step()));
+  if (model.dynamic) {
+    const std::string bad = nonfinite_initial_state(model, stepper, state, stepper.initialize_dynamics(state));
+    if (!bad.empty()) throw InputError(bad);
+  }
+  if (model.contact) {
+    stepper.initialize_contact(state);
+    for (const std::string& w : model.contact->initial_penetrations()) reporter.out() << "  " << w << "\n";
+  }
 }
 
 // Output->times: a time counts as reached by a step ending within round-off of it.
@@ -225,7 +253,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   Reporter reporter(model, opts, timers, start);
   reporter.print_model();
   if (opts.check_only) {
-    if (cfg.output.metrics.enabled) StentMetrics groups(model);  // the names it measures exist (throws InputError)
+    check_before_first_step(model, reporter, timers);
     reporter.out() << "deck and mesh are valid: " << cfg.bodies.size() << " bodies, " << cfg.materials.size() << " materials, "
                    << cfg.loads.size() << " boundary conditions\n";
     return 0;

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "parallel/Agreement.hpp"
 #include "solver/MueLuPreconditioner.hpp"
 #include "solver/SolverParams.hpp"
 #include <Teuchos_DefaultMpiComm.hpp>
@@ -200,15 +201,26 @@ const LinearSolver::Times& LinearSolver::times() const { return impl_->times; }
 void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
   Clock clock{impl_->times.setup, impl_->times.setups};
   for (;;) {
+    std::string why;
     try {
       setup_once(A);
-      return;
     } catch (const InputError&) {
       throw;
     } catch (const std::exception& e) {
-      if (impl_->comm->getSize() > 1 || !fall_back("set-up failed (" + teuchos_short_message(e.what()) + ")")) throw;
+      why = "set-up failed (" + teuchos_short_message(e.what()) + ")";
     }
+    const Agreement vote = agree(why);
+    if (!vote.failed()) return;
+    if (!fall_back(vote.failure)) throw LinearSolverFailure(vote.failure);
   }
+}
+
+// Every rank's failure of this call ("" if none) put to a vote (parallel/Agreement.hpp):
+// all ranks get the first failing rank's message (named when that is not rank 0).
+Agreement LinearSolver::agree(const std::string& why) const {
+  Agreement vote = agree_on_failure(*impl_->comm, why);
+  if (vote.failed_rank > 0) vote.failure = "on rank " + std::to_string(vote.failed_rank) + ": " + vote.failure;
+  return vote;
 }
 
 // One step down muelu -> schwarz (RILUK) -> direct; false where none is left. The next
@@ -315,16 +327,16 @@ LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x, dou
   for (;;) {
     Result res;
     std::string why;
-    std::exception_ptr error;
     try {
       res = solve_once(b, x, tolerance);
     } catch (const InputError&) {
       throw;
     } catch (const std::exception& e) {
-      if (impl_->comm->getSize() > 1) throw;
       why = "the solve failed (" + teuchos_short_message(e.what()) + ")";
-      error = std::current_exception();
     }
+    const Agreement vote = agree(why);
+    const bool threw = vote.failed();
+    why = vote.failure;
     // An unconverged but finite result is Newton's to judge (an inexact step); a
     // non-finite one is a breakdown (collective norms: every rank agrees).
     if (why.empty() && impl_->cfg.method != "direct" && !(std::isfinite(res.residual) && std::isfinite(x.norm2())))
@@ -337,11 +349,12 @@ LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x, dou
          << res.iterations << " iterations) with a freshly built preconditioner";
       why = os.str();
     }
-    if (why.empty() || !fall_back(why)) {
-      if (error) std::rethrow_exception(error);
+    if (why.empty()) return res;
+    if (!fall_back(why)) {
+      if (threw) throw LinearSolverFailure(why);
       return res;
     }
-    setup_once(impl_->A_last);  // the same matrix with the new configuration, then solve again
+    setup(impl_->A_last);  // the same matrix with the new configuration (falling back further if need be), then solve again
   }
 }
 

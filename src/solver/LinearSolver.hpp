@@ -4,15 +4,18 @@
 // changes, so symbolic work (Schwarz overlap, ILU pattern, KLU symbolic factorization)
 // is done once; numeric work once per Newton iteration.
 //
-// Fallback: when the preconditioner set-up or a solve throws (one rank: e.g. MueLu's
+// Fallback: when the preconditioner set-up or a solve throws on any rank (e.g. MueLu's
 // "damping factor needs to be finite" on a matrix with zero diagonal entries, an ILU
-// breakdown), or a GMRES solve ends with a non-finite residual or solution, or gains less
-// than one digit (relative residual > 0.1) with a preconditioner built for this very
-// matrix (any rank count: those norms are global, so every rank sees it), the solver moves one step down
-// the chain muelu -> schwarz (RILUK) -> direct (KLU2) for the rest of the run, solves the
-// same system again, and prints one warning line on rank 0. Only a failure of the last
-// link reaches Newton (a failed iteration: cut-back). On several ranks an exception is
-// still rethrown (the other ranks may be inside a collective of the package).
+// breakdown, Belos's "residual norms is NaN"), or a GMRES solve ends with a non-finite
+// residual or solution, or gains less than one digit (relative residual > 0.1) with a
+// preconditioner built for this very matrix, the solver moves one step down the chain
+// muelu -> schwarz (RILUK) -> direct (KLU2) for the rest of the run, solves the same
+// system again, and prints one warning line on rank 0. On several ranks the ranks vote
+// after every set-up and solve (parallel/Agreement.hpp), so all of them take the same
+// branch, whichever rank threw; a rank stuck inside a collective of the package ends the
+// job with exit status 3 after the vote's time limit, never a hang. Only a failure of the
+// last link reaches Newton: LinearSolverFailure, thrown on every rank alike (a failed
+// iteration: cut-back).
 #pragma once
 #include <memory>
 #include <string>
@@ -20,8 +23,11 @@
 
 #include "deck/Config.hpp"
 #include "parallel/LinearAlgebra.hpp"
+#include "solver/SolverFailure.hpp"
 
 namespace stentor {
+
+struct Agreement;
 
 class LinearSolver {
  public:
@@ -70,6 +76,7 @@ class LinearSolver {
   void setup_once(const la::RCP<la::CrsMatrix>& A);
   Result solve_once(const la::Vector& b, la::Vector& x, double tolerance);
   bool fall_back(const std::string& why);
+  Agreement agree(const std::string& why) const;
   bool force_rebuild_ = false;
 };
 

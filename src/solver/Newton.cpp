@@ -121,12 +121,11 @@ bool linear_solve(LinearSolver& lin, const la::RCP<la::CrsMatrix>& K, const la::
     lin.setup(K);
     res = lin.solve(b, x, tol);
     return true;
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    // e.g. MueLu "damping factor needs to be finite", Belos "residual norms is NaN".
-    if (x.getMap()->getComm()->getSize() > 1) throw;
-    failure = "the linear solver failed: " + teuchos_short_message(e.what());
+  } catch (const LinearSolverFailure& e) {
+    // Every link of the fallback chain failed (e.g. MueLu "damping factor needs to be
+    // finite", then Belos "residual norms is NaN", then KLU2 on a singular matrix), on
+    // every rank alike.
+    failure = "the linear solver failed: " + std::string(e.what());
     return false;
   }
 }

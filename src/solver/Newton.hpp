@@ -54,10 +54,9 @@ struct NewtonResult {
 };
 
 // One linear solve of a Newton-like iteration (setup for K, then K x = b at relative
-// tolerance `tol`, 0: the configured one). A preconditioner or Krylov breakdown returns
-// false with `failure` set, so the caller cuts the step back; InputError propagates, and so
-// does any error on several ranks (it may be one rank's alone while the others wait in a
-// collective: main's fail_all_ranks ends the run).
+// tolerance `tol`, 0: the configured one). When the whole fallback chain fails (on any
+// rank: the ranks vote, LinearSolver.hpp), returns false on every rank with `failure`
+// set, so the caller cuts the step back; InputError propagates.
 bool linear_solve(LinearSolver& lin, const la::RCP<la::CrsMatrix>& K, const la::Vector& b, la::Vector& x, double tol,
                   LinearSolver::Result& res, std::string& failure);
 
