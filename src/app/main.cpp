@@ -116,17 +116,21 @@ int fail_all_ranks(int rank, int size, int code, const std::string& msg) {
   return code;
 }
 
-// Test hook (documented in tests/cli/CMakeLists.txt): STENTOR_TEST_FAIL_RANK=R[:input]
-// makes rank R alone throw after reading the deck, an internal error (exit 1) or, with
-// ":input", an input error (exit 2), to check that one rank's failure ends every rank.
+// Test hook (documented in tests/cli/CMakeLists.txt): STENTOR_TEST_FAIL_RANK=R[:input|:alloc]
+// makes rank R alone throw after reading the deck, an internal error (exit 1), with
+// ":input" an input error (exit 2), with ":alloc" std::bad_alloc (out of memory, exit 1),
+// to check that one rank's failure ends every rank.
 void test_failure_hook(int rank) {
   const char* v = std::getenv("STENTOR_TEST_FAIL_RANK");
   if (!v || !*v) return;
   const std::string s = v;
-  const bool input = s.size() > 6 && s.compare(s.size() - 6, 6, ":input") == 0;
+  const auto ends_with = [&s](const std::string& tail) {
+    return s.size() > tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+  };
   if (std::atoi(s.c_str()) != rank) return;
+  if (ends_with(":alloc")) throw std::bad_alloc();
   const std::string what = "failure injected on rank " + std::to_string(rank) + " (STENTOR_TEST_FAIL_RANK)";
-  if (input) throw stentor::InputError(what);
+  if (ends_with(":input")) throw stentor::InputError(what);
   throw std::runtime_error(what);
 }
 

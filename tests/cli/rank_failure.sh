@@ -13,7 +13,14 @@ out=$work/results
 make_results "$out"
 snapshot "$out" > snap.before
 start=$(date +%s)
-STENTOR_TEST_FAIL_RANK=$hook timeout 90 "$mpiexec" -np 2 $(mpi_flags "$mpiexec") -x STENTOR_TEST_FAIL_RANK \
+# HOOK: the value of STENTOR_TEST_FAIL_RANK, or VAR=VALUE for another test hook
+# (STENTOR_TEST_FAIL_WRITE=...), or "none" for a run that fails by itself.
+case $hook in
+none) var=STENTOR_TEST_NOTHING hook=STENTOR_TEST_NOTHING= ;;
+*=*) var=${hook%%=*} ;;
+*) var=STENTOR_TEST_FAIL_RANK hook=STENTOR_TEST_FAIL_RANK=$hook ;;
+esac
+env "$hook" timeout 90 "$mpiexec" -np 2 $(mpi_flags "$mpiexec") -x "$var" \
   "$stentor" --output "$out" "$deck" > log.txt 2>&1
 rc=$?
 cat log.txt
