@@ -1,6 +1,10 @@
 // Mesh reading (gmsh .geo / .msh), checks, group queries and METIS partitioning.
 #include <gmsh.h>
 #include <gtest/gtest.h>
+
+#include <chrono>
+#include <sstream>
+#include <thread>
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,6 +19,7 @@
 #include "fem/Shape.hpp"
 #include "mesh/GeoScreen.hpp"
 #include "mesh/GmshReader.hpp"
+#include "mesh/Progress.hpp"
 #include "mesh/MeshCheck.hpp"
 #include "mesh/MeshComm.hpp"
 #include "mesh/MeshQuery.hpp"
@@ -498,6 +503,26 @@ TEST(GmshReader, CellEstimateBoundsMeshing) {
                   "Line(1) = {1,2}; Line(2) = {2,3}; Line(3) = {3,4}; Line(4) = {4,1};\n"
                   "Curve Loop(1) = {1,2,3,4}; Plane Surface(1) = {1}; Physical Surface(\"s\") = {1};\n");
   expect_input_error([&] { read_mesh(config(fine)); }, {fine + ": ", "the .geo's own sizes", "'Mesh->max cells'"});
+}
+
+// Long meshing prints progress (Progress, used around gmsh's generate with a 10 s
+// interval; here 50 ms): nothing for work shorter than one interval, else a line per
+// interval with the detail, and a closing line with the total time.
+TEST(Progress, LinesOnlyForLongWork) {
+  std::ostringstream quick, slow;
+  { const stentor::Progress p(quick, "meshing  a.geo", " (about 10 cells)", 10.0); }
+  EXPECT_EQ(quick.str(), "");
+  {
+    const stentor::Progress p(slow, "meshing  b.geo", " (about 1e+06 cells)", 0.05);
+    std::this_thread::sleep_for(std::chrono::milliseconds(230));
+  }
+  const std::string out = slow.str();
+  std::size_t lines = 0;
+  for (std::size_t at = out.find("so far (about 1e+06 cells)\n"); at != std::string::npos; at = out.find("so far", at + 1)) ++lines;
+  EXPECT_GE(lines, 2u) << out;
+  EXPECT_LE(lines, 5u) << out;
+  EXPECT_EQ(out.rfind("  meshing  b.geo: ", 0), 0u) << out;
+  EXPECT_NE(out.find("  meshing  b.geo: done in 0 s\n"), std::string::npos) << out;
 }
 
 TEST(GmshReader, UnnamedGroupsAndPointSets) {
