@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # A questionable deck that runs, with a warning naming the culprit on the log (stdout).
 # usage: warning.sh STENTOR WORKDIR MODE DECK [-e FRAGMENT]...
-#   MODE: check (`stentor --check`, exit 0) or run (a run into WORKDIR/out, exit 0 or 3)
+#   MODE: check (`stentor --check`, exit 0), run (a run into WORKDIR/out, exit 0 or 3),
+#         ok (a run that must end with exit 0) or ok_np2 (the same on 2 ranks, with the
+#         launcher in $STENTOR_MPIEXEC)
 set -u
 . "$(dirname "$0")/lib.sh"
 stentor=$1 work=$2 mode=$3 deck=$4
@@ -11,10 +13,16 @@ if [ "$mode" = check ]; then
   "$stentor" --check "$deck" > stdout.txt 2> stderr.txt
   rc=$?
   [ "$rc" -eq 0 ] || { cat stdout.txt stderr.txt; fail "--check: exit status $rc, expected 0"; }
-else
+elif [ "$mode" = run ]; then
   "$stentor" --output out "$deck" > stdout.txt 2> stderr.txt
   rc=$?
   [ "$rc" -eq 0 ] || [ "$rc" -eq 3 ] || { cat stdout.txt stderr.txt; fail "exit status $rc, expected 0 or 3"; }
+else
+  launch=()
+  [ "$mode" = ok_np2 ] && launch=("$STENTOR_MPIEXEC" -np 2 $(mpi_flags "$STENTOR_MPIEXEC"))
+  timeout 120 "${launch[@]}" "$stentor" --output out "$deck" > stdout.txt 2> stderr.txt
+  rc=$?
+  [ "$rc" -eq 0 ] || { cat stdout.txt stderr.txt; fail "exit status $rc, expected 0"; }
 fi
 cat stdout.txt
 while [ $# -gt 0 ]; do
