@@ -365,6 +365,74 @@ TEST(PlasticityFE, CutBacksKeepTheCommittedState) {
   EXPECT_NEAR(res.reactions[3][0], kY / 1.2, 1e-8 * kY);
 }
 
+// The index of the last "/step_N" group of an HDF5 result file (-1 if none).
+int last_step(const fs::path& h5) {
+  const hid_t f = H5Fopen(h5.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) return -1;
+  int n = -1;
+  while (H5Lexists(f, ("/step_" + std::to_string(n + 1)).c_str(), H5P_DEFAULT) > 0) ++n;
+  H5Fclose(f);
+  return n;
+}
+
+// Gauss-point state carries over between stages (issue 11): stage "load" pulls the cube
+// to lambda = 1.2 (perfect plasticity: plastic stretch lambda_p = 1.2 / lambda_e with
+// tau(lambda_e) = Y), stage "unload" brings it back to 1.18 in stage-local time. The
+// unloading is elastic about the plastic stretch of stage 1: P11 = tau(lambda / lambda_p)
+// / lambda at every step, alpha = ln lambda_p unchanged, no point yielding. A state reset
+// at the stage boundary would give the elastic curve of the virgin material instead.
+TEST(PlasticityFE, StateCarriesOverBetweenStages) {
+  const std::string name = "stages_load_unload";
+  std::string text = deck_text(plastic_params(kY, 0.0), 0.2, 10, 25, name, true);
+  const std::string stepping = text.substr(text.find("  <ParameterList name=\"Stepping\">"));
+  text.replace(text.find(stepping), stepping.find("</ParameterList>") + 17, R"X(  <ParameterList name="Stages">
+    <ParameterList name="load">
+      <Parameter name="duration" type="double" value="1"/><Parameter name="steps" type="int" value="10"/>
+    </ParameterList>
+    <ParameterList name="unload">
+      <Parameter name="duration" type="double" value="1"/><Parameter name="steps" type="int" value="4"/>
+      <ParameterList name="Ramps"><ParameterList name="pull">
+        <Parameter name="ramp" type="string" value="table"/>
+        <Parameter name="ramp times" type="Array(double)" value="{0, 1}"/>
+        <Parameter name="ramp factors" type="Array(double)" value="{1, 0.9}"/>
+      </ParameterList></ParameterList>
+    </ParameterList>
+  </ParameterList>
+)X");
+  const Config cfg = write_and_read(text, name);
+  ASSERT_EQ(cfg.stages.size(), 2u);
+  RunOptions o;
+  o.output_dir = (kDir / name).string();
+  RunResult res;
+  ASSERT_EQ(run_simulation(cfg, o, &res), 0);
+  const double alpha1 = alpha_uniaxial(1.2, kY, 0.0), lambda_p = std::exp(alpha1);
+  ASSERT_GT(alpha1, 0.1);
+  const auto hist = stentor::testing::read_csv(kDir / name / (name + "_history.csv"));
+  ASSERT_EQ(hist.rows(), 14u);
+  double worst = 0.0;
+  for (std::size_t i = 10; i < hist.rows(); ++i) {  // the unloading stage
+    ASSERT_EQ(hist["stage"][i], 2.0);
+    const double lambda = 1.0 + 0.2 * (1.0 - 0.1 * (hist["time"][i] - 1.0));
+    const double P = tau_axial(lambda / lambda_p) / lambda;
+    ASSERT_LT(std::abs(tau_axial(lambda / lambda_p)), kY);  // elastic unloading
+    worst = std::max(worst, std::abs(hist["reaction_pull_x"][i] - P) / kY);
+    EXPECT_EQ(hist["plastic_dissipation"][i], 0.0);
+  }
+  std::cout << "[ plastic ] stage 2 unloading from lambda 1.2 to 1.18 about lambda_p = " << lambda_p
+            << ": max |reaction - P11 closed form| / Y = " << worst << "\n";
+  EXPECT_LT(worst, 1e-8);
+  const fs::path h5 = kDir / name / (name + ".h5");
+  const int last = last_step(h5);
+  ASSERT_GE(last, 14);
+  const auto alpha = last_cell_field(h5, last, "equivalent_plastic_strain");
+  const auto flag = last_cell_field(h5, last, "yielding");
+  ASSERT_EQ(alpha.size(), 100u);
+  for (std::size_t c = 0; c < alpha.size(); ++c) {
+    EXPECT_NEAR(alpha[c], alpha1, 1e-10);
+    EXPECT_EQ(flag[c], 0.0);
+  }
+}
+
 // ---- Dynamics: a plastic block hitting a rigid support (Gonzalez, energy-dissipative).
 // The cube moves at 5 m/s towards its face x = 0, which is held fixed from t = 0 (a rigid
 // wall it sticks to): a compressive wave with plastic flow near the wall. Per step
