@@ -64,10 +64,7 @@ void Model::discretise(Timers& timers) {
     assembler = std::make_unique<Assembler>(mesh, *dist, cfg, loads, block_mat);
   }
   linear = std::make_unique<LinearSolver>(cfg.linear, comm);
-  std::vector<double> xyz(3 * static_cast<std::size_t>(dist->num_owned_nodes()));
-  for (la::LO n = 0; n < dist->num_owned_nodes(); ++n)
-    for (int k = 0; k < 3; ++k) xyz[3 * static_cast<std::size_t>(n) + k] = mesh.x[3 * static_cast<std::size_t>(dist->global_node(n)) + k];
-  linear->set_node_coordinates(dim, xyz);
+  linear->set_node_coordinates(dim, dist->owned_coordinates());
   contact = Contact::create(cfg, mesh, *dist, *assembler);
   if (dynamic) integrator = std::make_unique<TimeIntegrator>(cfg, *assembler, *dist, mesh);
 }
