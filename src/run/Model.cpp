@@ -47,6 +47,7 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
     Timers::Scope s{timers, "mesh"};
     mesh = read_mesh_on_root(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
   }
+  check_vector_dimensions(cfg, mesh.dim);
   block_mat = block_materials(cfg, mesh);
   loads = resolve_loads(cfg, mesh);
   dim = mesh.dim;
