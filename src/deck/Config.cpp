@@ -876,6 +876,11 @@ void DeckReader::read_materials(const ParameterList& pl) {
     m.name = name;
     m.model = get_string(sub, ls, "model");
     read_elastic_constants(sub, ls, path, m);
+    // 1e308 is a double, but the law's moduli from it are not (the run checks the stiffness
+    // itself; this names it here, under --check too).
+    if (!std::isfinite(m.mu) || !std::isfinite(m.lambda))
+      fail(quoted(path) + ": the elastic constants overflow double precision (small-strain mu = " + num(m.mu) + ", lambda = " +
+           num(m.lambda) + "); expected smaller values (a deck in smaller units, e.g. mm-N-s with moduli in MPa, helps)");
     read_fibres(sub, ls, path, m);
     m.density = get_double(sub, ls, "density");
     m.viscosity = get_double(sub, ls, "viscosity");

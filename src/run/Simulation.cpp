@@ -232,6 +232,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   }
   model.discretise(timers);
   reporter.print_solvers();
+  model.check_numeric_range(cfg.stages.empty() ? cfg.stepping.end_time / cfg.stepping.num_steps : cfg.stages.front().step());
   const bool restarting = !opts.restart_file.empty();
   Restart restart;
   if (restarting) restart = read_restart(opts.restart_file, model, opts, reporter.out());  // before open(): it may move <dir>.partial
