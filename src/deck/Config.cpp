@@ -283,7 +283,7 @@ class DeckReader {
   void read_mesh(const ParameterList& pl);
   void read_materials(const ParameterList& pl);
   void read_elastic_constants(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
-  void read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
+  void read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m);
   void read_bodies(const ParameterList& pl);
   void read_loads(const ParameterList& pl);
   void read_stepping(const ParameterList& pl);
@@ -302,7 +302,9 @@ class DeckReader {
   void read_contact_obstacle(const ParameterList& sub, const std::string& path, const ListSpec& ls, ContactPairConfig& c);
   void read_stent_metrics(const ParameterList& sub);
   void read_obstacle_axis(const ParameterList& sub, const std::string& path, const ListSpec& ls, ContactPairConfig& c);
-  void check_dim_length(const std::vector<double>& v, const std::string& path) const;
+  // Records a dimension-dependent vector (Config::dim_vectors) and, when Mesh->dimension is
+  // set, checks it now. in2d / in3d: the number of values a 2D / 3D problem takes.
+  void check_dim_length(const std::vector<double>& v, const std::string& path, int in2d = 2, int in3d = 3);
   void check_step(double step, double end, const std::string& what) const;
   void check_safe_name(const std::string& text, const std::string& path, const std::string& what) const;
   void unit_direction(std::array<double, 3>& v, const std::string& path) const;
@@ -680,11 +682,13 @@ std::vector<double> DeckReader::get_array(const ParameterList& pl, const ListSpe
   return v;
 }
 
-void DeckReader::check_dim_length(const std::vector<double>& v, const std::string& path) const {
+void DeckReader::check_dim_length(const std::vector<double>& v, const std::string& path, int in2d, int in3d) {
+  cfg_.dim_vectors.push_back({path, static_cast<int>(v.size()), in2d, in3d});
   const int dim = cfg_.mesh.dimension;
-  if (dim != 0 && static_cast<int>(v.size()) != dim)
-    fail(quoted(path) + " must have " + std::to_string(dim) + " values ('Mesh->dimension' = " + std::to_string(dim) +
-         "), got " + std::to_string(v.size()));
+  const int want = dim == 2 ? in2d : in3d;
+  if ((dim == 2 || dim == 3) && static_cast<int>(v.size()) != want)
+    fail(quoted(path) + " must have " + std::to_string(want) + " value" + (want == 1 ? "" : "s") + " ('Mesh->dimension' = " +
+         std::to_string(dim) + "), got " + std::to_string(v.size()));
 }
 
 // Names that end up in output file names, CSV column headers and plot labels (loads,
@@ -831,7 +835,7 @@ void DeckReader::read_elastic_constants(const ParameterList& sub, const ListSpec
 }
 
 // Holzapfel-Gasser-Ogden: k1, k2, fibre angle required, frame optional; none of them with other models.
-void DeckReader::read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const {
+void DeckReader::read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) {
   const char* keys[] = {"k1", "k2", "fibre angle", "axis point", "axis"};
   const bool hgo = m.model == "Holzapfel-Gasser-Ogden";
   for (const char* k : keys) {
@@ -872,6 +876,11 @@ void DeckReader::read_materials(const ParameterList& pl) {
     m.name = name;
     m.model = get_string(sub, ls, "model");
     read_elastic_constants(sub, ls, path, m);
+    // 1e308 is a double, but the law's moduli from it are not (the run checks the stiffness
+    // itself; this names it here, under --check too).
+    if (!std::isfinite(m.mu) || !std::isfinite(m.lambda))
+      fail(quoted(path) + ": the elastic constants overflow double precision (small-strain mu = " + num(m.mu) + ", lambda = " +
+           num(m.lambda) + "); expected smaller values (a deck in smaller units, e.g. mm-N-s with moduli in MPa, helps)");
     read_fibres(sub, ls, path, m);
     m.density = get_double(sub, ls, "density");
     m.viscosity = get_double(sub, ls, "viscosity");
@@ -1143,10 +1152,9 @@ void DeckReader::read_loads(const ParameterList& pl) {
         const auto v = get_array(sub, typed, "values");
         const std::string vpath = path + "->values";
         if (all) {
-          if (v.size() < 2 || v.size() > 3 || (dim != 0 && static_cast<int>(v.size()) != dim))
-            fail(quoted(vpath) + " must have one value per dimension (" +
-                 (dim ? std::to_string(dim) : std::string("2 or 3")) + ") for components 'all', got " +
-                 std::to_string(v.size()));
+          if (v.size() < 2 || v.size() > 3)
+            fail(quoted(vpath) + " must have one value per dimension (2 or 3) for components 'all', got " + std::to_string(v.size()));
+          check_dim_length(v, vpath);
           for (std::size_t c = 0; c < v.size(); ++c) lc.vector[c] = v[c];
         } else {
           if (v.size() != listed.size())
@@ -1194,7 +1202,6 @@ void DeckReader::read_initial(const ParameterList& pl) {
   const ListSpec& ls = deck_list_spec("Initial Conditions");
   check_list(pl, "Initial Conditions", {&ls});
   auto& ic = cfg_.initial;
-  const int dim = cfg_.mesh.dimension;
   if (pl.isParameter("displacement")) {
     const auto d = get_array(pl, ls, "displacement");
     check_dim_length(d, "Initial Conditions->displacement");
@@ -1207,15 +1214,14 @@ void DeckReader::read_initial(const ParameterList& pl) {
   }
   if (pl.isParameter("angular velocity")) {
     const auto w = get_array(pl, ls, "angular velocity");
-    if (w.size() == 1) {
-      if (dim == 3) fail("'Initial Conditions->angular velocity' must have 3 values in 3D, got 1");
-      ic.angular_velocity[2] = w[0];
-    } else if (w.size() == 3) {
-      if (dim == 2) fail("'Initial Conditions->angular velocity' must have 1 value (about z) in 2D, got 3");
-      for (std::size_t c = 0; c < 3; ++c) ic.angular_velocity[c] = w[c];
-    } else {
+    if (w.size() != 1 && w.size() != 3)
       fail("'Initial Conditions->angular velocity' must have 1 value (2D, about z) or 3 values (3D), got " +
            std::to_string(w.size()));
+    check_dim_length(w, "Initial Conditions->angular velocity", 1, 3);
+    if (w.size() == 1) {
+      ic.angular_velocity[2] = w[0];
+    } else {
+      for (std::size_t c = 0; c < 3; ++c) ic.angular_velocity[c] = w[c];
     }
   }
   if (pl.isParameter("center")) {
@@ -1638,6 +1644,15 @@ Config DeckReader::read() {
 Config read_deck(const std::string& path) {
   DeckReader reader(path);
   return reader.read();
+}
+
+void check_vector_dimensions(const Config& cfg, int dim) {
+  for (const DimVector& v : cfg.dim_vectors) {
+    const int want = dim == 2 ? v.in2d : v.in3d;
+    if (v.given == want) continue;
+    throw InputError(cfg.deck_path + ": '" + v.path + "' must have " + std::to_string(want) + " value" + (want == 1 ? "" : "s") +
+                     " (the mesh is " + std::to_string(dim) + "D), got " + std::to_string(v.given));
+  }
 }
 
 }  // namespace stentor

@@ -214,6 +214,14 @@ struct StageConfig {
   double step() const { return (end - start) / num_steps; }
 };
 
+// A vector parameter whose number of values depends on the mesh dimension, as given in
+// the deck: "Bodies->ring->initial velocity" with 2 values, expected 2 in 2D, 3 in 3D.
+struct DimVector {
+  std::string path;
+  int given = 0;
+  int in2d = 2, in3d = 3;
+};
+
 struct Config {
   std::string deck_path;  // absolute path of the deck file
   ProblemConfig problem;
@@ -229,6 +237,9 @@ struct Config {
   OutputConfig output;
   std::vector<ContactPairConfig> contact;  // "Contact": empty = no contact (costs nothing)
   std::vector<StageConfig> stages;         // "Stages": empty = one interval [0, Stepping->end time]
+  // Every vector parameter given whose length depends on the dimension (checked by the deck
+  // only when Mesh->dimension is set; check_vector_dimensions once the mesh is read).
+  std::vector<DimVector> dim_vectors;
 
   const MaterialConfig& material(const std::string& name) const;  // throws InputError
 };
@@ -237,5 +248,11 @@ struct Config {
 // (e.g. "Materials->steel->C1") and what was expected; misspelled names get the
 // nearest valid name suggested.
 Config read_deck(const std::string& path);
+
+// Throws InputError for the first of cfg.dim_vectors whose number of values does not fit
+// a mesh of dimension `dim` (2 or 3), naming the deck, the parameter, the expected and the
+// given number. Called once the mesh is read (a run and --check alike): without it a
+// 2-value velocity in a 3D deck ran as (vx, vy, 0).
+void check_vector_dimensions(const Config& cfg, int dim);
 
 }  // namespace stentor

@@ -152,6 +152,14 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
   }
 }
 
+std::vector<double> Distribution::owned_coordinates() const {
+  auto ch = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), coords_);
+  std::vector<double> xyz(3 * static_cast<std::size_t>(num_owned_));
+  for (la::LO n = 0; n < num_owned_; ++n)
+    for (int k = 0; k < 3; ++k) xyz[3 * static_cast<std::size_t>(n) + static_cast<std::size_t>(k)] = ch(n, k);
+  return xyz;
+}
+
 std::size_t Distribution::num_local_cells() const {
   std::size_t n = 0;
   for (const auto& b : blocks_) n += b.cell_ids.size();

@@ -47,6 +47,9 @@ class Distribution {
   const la::RCP<const la::Comm>& comm() const { return comm_; }
   // Reference coordinates of overlap-local nodes.
   const Kokkos::View<double* [3], Kokkos::LayoutRight, la::ExecSpace>& coords() const { return coords_; }
+  // Reference coordinates of the owned nodes, 3 per node in owned-local order (what
+  // LinearSolver::set_node_coordinates takes for every solver built on owned_map()).
+  std::vector<double> owned_coordinates() const;
 
  private:
   int dim_ = 0, rank_ = 0, nranks_ = 1;

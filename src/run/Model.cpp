@@ -1,6 +1,9 @@
 #include "run/Model.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include "mesh/MeshComm.hpp"
 #include "mesh/MeshQuery.hpp"
@@ -38,6 +41,26 @@ void check_contact_groups(const Config& cfg, const Mesh& mesh) {
   }
 }
 
+// The elastic constants of a material as its law uses them (for messages), and the
+// largest of them in magnitude (inf/nan first).
+std::string elastic_constants_text(const MaterialConfig& m) {
+  std::ostringstream os;
+  os.precision(3);
+  if (m.ciarlet_geymonat() || m.model == "Mooney-Rivlin") {
+    os << "C1 = " << m.C1 << ", C2 = " << m.C2;
+    if (m.ciarlet_geymonat()) os << ", D = " << m.D;
+    os << "; small-strain ";
+  }
+  os << "mu = " << m.mu << ", lambda = " << m.lambda;
+  if (m.model == "Holzapfel-Gasser-Ogden") os << ", k1 = " << m.k1;
+  return os.str();
+}
+double largest_modulus(const MaterialConfig& m) {
+  double big = 0.0;
+  for (double v : {m.C1, m.C2, m.D, m.mu, m.lambda, m.k1}) big = std::isfinite(v) ? std::max(big, std::abs(v)) : HUGE_VAL;
+  return big;
+}
+
 }  // namespace
 
 Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), comm(Tpetra::getDefaultComm()) {
@@ -47,6 +70,7 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
     Timers::Scope s{timers, "mesh"};
     mesh = read_mesh_on_root(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
   }
+  check_vector_dimensions(cfg, mesh.dim);
   block_mat = block_materials(cfg, mesh);
   loads = resolve_loads(cfg, mesh);
   dim = mesh.dim;
@@ -64,12 +88,56 @@ void Model::discretise(Timers& timers) {
     assembler = std::make_unique<Assembler>(mesh, *dist, cfg, loads, block_mat);
   }
   linear = std::make_unique<LinearSolver>(cfg.linear, comm);
-  std::vector<double> xyz(3 * static_cast<std::size_t>(dist->num_owned_nodes()));
-  for (la::LO n = 0; n < dist->num_owned_nodes(); ++n)
-    for (int k = 0; k < 3; ++k) xyz[3 * static_cast<std::size_t>(n) + k] = mesh.x[3 * static_cast<std::size_t>(dist->global_node(n)) + k];
-  linear->set_node_coordinates(dim, xyz);
+  linear->set_node_coordinates(dim, dist->owned_coordinates());
   contact = Contact::create(cfg, mesh, *dist, *assembler);
   if (dynamic) integrator = std::make_unique<TimeIntegrator>(cfg, *assembler, *dist, mesh);
+}
+
+// Three Frobenius norms, each of which overflows at entries of about 1e154 (where the
+// residual and solver norms overflow too): the stiffness at u = 0, t = 0 (the tangent the
+// first step starts from, loads aside); in dynamics the mass times 4/dt^2 (Newmark's
+// coefficient, the largest of the schemes'), and with viscosity the whole step tangent.
+void Model::check_numeric_range(double dt) {
+  la::Vector u0(dist->owned_map()), r(dist->owned_map());
+  assembler->assemble(u0, 0.0, cfg.stepping.end_time, r, true);
+  const double k = assembler->matrix()->getFrobeniusNorm();
+  const double m = dynamic ? assembler->mass()->getFrobeniusNorm() * 4.0 / (dt * dt) : 0.0;
+  double v = 0.0;
+  if (dynamic && std::isfinite(k) && std::isfinite(m)) {
+    Assembler::StepInput in;
+    in.end_time = cfg.stepping.end_time;
+    in.u_old = in.u_tilde = &u0;
+    in.dt = dt;
+    in.mass_coeff = 4.0 / (dt * dt);
+    assembler->assemble(u0, in, r, true);
+    v = assembler->matrix()->getFrobeniusNorm();
+  }
+  if (std::isfinite(k) && std::isfinite(m) && std::isfinite(v)) return;
+  enum class What { Stiffness, Mass, Viscosity } what = !std::isfinite(k) ? What::Stiffness : !std::isfinite(m) ? What::Mass : What::Viscosity;
+  auto key = [what](const MaterialConfig& mc) {
+    const double x = what == What::Stiffness ? largest_modulus(mc) : what == What::Mass ? mc.density : mc.viscosity;
+    return std::isfinite(x) ? std::abs(x) : HUGE_VAL;
+  };
+  const MaterialConfig* worst = nullptr;  // the culprit named: the largest of the materials used
+  for (int b : block_mat) {
+    const MaterialConfig& mc = cfg.materials[static_cast<std::size_t>(b)];
+    if (!worst || key(mc) > key(*worst)) worst = &mc;
+  }
+  const double norm = what == What::Stiffness ? k : what == What::Mass ? m : v;
+  std::ostringstream os;
+  os.precision(3);
+  os << cfg.deck_path << ": the " << (what == What::Stiffness ? "stiffness of the undeformed model" : what == What::Mass ? "mass over the step squared (4 M / dt^2)" : "tangent of the first step")
+     << " overflows double precision (Frobenius norm " << (std::isnan(norm) ? "nan" : "inf") << (what == What::Stiffness ? "" : ", dt = ");
+  if (what != What::Stiffness) os << dt;
+  os << "): 'Materials->" << worst->name;
+  if (what == What::Stiffness)
+    os << "' (" << elastic_constants_text(*worst) << ") is the stiffest material; expected smaller elastic constants";
+  else if (what == What::Mass)
+    os << "->density' = " << worst->density << " is the largest; expected a smaller density or a larger step";
+  else
+    os << "->viscosity' = " << worst->viscosity << " is the largest; expected a smaller viscosity or a larger step";
+  os << ", so that the matrix entries stay below about 1e150 (a deck in smaller units, e.g. mm-N-s with moduli in MPa, helps)";
+  throw InputError(os.str());
 }
 
 }  // namespace stentor

@@ -30,6 +30,12 @@ struct Model {
   // contact pairs, time integrator. Collective.
   void discretise(Timers& timers);
 
+  // Collective, after discretise(), before the first step: throws InputError naming the
+  // material when the stiffness of the undeformed model (in dynamics also its mass over
+  // dt^2, dt = the first step) is not finite in double precision -- constants such as
+  // C1 = 1e308, whose overflow would otherwise reach the linear solver first.
+  void check_numeric_range(double dt);
+
   const Config& cfg;
   la::RCP<const la::Comm> comm;
   int rank = 0, nranks = 1;

@@ -95,6 +95,11 @@ void initialize(Run& r) {
   if (m.cfg.output.fields) r.reporter.write_fields(0.0, r.state.u);
 }
 
+// The size of the first step (of the first stage, with stages).
+double first_step(const Config& cfg) {
+  return cfg.stages.empty() ? cfg.stepping.end_time / cfg.stepping.num_steps : cfg.stages.front().step();
+}
+
 // --check: every check a run makes before its first step, and nothing written: the names
 // in the mesh (done by Model), the stent metrics' groups, the contact pairs and the time
 // scheme (discretise: slave sets, facet types, persistence in statics), the initial state
@@ -103,6 +108,7 @@ void check_before_first_step(Model& model, Reporter& reporter, Timers& timers) {
   const Config& cfg = model.cfg;
   if (cfg.output.metrics.enabled) StentMetrics groups(model);  // throws InputError
   model.discretise(timers);
+  model.check_numeric_range(first_step(cfg));
   Stepper stepper(model, timers, nullptr, nullptr);
   const SteppingConfig& st = cfg.stepping;
   RunState state(model.dist->owned_map(), StepControl(st.end_time / st.num_steps, st.max_cutbacks, st.growth, st.min_step()));
@@ -260,6 +266,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   }
   model.discretise(timers);
   reporter.print_solvers();
+  model.check_numeric_range(first_step(cfg));
   const bool restarting = !opts.restart_file.empty();
   Restart restart;
   if (restarting) restart = read_restart(opts.restart_file, model, opts, reporter.out());  // before open(): it may move <dir>.partial

@@ -69,35 +69,41 @@ EnergyAudit TimeIntegrator::initialize(la::Vector& u0, double end_time) {
   const Assembler::Stats st0 = assembler_.assemble(u0, 0.0, end_time, r, false);
   r_static_n_->update(1.0, assembler_.static_residual(), 0.0);
   f_ext_n_->update(1.0, assembler_.external_force(), 0.0);
-  if (!midpoint_family()) {
-    // M a_0 = f_ext(0) - f_int(u_0) on free dofs; a_0 = 0 on constrained ones.
-    la::Vector rhs(dist_.owned_map());
-    rhs.update(-1.0, assembler_.static_residual(), 0.0);
-    if (rhs.normInf() > 0.0) {
-      auto Mc = Teuchos::rcp(new la::CrsMatrix(*assembler_.mass(), Teuchos::Copy));
-      Mc->resumeFill();
-      auto rh = rhs.getLocalViewHost(Tpetra::Access::ReadWrite);
-      for (la::LO i = 0; i < static_cast<la::LO>(rhs.getLocalLength()); ++i) {
-        if (!assembler_.is_dirichlet(i)) continue;
-        rh(i, 0) = 0.0;
-        la::CrsMatrix::nonconst_local_inds_host_view_type cols("cols", Mc->getNumEntriesInLocalRow(i));
-        la::CrsMatrix::nonconst_values_host_view_type vals("vals", cols.extent(0));
-        size_t nnz = 0;
-        Mc->getLocalRowCopy(i, cols, vals, nnz);
-        const la::LO diag = Mc->getColMap()->getLocalElement(dist_.owned_map()->getGlobalElement(i));
-        for (size_t k = 0; k < nnz; ++k) vals(k) = (cols(k) == diag) ? 1.0 : 0.0;
-        Mc->replaceLocalValues(i, cols, vals);
-      }
-      Mc->fillComplete(dist_.owned_map(), dist_.owned_map());
-      LinearSolver lin(cfg_.linear, dist_.comm());
-      lin.setup(Mc);
-      lin.solve(rhs, *a_);
-    }
-  }
+  if (!midpoint_family()) initial_acceleration();
   EnergyAudit au = audit(u0);
   au.strain = st0.energy;
   energy_n_ = au.kinetic + au.strain;
   return au;
+}
+
+// M a_0 = f_ext(0) - f_int(u_0) on free dofs; a_0 = 0 on constrained ones (identity rows).
+void TimeIntegrator::initial_acceleration() {
+  la::Vector rhs(dist_.owned_map());
+  rhs.update(-1.0, assembler_.static_residual(), 0.0);
+  if (!(rhs.normInf() > 0.0)) return;  // a_0 = 0
+  auto Mc = Teuchos::rcp(new la::CrsMatrix(*assembler_.mass(), Teuchos::Copy));
+  Mc->resumeFill();
+  {
+    auto rh = rhs.getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (la::LO i = 0; i < static_cast<la::LO>(rhs.getLocalLength()); ++i) {
+      if (!assembler_.is_dirichlet(i)) continue;
+      rh(i, 0) = 0.0;
+      la::CrsMatrix::nonconst_local_inds_host_view_type cols("cols", Mc->getNumEntriesInLocalRow(i));
+      la::CrsMatrix::nonconst_values_host_view_type vals("vals", cols.extent(0));
+      size_t nnz = 0;
+      Mc->getLocalRowCopy(i, cols, vals, nnz);
+      const la::LO diag = Mc->getColMap()->getLocalElement(dist_.owned_map()->getGlobalElement(i));
+      for (size_t k = 0; k < nnz; ++k) vals(k) = (cols(k) == diag) ? 1.0 : 0.0;
+      Mc->replaceLocalValues(i, cols, vals);
+    }
+  }
+  Mc->fillComplete(dist_.owned_map(), dist_.owned_map());
+  // The deck's solver and preconditioner, with the node coordinates multigrid needs
+  // (without them MueLu refused the mass matrix: "dimension must be 2 or 3 (got 0)").
+  LinearSolver lin(cfg_.linear, dist_.comm());
+  lin.set_node_coordinates(dist_.dim(), dist_.owned_coordinates());
+  lin.setup(Mc);
+  lin.solve(rhs, *a_);
 }
 
 Assembler::StepInput TimeIntegrator::step_input(double t_n, double dt, double end_time, const la::Vector& u_n) {

@@ -66,6 +66,9 @@ class TimeIntegrator {
 
  private:
   EnergyAudit audit(const la::Vector& u) const;
+  // a_0 of newmark/hht from the residual of the state just assembled at t = 0, solved with
+  // the deck's linear solver (a second instance, with the node coordinates).
+  void initial_acceleration();
 
   std::string scheme_;
   double alpha_ = 0.0, beta_ = 0.25, gamma_ = 0.5;

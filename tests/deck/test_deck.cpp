@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -703,6 +704,102 @@ TEST_F(Deck, TableRamp) {
                {"missing required parameter 'Boundary Conditions->pull->ramp times'"});
   expect_error(replace(kFullDeck, "value=\"table\"", "value=\"linear\""),
                {"'Boundary Conditions->pull->ramp times' is only used with \"ramp\" = table"});
+}
+
+// Vector lengths against the mesh's dimension (issue 12: a 2-value initial velocity in a
+// 3D deck ran as (vx, vy, 0)). Without Mesh->dimension the deck alone cannot tell, so it
+// records every dimension-dependent vector it read; check_vector_dimensions checks them
+// once the mesh is read (Model, so a run and --check alike), naming the first mismatch
+// with the expected and the given number of values.
+TEST_F(Deck, VectorLengthsCheckedAgainstTheMeshDimension) {
+  std::string full = replace(kMinimalDeck, "<Parameter name=\"material\" type=\"string\" value=\"steel\"/>",
+                             R"XML(<Parameter name="material" type="string" value="steel"/>
+      <Parameter name="initial velocity" type="Array(double)" value="{5, 6, 7}"/>)XML");
+  full = replace(full, "<Parameter name=\"D\" type=\"double\" value=\"2\"/>",
+                 "<Parameter name=\"D\" type=\"double\" value=\"2\"/><Parameter name=\"density\" type=\"double\" value=\"1\"/>");
+  full = full.substr(0, full.rfind("</ParameterList>")) + R"XML(  <ParameterList name="Problem">
+    <Parameter name="analysis" type="string" value="dynamic"/>
+  </ParameterList>
+  <ParameterList name="Boundary Conditions">
+    <ParameterList name="clamp">
+      <Parameter name="type" type="string" value="Dirichlet"/>
+      <Parameter name="boundary" type="string" value="base"/>
+      <Parameter name="values" type="Array(double)" value="{0, 0, 1}"/>
+    </ParameterList>
+    <ParameterList name="push">
+      <Parameter name="type" type="string" value="traction"/>
+      <Parameter name="boundary" type="string" value="right"/>
+      <Parameter name="traction" type="Array(double)" value="{1, 0, 0}"/>
+    </ParameterList>
+    <ParameterList name="gravity">
+      <Parameter name="type" type="string" value="body force"/>
+      <Parameter name="force" type="Array(double)" value="{0, 0, -1}"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Initial Conditions">
+    <Parameter name="displacement" type="Array(double)" value="{0, 0, 0}"/>
+    <Parameter name="velocity" type="Array(double)" value="{0, 0, 2}"/>
+    <Parameter name="angular velocity" type="Array(double)" value="{0, 0, 3}"/>
+    <Parameter name="center" type="Array(double)" value="{0, 0, 0}"/>
+  </ParameterList>
+  <ParameterList name="Contact">
+    <ParameterList name="floor">
+      <Parameter name="slave" type="string" value="bottom"/>
+      <Parameter name="obstacle" type="string" value="plane"/>
+      <Parameter name="point" type="Array(double)" value="{0, 0, -5}"/>
+      <Parameter name="normal" type="Array(double)" value="{0, 1, 1}"/>
+      <Parameter name="translation" type="Array(double)" value="{0, 0, 4}"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Output">
+    <ParameterList name="Probes">
+      <ParameterList name="tip">
+        <Parameter name="point" type="Array(double)" value="{1, 2, 3}"/>
+      </ParameterList>
+    </ParameterList>
+  </ParameterList>
+</ParameterList>
+)XML";
+  const Config c = read_deck(write(full));
+  std::vector<std::string> paths;
+  for (const auto& v : c.dim_vectors) paths.push_back(v.path);
+  EXPECT_EQ(paths, (std::vector<std::string>{
+                       "Bodies->stent->initial velocity", "Boundary Conditions->clamp->values", "Boundary Conditions->push->traction",
+                       "Boundary Conditions->gravity->force", "Initial Conditions->displacement", "Initial Conditions->velocity",
+                       "Initial Conditions->angular velocity", "Initial Conditions->center", "Output->Probes->tip->point",
+                       "Contact->floor->point", "Contact->floor->normal", "Contact->floor->translation"}));
+  EXPECT_NO_THROW(check_vector_dimensions(c, 3));
+  auto expect_mismatch = [](const Config& cfg, int dim, const std::string& needle) {
+    try {
+      check_vector_dimensions(cfg, dim);
+      ADD_FAILURE() << "accepted in " << dim << "D; expected: " << needle;
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_EQ(msg.rfind(cfg.deck_path + ": ", 0), 0u) << msg;
+      EXPECT_NE(msg.find(needle), std::string::npos) << msg;
+    }
+  };
+  // In 2D the first vector is named (2D takes 2 values, 1 angular velocity).
+  expect_mismatch(c, 2, "'Bodies->stent->initial velocity' must have 2 values (the mesh is 2D), got 3");
+  // One short vector in a deck whose mesh is 3D, each kind in turn (the issue's case first).
+  for (const auto& [from, to, needle] : std::vector<std::array<std::string, 3>>{
+           {"{5, 6, 7}", "{5, 6}", "'Bodies->stent->initial velocity' must have 3 values (the mesh is 3D), got 2"},
+           {"{0, 0, 1}\"/>\n    </ParameterList>\n    <ParameterList name=\"push\"", "{0, 1}\"/>\n    </ParameterList>\n    <ParameterList name=\"push\"",
+            "'Boundary Conditions->clamp->values' must have 3 values (the mesh is 3D), got 2"},
+           {"{1, 0, 0}", "{1, 0}", "'Boundary Conditions->push->traction' must have 3 values (the mesh is 3D), got 2"},
+           {"{0, 0, -1}", "{0, -1}", "'Boundary Conditions->gravity->force' must have 3 values (the mesh is 3D), got 2"},
+           {"{0, 0, 2}", "{0, 2}", "'Initial Conditions->velocity' must have 3 values (the mesh is 3D), got 2"},
+           {"{0, 0, 3}", "{3}", "'Initial Conditions->angular velocity' must have 3 values (the mesh is 3D), got 1"},
+           {"{0, 0, -5}\"/>\n      <Parameter name=\"normal\" type=\"Array(double)\" value=\"{0, 1, 1}\"/>\n      "
+            "<Parameter name=\"translation\" type=\"Array(double)\" value=\"{0, 0, 4}",
+            "{0, -5}\"/>\n      <Parameter name=\"normal\" type=\"Array(double)\" value=\"{1, 1}\"/>\n      "
+            "<Parameter name=\"translation\" type=\"Array(double)\" value=\"{0, 4}",
+            "'Contact->floor->point' must have 3 values (the mesh is 3D), got 2"},
+           {"{1, 2, 3}", "{1, 2}", "'Output->Probes->tip->point' must have 3 values (the mesh is 3D), got 2"}})
+    expect_mismatch(read_deck(write(replace(full, from, to), "short.xml")), 3, needle);
+  // With Mesh->dimension the deck reader checks at once (same rule, its own wording).
+  expect_error(replace(full, "value=\"mesh/ring.msh\"/>", "value=\"mesh/ring.msh\"/><Parameter name=\"dimension\" type=\"int\" value=\"2\"/>"),
+               {"'Bodies->stent->initial velocity' must have 2 values ('Mesh->dimension' = 2), got 3"});
 }
 
 TEST_F(Deck, LoadTypes) {
