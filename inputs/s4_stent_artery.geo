@@ -7,9 +7,17 @@
 // Physical groups: surfaces "artery", "stent"; curves "lumen" (the walls' inner
 // surfaces), "adventitia" (outer surfaces), "artery_ends" (the four end edges),
 // "strut_in" (the struts' faces towards the axis), "strut_out" (faces against the wall).
-h  = DefineNumber[0.1,  Name "Parameters/h"];     // artery element size
-hs = DefineNumber[0.04, Name "Parameters/hs"];    // strut element size
-n  = DefineNumber[6,    Name "Parameters/n"];     // struts per wall
+// h, hs and n may be set before this file is included (tests/cli/decks/par_s4.geo: a
+// coarse variant with fewer struts).
+If (!Exists(h))
+  h = DefineNumber[0.1, Name "Parameters/h"];     // artery element size
+EndIf
+If (!Exists(hs))
+  hs = DefineNumber[0.04, Name "Parameters/hs"];  // strut element size
+EndIf
+If (!Exists(n))
+  n = DefineNumber[6, Name "Parameters/n"];       // struts per wall
+EndIf
 Ri = 1.0; T = 0.5; L = 8.0;
 rs = 0.1; p = 1.0; x0 = 1.55;  // strut centres half a wall element (h / 2) off the wall's nodes
 // Segments on the 120-degree arcs facing the wall and the axis: odd, so that a facet, not a

@@ -443,7 +443,11 @@ void Reporter::step_line(const RunState& s, const StepRecord& rec, double energy
   const double spent = std::chrono::duration<double>(now - interval_start_).count();
   const double done = s.t - interval_t0_, left = std::max(0.0, interval_t1_ - s.t);
   out_ << "  [";
-  if (!cfg_.stages.empty()) out_ << cfg_.stages[static_cast<std::size_t>(s.stage)].name << ", ";
+  if (!cfg_.stages.empty()) {  // the stage, its own clock and its duration: "inflation 2/3: 0.12 of 0.4 s; "
+    const StageConfig& st = cfg_.stages[static_cast<std::size_t>(s.stage)];
+    out_ << st.name << " " << s.stage + 1 << "/" << cfg_.stages.size() << ": " << fmt_time(s.t - st.start) << " of "
+         << fmt_time(st.end - st.start) << " s; ";
+  }
   out_ << seconds(wall);
   if (done > 0.0) out_ << ", ~" << seconds(spent * left / done) << " left";
   out_ << "]" << std::endl;

@@ -140,7 +140,16 @@ void pull_then_squeeze(bool dynamic) {
   const std::string tag = dynamic ? "dynamic" : "static";
   const Outcome a = run(staged, "pull_squeeze_staged_" + tag), b = run(one, "pull_squeeze_one_" + tag);
   EXPECT_NE(a.log.find("stage 2/2 'squeeze'"), std::string::npos) << a.log;
-  EXPECT_NE(a.log.find("[squeeze, "), std::string::npos) << "the progress line names the stage\n" << a.log;
+  // The progress lines name the stage and count its own time against its duration, then
+  // the wall time and the estimate for the whole procedure.
+  const std::string d = dynamic ? "0.1" : "1", first = dynamic ? "0.025" : "0.25";
+  EXPECT_NE(a.log.find("[pull 1/2: " + first + " of " + d + " s; "), std::string::npos) << a.log;
+  EXPECT_NE(a.log.find("[squeeze 2/2: " + first + " of " + d + " s; "), std::string::npos) << "stage-local time\n" << a.log;
+  const auto last = a.log.find("[squeeze 2/2: " + d + " of " + d + " s; ");
+  ASSERT_NE(last, std::string::npos) << a.log;
+  const std::string tail = a.log.substr(last, a.log.find('\n', last) - last);
+  EXPECT_NE(tail.find(" s, ~"), std::string::npos) << tail;
+  EXPECT_NE(tail.find(" s left]"), std::string::npos) << tail;
   ASSERT_TRUE(a.history.has("stage"));
   EXPECT_EQ(a.history["stage"].front(), 1.0);
   EXPECT_EQ(a.history["stage"].back(), 2.0);
