@@ -7,8 +7,11 @@
 //     matching interface meshes give the homogeneous solution to round-off; non-matching
 //     ones (node-to-segment, one pass) transmit the total force exactly, with a measured
 //     local error.
-//  3. Two identical bars impacting (frictionless persistence, gonzalez): total linear
-//     momentum and energy of both bodies conserved through the impact, contact duration.
+//  3. Two identical bars impacting (frictionless persistence, gonzalez; stepped here with
+//     each body's momenta computed from its velocities): contact duration 2L/c, interface
+//     stress rho c v0 / 2, velocities exchanged, kinetic energy recovered, momentum, energy
+//     and angular momentum of both bodies; the gap condition's energy loss; an oblique
+//     impact of two free bars (angular momentum, with and without friction).
 //  4. Scene S3 (coarse): the S1 ring on a deformable foundation: frictionless, the energy
 //     of both bodies is conserved through the impact; with mu = 0.3 the energy drop equals
 //     the frictional dissipation, which is >= 0 every step.
@@ -28,6 +31,7 @@
 #include "CsvSeries.hpp"
 #include "run/Model.hpp"
 #include "run/Simulation.hpp"
+#include "run/Stepper.hpp"
 #include "solver/Newton.hpp"
 
 using namespace stentor;
@@ -273,37 +277,273 @@ TEST(DeformableContact, PatchTestNonMatchingMeshes) {
   }
 }
 
-TEST(DeformableContact, TwoBarsImpactConservesMomentumAndEnergy) {
+namespace {
+
+// A dynamic run driven step by step (constant step, no output files), with the momenta of
+// each body computed from the velocities and the consistent mass matrix (M v summed over
+// the body's nodes), not from the residual.
+struct BodyMomenta {
+  std::vector<double> mass;                      // per body
+  std::vector<std::array<double, 3>> p, L;       // linear momentum, angular momentum about the origin (x = X + u)
+};
+
+struct Driver {
+  Config cfg;
+  Timers timers;
+  Model m;
+  std::unique_ptr<Stepper> stepper;
+  std::unique_ptr<RunState> s;
+  std::vector<int> body_of;  // per owned node: index into cfg.bodies
+  EnergyAudit au0;
+  explicit Driver(const Config& c) : cfg(c), m(cfg, RunOptions{}, timers) {
+    m.discretise(timers);
+    stepper = std::make_unique<Stepper>(m, timers, nullptr, nullptr);
+    const double dt = cfg.stepping.end_time / cfg.stepping.num_steps;
+    s = std::make_unique<RunState>(m.dist->owned_map(), StepControl(dt, 0, 1.0, dt));
+    au0 = stepper->initialize_dynamics(*s);
+    stepper->initialize_contact(*s);
+    std::vector<int> of(m.mesh.num_nodes(), -1);
+    for (std::size_t b = 0; b < cfg.bodies.size(); ++b)
+      for (const auto& vb : m.mesh.volumes)
+        if (vb.name == cfg.bodies[b].group)
+          for (GId g : vb.conn) of[static_cast<std::size_t>(g)] = static_cast<int>(b);
+    for (la::LO n = 0; n < m.dist->num_owned_nodes(); ++n) body_of.push_back(of[static_cast<std::size_t>(m.dist->global_node(n))]);
+  }
+  // One step of the deck's size; its record (Newton must converge).
+  StepRecord step() {
+    const double dt = cfg.stepping.end_time / cfg.stepping.num_steps;
+    const NewtonResult nr = stepper->solve(*s, dt);
+    EXPECT_TRUE(nr.converged) << "t = " << s->t + dt;
+    return stepper->accept(*s, dt, nr);
+  }
+  BodyMomenta momenta() const {
+    const int dim = m.dim;
+    const std::size_t nb = cfg.bodies.size();
+    BodyMomenta out;
+    out.mass.assign(nb, 0.0);
+    out.p.assign(nb, {0, 0, 0});
+    out.L.assign(nb, {0, 0, 0});
+    const auto& map = m.dist->owned_map();
+    la::Vector Mv(map), ones(map), Mone(map);
+    m.assembler->mass()->apply(m.integrator->velocity(), Mv);
+    {
+      auto oh = ones.getLocalViewHost(Tpetra::Access::OverwriteAll);
+      for (la::LO i = 0; i < static_cast<la::LO>(ones.getLocalLength()); ++i) oh(i, 0) = i % dim == 0 ? 1.0 : 0.0;
+    }
+    m.assembler->mass()->apply(ones, Mone);
+    auto mv = Mv.getLocalViewHost(Tpetra::Access::ReadOnly);
+    auto m1 = Mone.getLocalViewHost(Tpetra::Access::ReadOnly);
+    auto uh = s->u.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (la::LO n = 0; n < m.dist->num_owned_nodes(); ++n) {
+      const auto b = static_cast<std::size_t>(body_of[static_cast<std::size_t>(n)]);
+      const double* X = &m.mesh.x[3 * static_cast<std::size_t>(m.dist->global_node(n))];
+      double x[3] = {X[0], X[1], X[2]}, p[3] = {0, 0, 0};
+      for (int c = 0; c < dim; ++c) {
+        x[c] += uh(n * dim + c, 0);
+        p[c] = mv(n * dim + c, 0);
+        out.p[b][static_cast<std::size_t>(c)] += p[c];
+      }
+      out.mass[b] += m1(n * dim, 0);
+      out.L[b][0] += x[1] * p[2] - x[2] * p[1];
+      out.L[b][1] += x[2] * p[0] - x[0] * p[2];
+      out.L[b][2] += x[0] * p[1] - x[1] * p[0];
+    }
+    return out;  // one rank (the tests run serially)
+  }
+};
+
+}  // namespace
+
+namespace {
+
+// What each accepted step of a two-body run leaves: the contact force on the slave body
+// (the sum of the multipliers over the slave nodes, F = sum_p -(lambda_nu n + lambda_tau)),
+// and each body's momenta from its velocities (Driver::momenta).
+struct BarsStep {
+  double t = 0.0, dt = 0.0, energy = 0.0, kinetic = 0.0, contact_work = 0.0;
+  long active = 0;
+  std::array<double, 3> force{};
+  BodyMomenta b;
+};
+struct BarsRun {
+  double E0 = 0.0;
+  BodyMomenta b0;
+  std::vector<BarsStep> steps;
+  // First and last step with an active node.
+  std::size_t first_contact() const {
+    for (std::size_t i = 0; i < steps.size(); ++i)
+      if (steps[i].active > 0) return i;
+    return steps.size();
+  }
+  std::size_t last_contact() const {
+    for (std::size_t i = steps.size(); i-- > 0;)
+      if (steps[i].active > 0) return i;
+    return steps.size();
+  }
+  double L(std::size_t i) const { return steps[i].b.L[0][2] + steps[i].b.L[1][2]; }
+  double L0() const { return b0.L[0][2] + b0.L[1][2]; }
+};
+
+BarsRun run_bars(const Config& cfg) {
+  Driver d(cfg);
+  BarsRun out;
+  out.E0 = d.au0.kinetic + d.au0.strain;
+  out.b0 = d.momenta();
+  for (int k = 0; k < cfg.stepping.num_steps; ++k) {
+    const StepRecord r = d.step();
+    BarsStep s;
+    s.t = d.s->t;
+    s.dt = r.dt;
+    s.energy = r.audit.kinetic + r.audit.strain;
+    s.kinetic = r.audit.kinetic;
+    s.contact_work = r.contact.work;
+    s.active = r.contact.pairs[0].active;
+    s.force = r.contact.pairs[0].force;
+    s.b = d.momenta();
+    out.steps.push_back(s);
+  }
+  return out;
+}
+
+Config bars_deck(const std::string& formulation = "persistence", int steps = 160) {
   Config cfg = read_deck(kInputs + "two_bars.xml");
   cfg.output.fields = false;
-  RunOptions opts;
-  const fs::path dir = kDir / "two_bars";
-  opts.output_dir = dir.string();
-  RunResult res;
-  ASSERT_EQ(run_simulation(cfg, opts, &res), 0);
-  const auto e = stentor::testing::read_csv(dir / "two_bars_energy.csv");
-  const auto h = stentor::testing::read_csv(dir / "two_bars_history.csv");
-  const auto& E = e["total"];
-  const auto& px = e["momentum_x"];
-  const auto& active = h["contact_impact_active"];
-  double dE = 0.0, dp = 0.0;
-  for (std::size_t i = 0; i < E.size(); ++i) {
-    dE = std::max(dE, std::abs(E[i] - E[0]));
-    dp = std::max(dp, std::abs(px[i] - px[0]));
-  }
-  double t_first = -1, t_last = -1;
-  for (std::size_t i = 0; i < active.size(); ++i)
-    if (active[i] > 0) {
-      if (t_first < 0) t_first = h["time"][i];
-      t_last = h["time"][i];
-    }
-  std::printf("two bars: E0 %.6e max|E-E0|/E0 %.3e, p0 %.6e max|p-p0|/p0 %.3e, contact %.4f .. %.4f s\n", E[0], dE / E[0], px[0], dp / px[0],
-              t_first, t_last);
-  // First touch at t = g / v0 = 0.01 s; 1D duration 2L/c = 0.0374 s (c = 53.4 m/s, plane-strain bar modulus).
+  cfg.contact[0].formulation = formulation;
+  cfg.stepping.num_steps = steps;
+  return cfg;
+}
+
+// The oblique variant: the right bar twice as tall (y from -0.05 to 0.15), so the left
+// bar's face stays on the master face while it slides; the left bar thrown at (1, 0.3) m/s.
+Config oblique_bars_deck(double mu, int steps = 160) {
+  Config cfg = bars_deck("persistence", steps);
+  cfg.mesh.file = geo_variant("two_bars.geo", {{"H2 = DefineNumber[0.1", "H2 = DefineNumber[0.2"}, {"y2 = DefineNumber[0", "y2 = DefineNumber[-0.05"}},
+                              "two_bars_oblique.geo");
+  cfg.contact[0].friction = mu;
+  cfg.bodies[0].velocity = {1.0, 0.3, 0.0};
+  return cfg;
+}
+
+}  // namespace
+
+// Two identical bars (Carpenter, Taylor & Katona 1991; inputs/two_bars.xml): the left bar
+// (L = 1 m, H = 0.1 m, plane strain) hits the resting right one at v0 = 1 m/s, so v0 is the
+// closing speed. 1D theory: contact lasts 2L/c; the interface stress is rho c v0 / 2 (each
+// bar's end is brought to the common velocity v0/2, sigma = rho c dv); the bars exchange
+// their velocities (left 0, right v0) and the kinetic energy comes back. c = sqrt(E'/rho)
+// with the plane-strain bar modulus E' = E / (1 - nu^2) = 4 mu (lambda + mu) / (lambda + 2 mu)
+// (free top and bottom): c = 53.4 m/s, rho c v0 / 2 = 26.7 kPa. Frictionless persistence,
+// gonzalez, dt = 0.5 ms. Measured: contact 0.0105 .. 0.0475 s; the contact force alternates
+// between ~1.3e3 and ~4.0e3 N/m from one step to the next (it is the step's impulse / dt of
+// the midpoint scheme), its mean over the plateau is 0.01 % from rho c v0 H / 2 and every
+// two-step mean within 9.4 %; after separation v = 0.017 and 0.983 m/s (the 2D bars keep lateral vibrations), the
+// rigid-body kinetic energy sum p^2 / 2m is 96.7 % of E0; momentum 5e-15, energy 3.4e-11,
+// angular momentum 1.3e-5 (relative; TwoBodiesObliqueImpactAngularMomentum explains).
+TEST(DeformableContact, TwoBarsImpactConservesMomentumAndEnergy) {
+  const Config cfg = bars_deck();
+  const BarsRun r = run_bars(cfg);
+  const MaterialConfig& mat = cfg.materials[0];
+  const double H = 0.1, L = 1.0, v0 = 1.0;
+  const double Ebar = 4.0 * mat.mu * (mat.lambda + mat.mu) / (mat.lambda + 2.0 * mat.mu);
+  const double c = std::sqrt(Ebar / mat.density), sigma = mat.density * c * v0 / 2.0;
+  const std::size_t i0 = r.first_contact(), i1 = r.last_contact();
+  ASSERT_LT(i1, r.steps.size());
+  const double t_first = r.steps[i0].t, t_last = r.steps[i1].t;
+  // First touch at t = g / v0 = 0.01 s (a step end): first active at the next step.
   EXPECT_NEAR(t_first, 0.0105, 1e-9);
-  EXPECT_NEAR(t_last - t_first + 5e-4, 0.0374, 2e-3);
-  EXPECT_LT(dp / px[0], 1e-8);
-  EXPECT_LT(dE / E[0], 1e-6);
+  EXPECT_NEAR(t_last - t_first + 5e-4, 2.0 * L / c, 2e-3);
+  for (std::size_t i = i0; i <= i1; ++i) EXPECT_GT(r.steps[i].active, 0) << "contact interrupted at t = " << r.steps[i].t;
+  // Interface stress: -F_x / H (the force on the left bar, per unit thickness).
+  // The plateau: without the first 2 steps (the wave starts) and the last 5 (the force
+  // decays as the reflected wave arrives spread by the 2D bars' dispersion).
+  double mean = 0.0, worst_pair = 0.0;
+  const std::size_t j0 = i0 + 2, j1 = i1 - 5;
+  for (std::size_t i = j0; i <= j1; ++i) mean += -r.steps[i].force[0] / H / static_cast<double>(j1 - j0 + 1);
+  for (std::size_t i = j0; i < j1; ++i)
+    worst_pair = std::max(worst_pair, std::abs(-(r.steps[i].force[0] + r.steps[i + 1].force[0]) / (2.0 * H) / sigma - 1.0));
+  // Velocities and energy after separation (the last step).
+  const BodyMomenta& bT = r.steps.back().b;
+  const double vl = bT.p[0][0] / bT.mass[0], vr = bT.p[1][0] / bT.mass[1];
+  double rigid_ke = 0.0;
+  for (std::size_t b = 0; b < 2; ++b) rigid_ke += 0.5 * (bT.p[b][0] * bT.p[b][0] + bT.p[b][1] * bT.p[b][1]) / bT.mass[b];
+  double dE = 0.0, dp = 0.0, dL = 0.0;
+  const double p0 = r.b0.p[0][0] + r.b0.p[1][0];
+  for (std::size_t i = 0; i < r.steps.size(); ++i) {
+    dE = std::max(dE, std::abs(r.steps[i].energy - r.E0));
+    dp = std::max(dp, std::abs(r.steps[i].b.p[0][0] + r.steps[i].b.p[1][0] - p0));
+    dL = std::max(dL, std::abs(r.L(i) - r.L0()));
+  }
+  std::printf("two bars: contact %.4f .. %.4f s (2L/c %.4f), plateau interface stress mean %.5e (rho c v0/2 %.5e, %+.2f %%), worst two-step mean %.1f %%\n",
+              t_first, t_last, 2.0 * L / c, mean, sigma, 100.0 * (mean / sigma - 1.0), 100.0 * worst_pair);
+  std::printf("two bars: after separation v_left %.4f v_right %.4f m/s, rigid-body KE / E0 %.4f, kinetic / E0 %.4f; max |E-E0|/E0 %.2e, "
+              "|p-p0|/p0 %.2e, |L-L0|/|L0| %.2e\n",
+              vl, vr, rigid_ke / r.E0, r.steps.back().kinetic / r.E0, dE / r.E0, dp / p0, dL / std::abs(r.L0()));
+  EXPECT_NEAR(mean / sigma, 1.0, 0.02);
+  EXPECT_LT(worst_pair, 0.12);
+  EXPECT_NEAR(vl, 0.0, 0.03 * v0);
+  EXPECT_NEAR(vr, v0, 0.03 * v0);
+  EXPECT_GT(rigid_ke / r.E0, 0.95);
+  EXPECT_LT(dp / p0, 1e-8);
+  EXPECT_LT(dE / r.E0, 1e-9);
+  EXPECT_LT(dL / std::abs(r.L0()), 5e-5);
+}
+
+// The same bars with the gap condition (the end-of-step gap d >= 0 instead of the
+// persistent normal velocity). With the first touch on a step end (t = 0.01 s, 160 steps)
+// it removes almost no velocity: measured loss 5.8e-7 of E0; with the touch inside a step
+// (150 steps: t = 18.75 dt) it loses 0.63 % of E0, where persistence keeps 1e-12. All of the
+// loss is contact work (the balance closes).
+TEST(DeformableContact, TwoBarsGapConditionEnergyLoss) {
+  for (const int steps : {160, 150}) {
+    const BarsRun r = run_bars(bars_deck("gap", steps));
+    double W = 0.0;
+    for (const auto& s : r.steps) W += s.contact_work;
+    const double loss = (r.E0 - r.steps.back().energy) / r.E0;
+    std::printf("two bars, gap condition, %d steps: energy loss %.3e of E0, contact work %.4e J/m, E_T - E0 - W = %.2e\n", steps, loss, W,
+                r.steps.back().energy - r.E0 - W);
+    EXPECT_NEAR(r.steps.back().energy - r.E0, W, 1e-9 * r.E0);
+    EXPECT_GT(loss, 0.0);
+    if (steps == 160) EXPECT_LT(loss, 1e-5);
+    if (steps == 150) {
+      EXPECT_GT(loss, 1e-3);
+      EXPECT_LT(loss, 2e-2);
+    }
+  }
+}
+
+// Angular momentum of two free bodies through an oblique impact (oblique_bars_deck: the
+// left bar slides up the taller right one). The midpoint scheme conserves it exactly when the
+// contact forces act at mid-step positions; node-to-segment applies F at the slave node and
+// -F at the master point x_m(xi_{n+1}), whose mid-step offset is half the tangential slip of
+// the step: dL = -dt/2 sum (slip x F) per step, first order in dt (frictionless measured
+// 8.4e-4 and 4.3e-4 of L0 with dt = 0.5 and 0.25 ms). With mu = 0.3 the face sticks
+// and L is kept to 5.8e-7 while each bar's own L changes by 2.8 (of L0 = 10 kg m^2/s).
+// Before and after the contact L is constant to round-off.
+TEST(DeformableContact, TwoBodiesObliqueImpactAngularMomentum) {
+  double err_dt[2] = {0.0, 0.0};
+  for (const int steps : {160, 320}) {
+    const BarsRun r = run_bars(oblique_bars_deck(0.0, steps));
+    double dL = 0.0, free_dL = 0.0;
+    const std::size_t i0 = r.first_contact(), i1 = r.last_contact();
+    for (std::size_t i = 0; i < r.steps.size(); ++i) {
+      dL = std::max(dL, std::abs(r.L(i) - r.L0()));
+      if (i < i0) free_dL = std::max(free_dL, std::abs(r.L(i) - r.L0()));
+      if (i > i1) free_dL = std::max(free_dL, std::abs(r.L(i) - r.L(i1)));
+    }
+    err_dt[steps == 320] = dL / std::abs(r.L0());
+    std::printf("oblique bars, frictionless, %d steps: max |L - L0| / |L0| %.3e (L0 %.4f); in free flight %.1e\n", steps, dL / std::abs(r.L0()),
+                r.L0(), free_dL);
+    EXPECT_LT(free_dL, 1e-10 * std::abs(r.L0()));
+    EXPECT_LT(dL, 2e-3 * std::abs(r.L0()));
+  }
+  EXPECT_NEAR(err_dt[0] / err_dt[1], 2.0, 0.4);  // first order in dt
+  const BarsRun r = run_bars(oblique_bars_deck(0.3));
+  double dL = 0.0;
+  for (std::size_t i = 0; i < r.steps.size(); ++i) dL = std::max(dL, std::abs(r.L(i) - r.L0()));
+  const double exchanged = std::abs(r.steps.back().b.L[1][2] - r.b0.L[1][2]);
+  std::printf("oblique bars, mu = 0.3: max |L - L0| / |L0| %.3e, angular momentum passed to the right bar %.4f\n", dL / std::abs(r.L0()), exchanged);
+  EXPECT_GT(exchanged, 0.1 * std::abs(r.L0()));
+  EXPECT_LT(dL, 1e-5 * std::abs(r.L0()));
 }
 
 namespace {
