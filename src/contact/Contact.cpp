@@ -118,9 +118,14 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
   long excluded = 0, partial = 0;
   for (GId g : nodes) {
     const auto gi = static_cast<std::size_t>(g);
-    if (is_master[gi])
-      throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave +
-                       "' also lies on a master surface; a node may be a slave or a master node, not both");
+    if (is_master[gi]) {
+      std::string of;  // the pairs whose master surface holds the node
+      for (const Pair& q : pairs_)
+        if (q.master && std::binary_search(q.master->nodes().begin(), q.master->nodes().end(), g))
+          of += std::string(of.empty() ? "" : ", ") + "'Contact->" + q.cfg.name + "->master' = '" + q.cfg.master + "'";
+      throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' also lies on the master surface of " + of +
+                       "; a node may be a slave or a master node, not both (two-pass and self-contact are not implemented)");
+    }
     if (slave_of[gi] >= 0)
       throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' is also a slave node of 'Contact->" +
                        pairs_[static_cast<std::size_t>(slave_of[gi])].cfg.name + "'; a node may belong to one contact pair only");
