@@ -364,6 +364,7 @@ void Contact::locate(const Pair& p, Slave& nd, const double* x) const {
   const auto hit = p.master->closest(dim_, x, master_x_);
   nd.facet = hit.facet;
   nd.xi[0] = hit.xi[0], nd.xi[1] = hit.xi[1];
+  nd.xi_free[0] = hit.xi_free[0], nd.xi_free[1] = hit.xi_free[1];
   nd.inside = hit.inside;
 }
 
@@ -383,7 +384,7 @@ bool Contact::keep_facet(const Pair& p, Slave& nd, const double* x) const {
   if (nd.prev_state < contact::Stick || nd.facet < 0 || !nd.inside) return false;
   const auto hit = p.master->on_facet(nd.facet, dim_, x, master_x_, kFacetBand);
   if (hit.facet < 0) return false;
-  nd.xi[0] = hit.xi[0], nd.xi[1] = hit.xi[1];
+  nd.xi[0] = nd.xi_free[0] = hit.xi[0], nd.xi[1] = nd.xi_free[1] = hit.xi[1];
   nd.inside = true;
   return true;
 }
@@ -413,6 +414,7 @@ void Contact::node_input(const Pair& p, const Slave& nd, const double* x, contac
   in.facet = fc.type;
   in.orient = fc.orient;
   in.xi[0] = nd.xi[0], in.xi[1] = nd.xi[1];
+  in.xi_free[0] = nd.xi_free[0], in.xi_free[1] = nd.xi_free[1];
   in.xi_inside = nd.inside;
   for (int a = 0; a < fc.nn; ++a)
     for (int c = 0; c < 3; ++c) {
