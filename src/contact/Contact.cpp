@@ -118,9 +118,14 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
   long excluded = 0, partial = 0;
   for (GId g : nodes) {
     const auto gi = static_cast<std::size_t>(g);
-    if (is_master[gi])
-      throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave +
-                       "' also lies on a master surface; a node may be a slave or a master node, not both");
+    if (is_master[gi]) {
+      std::string of;  // the pairs whose master surface holds the node
+      for (const Pair& q : pairs_)
+        if (q.master && std::binary_search(q.master->nodes().begin(), q.master->nodes().end(), g))
+          of += std::string(of.empty() ? "" : ", ") + "'Contact->" + q.cfg.name + "->master' = '" + q.cfg.master + "'";
+      throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' also lies on the master surface of " + of +
+                       "; a node may be a slave or a master node, not both (two-pass and self-contact are not implemented)");
+    }
     if (slave_of[gi] >= 0)
       throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' is also a slave node of 'Contact->" +
                        pairs_[static_cast<std::size_t>(slave_of[gi])].cfg.name + "'; a node may belong to one contact pair only");
@@ -359,6 +364,7 @@ void Contact::locate(const Pair& p, Slave& nd, const double* x) const {
   const auto hit = p.master->closest(dim_, x, master_x_);
   nd.facet = hit.facet;
   nd.xi[0] = hit.xi[0], nd.xi[1] = hit.xi[1];
+  nd.xi_free[0] = hit.xi_free[0], nd.xi_free[1] = hit.xi_free[1];
   nd.inside = hit.inside;
 }
 
@@ -378,7 +384,7 @@ bool Contact::keep_facet(const Pair& p, Slave& nd, const double* x) const {
   if (nd.prev_state < contact::Stick || nd.facet < 0 || !nd.inside) return false;
   const auto hit = p.master->on_facet(nd.facet, dim_, x, master_x_, kFacetBand);
   if (hit.facet < 0) return false;
-  nd.xi[0] = hit.xi[0], nd.xi[1] = hit.xi[1];
+  nd.xi[0] = nd.xi_free[0] = hit.xi[0], nd.xi[1] = nd.xi_free[1] = hit.xi[1];
   nd.inside = true;
   return true;
 }
@@ -408,6 +414,7 @@ void Contact::node_input(const Pair& p, const Slave& nd, const double* x, contac
   in.facet = fc.type;
   in.orient = fc.orient;
   in.xi[0] = nd.xi[0], in.xi[1] = nd.xi[1];
+  in.xi_free[0] = nd.xi_free[0], in.xi_free[1] = nd.xi_free[1];
   in.xi_inside = nd.inside;
   for (int a = 0; a < fc.nn; ++a)
     for (int c = 0; c < 3; ++c) {

@@ -134,6 +134,7 @@ class Contact {
     int facet = -1;                    // master facet of the last apply() (-1: none / rigid)
     int prev_facet = -1;               // ... and of the apply() before it
     double xi[2] = {0, 0};
+    double xi_free[2] = {0, 0};        // the projection's parameters before clamping (MasterSurface::Hit)
     bool inside = true;
     double gap = 0.0, normal[3] = {0, 0, 0}, rel[3] = {0, 0, 0};
   };

@@ -10,6 +10,7 @@
 #include <Kokkos_Macros.hpp>
 #include <cmath>
 
+#include "contact/Dual.hpp"
 #include "fem/CellType.hpp"
 
 namespace stentor::facet {
@@ -92,6 +93,25 @@ KOKKOS_INLINE_FUNCTION bool clamp(CellType t, double xi[2], double tol) {
   return inside;
 }
 
+// The same nearest-point map in any scalar (Dual numbers carry its derivative: clamped
+// parameters are constants, the free ones pass through, a triangle's third edge scales
+// both by 1 / (xi_0 + xi_1)). Branches use the values only.
+template <class T>
+KOKKOS_INLINE_FUNCTION void clamp_t(CellType t, T xi[2]) {
+  if (t == CellType::Tri3 || t == CellType::Tri6) {
+    if (value(xi[0]) < 0.0) xi[0] = T(0.0);
+    if (value(xi[1]) < 0.0) xi[1] = T(0.0);
+    const T s = xi[0] + xi[1];
+    if (value(s) > 1.0) xi[0] = xi[0] / s, xi[1] = xi[1] / s;
+    return;
+  }
+  const int nk = cell_dim(t);
+  for (int k = 0; k < nk; ++k) {
+    if (value(xi[k]) < -1.0) xi[k] = T(-1.0);
+    if (value(xi[k]) > 1.0) xi[k] = T(1.0);
+  }
+}
+
 // Point, tangents and unit normal at xi. x[a][c]: current node positions.
 template <class T>
 struct Frame {
@@ -129,9 +149,11 @@ KOKKOS_INLINE_FUNCTION void frame(CellType t, int nn, int dim, double orient, co
 // ones it converges to the same root). Returns whether the projection lies inside the
 // facet; xi is clamped to the facet otherwise. band > 0: a projection past the facet's
 // edge by at most `band` (parametric) also counts as inside and keeps its xi (the facet
-// extended; Contact's facet hysteresis).
+// extended; Contact's facet hysteresis). xi_free (if given): the parameters before clamping
+// (the root of g_k = 0 on the facet's extension), from which a clamped projection's
+// derivatives follow (NodeLaw's projection_parameters).
 KOKKOS_INLINE_FUNCTION bool project(CellType t, int nn, int dim, const double (*x)[3], const double xs[3], double xi[2],
-                                    double band = 0.0) {
+                                    double band = 0.0, double* xi_free = nullptr) {
   centre(t, xi);
   const int nk = dim - 1;
   for (int it = 0; it < 20; ++it) {
@@ -158,6 +180,7 @@ KOKKOS_INLINE_FUNCTION bool project(CellType t, int nn, int dim, const double (*
     if (std::abs(xi[0]) > 10.0 || std::abs(xi[1]) > 10.0) break;
     if (std::abs(dxi[0]) + std::abs(dxi[1]) < 1e-14) break;
   }
+  if (xi_free) xi_free[0] = xi[0], xi_free[1] = xi[1];
   if (band > 0.0) {
     double c[2] = {xi[0], xi[1]};
     if (clamp(t, c, band)) return true;

@@ -87,7 +87,7 @@ MasterSurface::Hit MasterSurface::on_facet(int f, int dim, const double xs[3], c
   }
   if (std::sqrt(d2) > search_radius() || d < -h_) return hit;
   hit.facet = f;
-  hit.xi[0] = xi[0], hit.xi[1] = xi[1];
+  hit.xi[0] = hit.xi_free[0] = xi[0], hit.xi[1] = hit.xi_free[1] = xi[1];
   hit.inside = true;
   hit.dist = std::sqrt(d2);
   return hit;
@@ -113,8 +113,8 @@ MasterSurface::Hit MasterSurface::closest(int dim, const double xs[3], const std
           double xa[facet::kMaxNodes][3];
           for (int a = 0; a < fc.nn; ++a)
             for (int c = 0; c < 3; ++c) xa[a][c] = x[3 * static_cast<std::size_t>(fc.node[a]) + static_cast<std::size_t>(c)];
-          double xi[2];
-          const bool inside = facet::project(fc.type, fc.nn, dim, xa, xs, xi);
+          double xi[2], xi_free[2];
+          const bool inside = facet::project(fc.type, fc.nn, dim, xa, xs, xi, 0.0, xi_free);
           facet::Frame<double> fr;
           facet::frame(fc.type, fc.nn, dim, fc.orient, xa, xi, fr);
           double d2 = 0.0;
@@ -130,6 +130,7 @@ MasterSurface::Hit MasterSurface::closest(int dim, const double xs[3], const std
           if (better) {
             best.facet = f;
             best.xi[0] = xi[0], best.xi[1] = xi[1];
+            best.xi_free[0] = xi_free[0], best.xi_free[1] = xi_free[1];
             best.inside = inside;
             best.dist = dist;
           }

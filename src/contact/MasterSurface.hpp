@@ -44,6 +44,7 @@ class MasterSurface {
   struct Hit {
     int facet = -1;
     double xi[2] = {0, 0};
+    double xi_free[2] = {0, 0};  // before clamping (= xi when inside)
     bool inside = false;
     double dist = 0.0;
   };

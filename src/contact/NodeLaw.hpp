@@ -94,7 +94,8 @@ struct NodeInput {
   CellType facet = CellType::Invalid;
   double orient = 1.0;
   double xi[2] = {0, 0};              // closest-point parameters (master facet)
-  bool xi_inside = true;              // projection inside the facet (else clamped, xi fixed)
+  bool xi_inside = true;              // projection inside the facet (else clamped to its edge or vertex)
+  double xi_free[2] = {0, 0};         // clamped: the parameters before clamping (facet::project)
   double xs[3] = {0, 0, 0}, xs_n[3] = {0, 0, 0};
   double xa[facet::kMaxNodes][3] = {}, xa_n[facet::kMaxNodes][3] = {};
   double r[3] = {0, 0, 0};
@@ -149,10 +150,10 @@ KOKKOS_INLINE_FUNCTION void tangents(int dim, const T n[3], const T* a1, T t[2][
   t[1][2] = n[0] * t[0][1] - n[1] * t[0][0];
 }
 
-// Exact d g_k / d xi_l of the projection equations g_k = a_k . (x_s - x_m) at xi (double).
-KOKKOS_INLINE_FUNCTION void projection_jacobian(const NodeInput& in, double J[2][2]) {
+// Exact d g_k / d xi_l of the projection equations g_k = a_k . (x_s - x_m) at xi0 (double).
+KOKKOS_INLINE_FUNCTION void projection_jacobian(const NodeInput& in, const double xi0[2], double J[2][2]) {
   using D2 = Dual<2>;
-  D2 xi[2] = {D2::seed(in.xi[0], 0), D2::seed(in.xi[1], 1)};
+  D2 xi[2] = {D2::seed(xi0[0], 0), D2::seed(xi0[1], 1)};
   D2 x[facet::kMaxNodes][3];
   for (int a = 0; a < in.nm; ++a)
     for (int c = 0; c < 3; ++c) x[a][c] = D2(in.xa[a][c]);
@@ -166,14 +167,17 @@ KOKKOS_INLINE_FUNCTION void projection_jacobian(const NodeInput& in, double J[2]
 }
 
 // The closest-point parameters as functions of the unknowns: xi* - J^-1 g(xi*, y) (exact
-// first derivatives, since g(xi*) = 0 and J = dg/dxi at xi*).
+// first derivatives, since g(xi*) = 0 and J = dg/dxi at xi*). A projection past the facet's
+// edge is facet::project's clamp of the root on the extended facet, xi_free: the same
+// expression at xi_free, then clamped (facet::clamp_t), so the parameter along an edge
+// keeps its derivative (3D) and only the clamped ones are constants (2D: an end point).
 template <class T>
 KOKKOS_INLINE_FUNCTION void projection_parameters(const NodeInput& in, const T xs[3], const T (*xa)[3], T xi[2]) {
-  xi[0] = T(in.xi[0]);
-  xi[1] = T(in.xi[1]);
-  if (!in.xi_inside) return;
+  const double* xi0 = in.xi_inside ? in.xi : in.xi_free;
+  xi[0] = T(xi0[0]);
+  xi[1] = T(xi0[1]);
   double J[2][2] = {{1.0, 0.0}, {0.0, 1.0}};
-  projection_jacobian(in, J);
+  projection_jacobian(in, xi0, J);
   facet::Frame<T> f;
   facet::frame(in.facet, in.nm, in.dim, 1.0, xa, xi, f);
   T g[2] = {T(0.0), T(0.0)};
@@ -187,6 +191,7 @@ KOKKOS_INLINE_FUNCTION void projection_parameters(const NodeInput& in, const T x
     xi[0] = xi[0] - d0;
     xi[1] = xi[1] - d1;
   }
+  if (!in.xi_inside) facet::clamp_t(in.facet, xi);
 }
 
 // Gap, normal, relative displacement and (facets) the shape-function values at the
