@@ -21,6 +21,7 @@
 //     friction): no cut-back, few Newton iterations (the normal's derivative is in the
 //     tangent; the tolerance keeps a force scale once the load is gone).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
@@ -199,8 +200,12 @@ std::string geo_variant(const std::string& geo, const std::vector<std::pair<std:
     if (at != std::string::npos) t.replace(at, from.size(), to);
   }
   fs::create_directories(kDir);
-  const fs::path p = kDir / name;
-  std::ofstream(p) << t;
+  // Written under a name of this process and renamed: ctest runs tests of this file in
+  // parallel processes, and several write the same variant (a reader must never see a
+  // half-written file).
+  const fs::path p = kDir / name, tmp = kDir / (name + ".tmp" + std::to_string(::getpid()));
+  std::ofstream(tmp) << t;
+  fs::rename(tmp, p);
   return p.string();
 }
 
