@@ -78,6 +78,7 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
   probe_node = nearest_nodes(mesh, cfg.output.probes);
   check_contact_groups(cfg, mesh);
   warnings = unsupported_bodies(cfg, mesh, loads);
+  if (!dynamic) bodies = connected_bodies(cfg, mesh, loads);
   validate_linear_solver(cfg.linear);  // the pass-through lists, before anything runs (and under --check)
 }
 

@@ -13,6 +13,7 @@
 #include "mesh/Mesh.hpp"
 #include "parallel/Distribution.hpp"
 #include "run/Simulation.hpp"
+#include "run/Supports.hpp"
 #include "run/Timers.hpp"
 #include "run/TimeIntegrator.hpp"
 #include "solver/LinearSolver.hpp"
@@ -46,6 +47,7 @@ struct Model {
   Loads loads;
   std::vector<std::string> warnings;  // found reading the model (unsupported static bodies), printed with it
   std::vector<GId> probe_node;    // nearest mesh node of each Output->Probes entry
+  ConnectedBodies bodies;         // bodies connected by shared nodes or master-surface contact, and their supports
 
   std::unique_ptr<Distribution> dist;
   std::unique_ptr<Assembler> assembler;

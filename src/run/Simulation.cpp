@@ -159,6 +159,16 @@ bool accept_step(Run& r, double dt, const NewtonResult& nr, double end) {
     s.failed = true;
     return false;
   }
+  if (!rec.free_motion.empty()) {
+    std::ostringstream os;
+    os << "static analysis: at t = " << s.t << " nothing holds " << rec.free_motion
+       << " (no Dirichlet condition and no active contact constraint acts in that direction): the tangent is singular, so "
+          "the equilibrium is not unique and the solver may add any rigid translation in it; add a support in 'Boundary "
+          "Conditions' (or friction), or use Problem->analysis = dynamic";
+    s.failure = os.str();
+    s.failed = true;
+    return false;
+  }
   if (r.model.dynamic) r.reporter.energy_row(s.step, s.t, rec.audit, s.energy);
   r.reporter.history_row(s, rec, energy);
   const bool last = s.t >= end * (1.0 - 1e-12);

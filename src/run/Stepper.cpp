@@ -1,5 +1,7 @@
 #include "run/Stepper.hpp"
 
+#include "run/Supports.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -153,6 +155,7 @@ StepRecord Stepper::accept(RunState& s, double dt, const NewtonResult& nr) {
   if (m_.contact) rec.contact = m_.contact->accept(s.u);
   if (!m_.dynamic) {
     rec.nonfinite = nonfinite(s, nullptr);
+    if (rec.nonfinite.empty() && nr.iterations > 0) rec.free_motion = free_translation();  // 0 iterations: nothing solved
     return rec;
   }
   EnergyAudit& au = rec.audit;
@@ -187,6 +190,40 @@ std::string Stepper::nonfinite(const RunState& s, const EnergyAudit* au) const {
   for (double v : vals)
     if (!std::isfinite(v)) return "energy or momentum";
   return "";
+}
+
+std::string Stepper::free_translation() {
+  const Distribution& dist = *m_.dist;
+  const ConnectedBodies& cb = m_.bodies;
+  if (!translations_built_) {
+    translations_built_ = true;
+    for (std::size_t k = 0; k < cb.names.size(); ++k)
+      for (int c = 0; c < m_.dim; ++c) {
+        if (cb.names[k].empty() || cb.held[k][static_cast<std::size_t>(c)]) continue;
+        auto z = Teuchos::rcp(new la::Vector(dist.owned_map()));
+        {
+          auto zh = z->getLocalViewHost(Tpetra::Access::ReadWrite);  // a new Vector is zero
+          for (la::LO n = 0; n < dist.num_owned_nodes(); ++n)
+            zh(n * m_.dim + c, 0) = cb.body_of_node[static_cast<std::size_t>(dist.global_node(n))] == static_cast<int>(k) ? 1.0 : 0.0;
+        }
+        translations_.push_back({k, c, z});
+      }
+  }
+  if (translations_.empty()) return "";
+  const la::RCP<la::CrsMatrix> K = system_.matrix();
+  la::Vector diag(K->getRowMap()), Kz(dist.owned_map()), dz(dist.owned_map());
+  K->getLocalDiagCopy(diag);
+  std::string out;
+  std::size_t body = cb.names.size();
+  for (const Translation& t : translations_) {
+    K->apply(*t.z, Kz);
+    dz.elementWiseMultiply(1.0, diag, *t.z, 0.0);
+    const double scale = dz.normInf();
+    if (!(scale > 0.0) || Kz.normInf() > 1e-8 * scale) continue;
+    out += std::string(t.body == body ? ", " : out.empty() ? "" : "; ") + (t.body == body ? "" : cb.who(t.body) + " in ") + "xyz"[t.dir];
+    body = t.body;
+  }
+  return out;
 }
 
 }  // namespace stentor

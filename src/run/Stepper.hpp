@@ -5,6 +5,7 @@
 #include <ostream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "run/Model.hpp"
 #include "run/RunState.hpp"
@@ -59,6 +60,7 @@ struct StepRecord {
   EnergyAudit audit;            // dynamics only
   double plastic_dissipation = 0.0;  // of the step (plastic blocks only)
   std::string nonfinite;        // the first non-finite quantity, or "" (then nothing may be written)
+  std::string free_motion;      // statics: a rigid translation nothing holds (free_translation), or ""
 };
 
 class Stepper {
@@ -84,6 +86,14 @@ class Stepper {
   // rank gets the same answer.
   std::string nonfinite(const RunState& s, const EnergyAudit* au) const;
 
+  // Statics, after a converged step: the connected bodies (Model::bodies) that no Dirichlet
+  // condition holds in some direction and whose unit translation z in it the step's tangent
+  // K (contact constraints included) leaves free, |K z|_inf <= 1e-8 max |K_ii| over z's
+  // dofs, as "Bodies->'a' in x, y; ..."; "" when none. Such an equilibrium is not unique: the
+  // linear solver may add any amount of that translation (a body pushed by a rigid circle
+  // and held by nothing else ended 1.5e9 m away with exit 0). Collective.
+  std::string free_translation();
+
   const Assembler::Stats& last() const { return system_.last; }
   // Restart: Newton's force-scale history (see StepSystem::force_scale).
   std::pair<double, long> scale_history() const { return system_.scale_history(); }
@@ -104,6 +114,14 @@ class Stepper {
   Timers& timers_;
   StepSystem system_;
   std::ostream* newton_log_;
+  // free_translation's unit translations: connected body, direction, z (built at first use).
+  struct Translation {
+    std::size_t body;
+    int dir;
+    la::RCP<la::Vector> z;
+  };
+  std::vector<Translation> translations_;
+  bool translations_built_ = false;
 };
 
 }  // namespace stentor

@@ -17,7 +17,7 @@ int find(std::vector<int>& parent, int i) {
 // Node -> connected body (-1: in no body); `names`: the bodies of each connected body.
 // Bodies sharing nodes are one; so are the two sides of a contact pair with a master
 // surface (contact couples them, it does not hold them).
-std::vector<int> connected_bodies(const Config& cfg, const Mesh& mesh, std::vector<std::vector<std::string>>& names) {
+std::vector<int> body_components(const Config& cfg, const Mesh& mesh, std::vector<std::vector<std::string>>& names) {
   const int nb = static_cast<int>(cfg.bodies.size());
   std::vector<int> parent(static_cast<std::size_t>(nb)), node_body(mesh.num_nodes(), -1);
   std::iota(parent.begin(), parent.end(), 0);
@@ -50,39 +50,50 @@ std::vector<int> connected_bodies(const Config& cfg, const Mesh& mesh, std::vect
 
 }  // namespace
 
+std::string ConnectedBodies::who(std::size_t k) const {
+  std::string w;
+  for (const auto& n : names[k]) w += (w.empty() ? "'" : ", '") + n + "'";
+  return "Bodies->" + w + (names[k].size() > 1 ? " (connected)" : "");
+}
+
+ConnectedBodies connected_bodies(const Config& cfg, const Mesh& mesh, const Loads& loads) {
+  ConnectedBodies cb;
+  cb.body_of_node = body_components(cfg, mesh, cb.names);
+  const std::size_t nb = cb.names.size();
+  cb.held.assign(nb, {false, false, false});
+  cb.several.assign(nb, 0);
+  std::vector<GId> first(nb, -1);
+  for (const auto& d : loads.dirichlet)
+    for (GId g : d.nodes) {
+      const int b = cb.body_of_node[static_cast<std::size_t>(g)];
+      if (b < 0) continue;
+      const auto k = static_cast<std::size_t>(b);
+      for (int c = 0; c < mesh.dim; ++c)
+        cb.held[k][static_cast<std::size_t>(c)] = cb.held[k][static_cast<std::size_t>(c)] || d.components[static_cast<std::size_t>(c)];
+      if (first[k] < 0) first[k] = g;
+      else if (first[k] != g) cb.several[k] = 1;
+    }
+  return cb;
+}
+
 std::vector<std::string> unsupported_bodies(const Config& cfg, const Mesh& mesh, const Loads& loads) {
   std::vector<std::string> lines;
   if (cfg.problem.dynamic() || cfg.bodies.empty()) return lines;
-  std::vector<std::vector<std::string>> names;
-  const std::vector<int> body = connected_bodies(cfg, mesh, names);
-  const std::size_t nb = names.size();
+  const ConnectedBodies cb = connected_bodies(cfg, mesh, loads);
+  const std::size_t nb = cb.names.size();
   std::vector<char> contact(nb, 0);
   for (const auto& c : cfg.contact)  // a rigid obstacle may hold the body it touches
     if (c.master.empty())
       for (GId g : boundary_nodes(mesh, c.slave))
-        if (body[static_cast<std::size_t>(g)] >= 0) contact[static_cast<std::size_t>(body[static_cast<std::size_t>(g)])] = 1;
-  std::vector<std::array<bool, 3>> held(nb, {false, false, false});
-  std::vector<GId> first(nb, -1);
-  std::vector<char> several(nb, 0);  // prescribed nodes of more than one node
-  for (const auto& d : loads.dirichlet)
-    for (GId g : d.nodes) {
-      const int b = body[static_cast<std::size_t>(g)];
-      if (b < 0) continue;
-      const auto k = static_cast<std::size_t>(b);
-      for (int c = 0; c < mesh.dim; ++c) held[k][static_cast<std::size_t>(c)] = held[k][static_cast<std::size_t>(c)] || d.components[static_cast<std::size_t>(c)];
-      if (first[k] < 0) first[k] = g;
-      else if (first[k] != g) several[k] = 1;
-    }
+        if (cb.body_of_node[static_cast<std::size_t>(g)] >= 0) contact[static_cast<std::size_t>(cb.body_of_node[static_cast<std::size_t>(g)])] = 1;
   for (std::size_t k = 0; k < nb; ++k) {
-    if (names[k].empty() || contact[k]) continue;
+    if (cb.names[k].empty() || contact[k]) continue;
     std::string free_dirs;
     for (int c = 0; c < mesh.dim; ++c)
-      if (!held[k][static_cast<std::size_t>(c)]) free_dirs += std::string(free_dirs.empty() ? "" : ", ") + "xyz"[c];
-    const bool rotation = free_dirs.empty() && !several[k];
+      if (!cb.held[k][static_cast<std::size_t>(c)]) free_dirs += std::string(free_dirs.empty() ? "" : ", ") + "xyz"[c];
+    const bool rotation = free_dirs.empty() && !cb.several[k];
     if (free_dirs.empty() && !rotation) continue;
-    std::string who;
-    for (const auto& n : names[k]) who += (who.empty() ? "'" : ", '") + n + "'";
-    lines.push_back("warning: static analysis: Bodies->" + who + (names[k].size() > 1 ? " (connected)" : "") + ": " +
+    lines.push_back("warning: static analysis: " + cb.who(k) + ": " +
                     (rotation ? std::string("every support is at one node, so the body can rotate about it")
                               : "no Dirichlet condition holds it in " + free_dirs + " and no rigid obstacle touches it") +
                     ": a free rigid-body motion makes the static tangent singular (add a support in 'Boundary Conditions', "

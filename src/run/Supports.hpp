@@ -8,7 +8,10 @@
 //   - a connected body touched by a rigid obstacle pair is left alone: it may hold it;
 //   - otherwise each direction x, y (, z) must be prescribed at some node of it, and the
 //     prescribed nodes must not all be one node (which leaves the rotation free).
+// A run checks the same bodies' unprescribed directions against each converged step's
+// tangent, contact included (Stepper::free_translation), and stops when one is free.
 #pragma once
+#include <array>
 #include <string>
 #include <vector>
 
@@ -17,6 +20,16 @@
 #include "mesh/Mesh.hpp"
 
 namespace stentor {
+
+// Connected bodies as above, and where Dirichlet conditions hold each of them.
+struct ConnectedBodies {
+  std::vector<int> body_of_node;                // connected body of each mesh node (-1: in no body)
+  std::vector<std::vector<std::string>> names;  // its bodies' names (empty: not a connected body's index)
+  std::vector<std::array<bool, 3>> held;        // a Dirichlet condition prescribes direction c at some node
+  std::vector<char> several;                    // the prescribed nodes are more than one node
+  std::string who(std::size_t k) const;         // "Bodies->'a', 'b' (connected)"
+};
+ConnectedBodies connected_bodies(const Config& cfg, const Mesh& mesh, const Loads& loads);
 
 // One warning line per connected body whose rigid motion is free, naming its bodies and
 // the free directions; none for dynamic analyses.

@@ -9,6 +9,8 @@
 //     friction (within 3 %); (c) dynamic: traction above mu p: the block slips with
 //     |F_t| = mu |F_n| on the sliding nodes.
 //  4. Same deck on 1 and 2 MPI ranks (stentor executable via mpirun): same history.
+//  5. Statics with no support in some direction: a translation the step's tangent leaves
+//     free stops the run (exit 3); contact that holds the body (friction) does not.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -268,6 +270,36 @@ TEST(Contact, SameHistoryOnOneAndTwoRanks) {
   EXPECT_EQ(dact, 0.0);
   EXPECT_LT(dforce, 1e-6 * fscale);
   EXPECT_LT(dE, 1e-8 * e[0]["total"][0]);
+}
+
+// ---- 5. A free translation in statics (issue 12; Stepper::free_translation). The block of
+// 1 pressed down 0.1 by its top in y only: frictionless, nothing holds it in x, the tangent is
+// singular and the equilibrium not unique (on main: exit 0, with whatever x offset the
+// solver chose) -- the run stops at its first step, exit 3. With friction mu = 0.3 the
+// sticking bottom nodes hold x: it runs, as does CoulombStickBelowLimit (no Dirichlet
+// condition at all, held by friction alone).
+TEST(Contact, StaticFreeTranslationStopsTheRun) {
+  for (const double mu : {0.0, 0.3}) {
+    Config cfg = read_deck(kInputs + "contact_block_static.xml");
+    ASSERT_EQ(cfg.loads.size(), 1u);
+    cfg.loads[0].components = {false, true, false};
+    cfg.loads[0].all_components = false;
+    cfg.loads[0].vector = {0.0, -0.1, 0.0};
+    cfg.contact[0].friction = mu;
+    RunOptions opts;
+    opts.output_dir = (kDir / ("free_x_mu" + std::to_string(mu))).string();
+    RunResult res;
+    const int status = run_simulation(cfg, opts, &res);
+    std::printf("[contact] block pressed in y only, mu = %g: exit %d after %d steps\n", mu, status, res.steps);
+    if (mu == 0.0) {
+      EXPECT_EQ(status, 3);
+      EXPECT_EQ(res.steps, 1);  // stopped at the first converged step, not cut back
+      EXPECT_EQ(res.cutbacks, 0);
+    } else {
+      EXPECT_EQ(status, 0);
+      EXPECT_EQ(res.steps, 4);
+    }
+  }
 }
 
 }  // namespace
