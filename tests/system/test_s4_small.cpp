@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "CsvSeries.hpp"
+#include "H5Results.hpp"
 #include "deck/Config.hpp"
 #include "mesh/MeshQuery.hpp"
 #include "run/Simulation.hpp"
@@ -40,36 +41,7 @@ namespace {
 const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "s4_small";
 const std::string kDeck = std::string(STENTOR_SOURCE_DIR) + "/tests/cli/decks/par_s4.xml";
 
-// The output steps of an HDF5 result: their times and a node field of one of them.
-struct H5 {
-  hid_t f;
-  explicit H5(const fs::path& p) : f(H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT)) {}
-  ~H5() {
-    if (f >= 0) H5Fclose(f);
-  }
-  std::vector<double> times() const {
-    std::vector<double> t;
-    for (int k = 0; H5Lexists(f, ("/step_" + std::to_string(k)).c_str(), H5P_DEFAULT) > 0; ++k) {
-      const hid_t a = H5Aopen_by_name(f, ("/step_" + std::to_string(k)).c_str(), "time", H5P_DEFAULT, H5P_DEFAULT);
-      double v = -1.0;
-      H5Aread(a, H5T_NATIVE_DOUBLE, &v);
-      H5Aclose(a);
-      t.push_back(v);
-    }
-    return t;
-  }
-  std::vector<double> read(const std::string& path) const {
-    std::vector<double> v;
-    const hid_t d = H5Dopen2(f, path.c_str(), H5P_DEFAULT);
-    if (d < 0) return v;
-    const hid_t sp = H5Dget_space(d);
-    v.resize(static_cast<std::size_t>(H5Sget_simple_extent_npoints(sp)));
-    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
-    H5Sclose(sp);
-    H5Dclose(d);
-    return v;
-  }
-};
+using H5 = stentor::testing::H5Results;
 
 // The metrics of docs/deck.md ("Output->Stent Metrics") for the axis x through the origin
 // of a 2D axial section, from the current node positions x (3 per mesh node) and the
