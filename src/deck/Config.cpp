@@ -760,6 +760,7 @@ void DeckReader::read_mesh(const ParameterList& pl) {
   m.recombine = get_bool(pl, ls, "recombine");
   m.dimension = get_int(pl, ls, "dimension");
   m.max_cells = get_double(pl, ls, "max cells");
+  m.time_limit = get_double(pl, ls, "time limit");
   if (m.recombine && m.order == 2)
     fail("'Mesh->recombine' = true needs 'Mesh->order' = 1 (quad8/hex20 bodies are not supported)");
 }

@@ -117,6 +117,11 @@ std::vector<ListSpec> build_schema() {
        dbl("max cells", 5e6,
            "Meshing a `.geo` is refused when the estimated number of cells (bounding box measure / size^dim, "
            "times the cells per size^dim) is above this; raise it to mesh finer on purpose.")
+           .gt(0.0),
+       dbl("time limit", 600.0,
+           "Seconds gmsh may take to read the mesh file and mesh a `.geo` (it runs in a process of its own); past "
+           "them it is stopped and the deck refused (a loop in the `.geo`, a mesh far too fine); raise it for a "
+           "slow mesh on purpose.")
            .gt(0.0)}));
 
   {
