@@ -4,6 +4,7 @@
 #include <gmsh.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -485,7 +486,7 @@ Mesh read_mesh_in_child(const MeshConfig& cfg, bool verbose) {
   TempDir dir;
   std::vector<std::string> args = {g_helper_exe, "--gmsh-helper", dir.path, file, num17(cfg.size),
                                    std::to_string(cfg.order), cfg.recombine ? "1" : "0", std::to_string(cfg.dimension),
-                                   num17(cfg.max_cells), verbose ? "1" : "0"};
+                                   num17(cfg.max_cells), verbose ? "1" : "0", std::to_string(::getpid())};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -583,10 +584,14 @@ Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
 }
 
 int gmsh_helper_main(int argc, char** argv) {
-  if (argc != 10) {
+  if (argc != 11) {
     std::fprintf(stderr, "stentor --gmsh-helper: internal use only\n");
     return 1;
   }
+  // Ends with stentor: killed (a batch job's limit, SIGKILL), stentor must not leave gmsh
+  // looping in a process group of its own.
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != static_cast<pid_t>(std::atol(argv[10]))) return 1;  // it ended already
   const std::string dir = argv[2];
   // Address space at most the machine's memory: a mesh far too fine fails in gmsh
   // (bad_alloc, or an abort where it cannot be caught) instead of swapping.
