@@ -206,6 +206,15 @@ bool run_gnuplot(const fs::path& script, const fs::path& png) {
     return no_png("gnuplot failed on " + script.filename().string() + ", see " + fs::path(log).filename().string() +
                   " beside it");
   if (!fs::exists(png, ec) || fs::file_size(png, ec) == 0) return no_png("gnuplot wrote no " + png.string());
+  // A whole PNG ends with its IEND chunk: gnuplot exits 0 even when its write failed
+  // (a full disk, a file size limit) and leaves a truncated file.
+  static const unsigned char kEnd[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+  unsigned char tail[12] = {};
+  std::ifstream in(png, std::ios::binary);
+  in.seekg(-12, std::ios::end);
+  in.read(reinterpret_cast<char*>(tail), 12);
+  if (!in || !std::equal(tail, tail + 12, kEnd))
+    return no_png("gnuplot wrote an incomplete " + png.filename().string() + " (a full disk?)");
   return true;
 }
 

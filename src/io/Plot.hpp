@@ -43,7 +43,8 @@ struct PlotSpec {
 // the deck is never interpreted. Non-finite values are written as NaN (a gap in the curve).
 // gnuplot gets 60 s per plot, then is killed with whatever it started (it runs in a
 // process group of its own); after that the run's later plots are not tried (their
-// scripts are written). A failed or stopped gnuplot leaves no PNG (not a truncated one).
+// scripts are written). A failed or stopped gnuplot leaves no PNG (not a truncated one),
+// nor does one that exits 0 with a PNG cut short (its write failed: a full disk).
 // Returns false when a column is missing, there is no curve or no row, gnuplot is not
 // installed, or gnuplot fails, times out or produces no PNG; the run can go on without
 // plots. Throws only WriteError, when the script itself cannot be written (a full disk:

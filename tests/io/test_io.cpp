@@ -921,8 +921,8 @@ TEST(Plot, LabelsAreNeverInterpreted) {
 }
 
 // A gnuplot that fails or hangs never fails or stalls a run (issue 16): a fake gnuplot
-// first on PATH. One that exits 1 after writing half a PNG: no plot, no PNG left, the
-// script kept. One that hangs (and started a child of its own): stopped with its child
+// first on PATH. One that exits 1 after writing half a PNG, or 0 after a PNG cut short
+// (a full disk): no plot, no PNG left, the script kept. One that hangs (and started a child of its own): stopped with its child
 // after the limit (1 s here; 60 s in a run), no PNG; the next plot is not tried at all.
 namespace {
 bool process_alive(long pid) {
@@ -972,6 +972,10 @@ TEST(Plot, FailingOrHangingGnuplotEndsWithoutPlot) {
   EXPECT_TRUE(fs::exists(dir / "failed.gp"));
   EXPECT_EQ(slurp(dir / "failed.gp.log"), "broken\n");
 
+  // Exit 0 with a PNG cut short (its write failed, a full disk): no PNG either.
+  fake("printf '\\211PNG\\r\\n\\032\\n0123456789' > \"$(basename \"$1\" .gp).png\"\nexit 0");
+  EXPECT_FALSE(plot_png(t, (dir / "cut.png").string(), spec));
+  EXPECT_FALSE(fs::exists(dir / "cut.png"));
   set_plot_time_limit(std::chrono::seconds(1));
   fake("echo $$ > '" + (dir / "gnuplot.pid").string() + "'\nsleep 300 &\necho $! > '" +
        (dir / "child.pid").string() + "'\nprintf '\\211PNG' > \"$(basename \"$1\" .gp).png\"\nwait");
