@@ -689,7 +689,8 @@ void DeckReader::check_dim_length(const std::vector<double>& v, const std::strin
 
 // Names that end up in output file names, CSV column headers and plot labels (loads,
 // probes, contact pairs, the basename) are restricted to a character set that no shell,
-// gnuplot or file system interprets: letters, digits, space and _ . + -
+// gnuplot or file system interprets: letters, digits, space and _ . + -, and to 100
+// characters (a file name holds at most 255 bytes).
 // A step the time loop can take: t + step > t up to the interval's end `end`, with a
 // margin (step >= 1e-12 x end), and far from underflow (step >= 1e-300), so that its
 // halvings and the default min dt (1e-6 x step) are positive normal numbers. A step of
@@ -701,6 +702,11 @@ void DeckReader::check_step(double step, double end, const std::string& what) co
 }
 
 void DeckReader::check_safe_name(const std::string& text, const std::string& path, const std::string& what) const {
+  // File names are at most 255 bytes: <basename>_reaction_<load>.gp.log must fit (a load
+  // named with 300 characters failed the run at its end, writing the plot script).
+  if (text.size() > 100)
+    fail(quoted(path) + ": " + what + " has " + std::to_string(text.size()) +
+         " characters; at most 100 (it names output files, CSV columns and plot labels)");
   for (const char c : text) {
     const auto u = static_cast<unsigned char>(c);
     if (std::isalnum(u) && u < 128) continue;
