@@ -126,7 +126,8 @@ bool parse_ll(const std::string& s0, long long& out) {
 }
 // The one reader of every real number in a deck (scalars and array entries, pass-through
 // lists included): a finite decimal number, [+-]digits[.digits][(e|E)[+-]digits] (".5"
-// and "5." too). No nan, inf, hex floats (0x1p-2) or overflow (1e999): strtod takes them
+// and "5." too). No nan, inf, hex floats (0x1p-2), overflow (1e999) or a non-zero value
+// that underflows to 0 (1e-400; denormals such as 1e-310 stay): strtod takes them
 // all and Teuchos turned some into 0. The value parsed here is the value used
 // (apply_numbers overwrites Teuchos' own conversion).
 bool parse_dbl(const std::string& s0, double& out) {
@@ -140,6 +141,7 @@ bool parse_dbl(const std::string& s0, double& out) {
     while (is_digit(i)) ++i, ++digits;
   }
   if (digits == 0) return false;
+  const bool nonzero = s.find_first_of("123456789") < i;  // in the digits before the exponent
   if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
     ++i;
     if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
@@ -149,6 +151,9 @@ bool parse_dbl(const std::string& s0, double& out) {
   if (i != s.size()) return false;
   errno = 0;
   out = std::strtod(s.c_str(), nullptr);
+  // Underflow to a denormal keeps a non-zero value; to 0 it would change the meaning
+  // (1e-400 as 'Mesh->size' meant the .geo's own size, as 'friction' no friction).
+  if (nonzero && out == 0.0) return false;
   return std::isfinite(out) && !(errno == ERANGE && std::abs(out) > 1.0);
 }
 
