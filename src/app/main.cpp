@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <unistd.h>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -19,6 +20,7 @@
 #include "deck/Config.hpp"
 #include "io/LogCopy.hpp"
 #include "io/WriteError.hpp"
+#include "mesh/GmshReader.hpp"
 #include "run/Simulation.hpp"
 #include "solver/SolverFailure.hpp"
 
@@ -138,6 +140,8 @@ void test_failure_hook(int rank) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // gmsh's own process (mesh/GmshReader.hpp): no MPI, no Kokkos, only gmsh.
+  if (argc > 1 && std::strcmp(argv[1], "--gmsh-helper") == 0) return stentor::gmsh_helper_main(argc, argv);
   // The log is line-buffered even when redirected to a file: a killed batch job keeps
   // every line written so far (the progress line is also flushed every step).
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
@@ -160,6 +164,16 @@ int main(int argc, char** argv) {
     ~LogCopyGuard() { stentor::log_copy::stop(); }
   } log_copy_guard(rank == 0);
   MPI_Comm_dup(MPI_COMM_WORLD, &g_fail_comm);
+  {
+    // gmsh reads and meshes in a child process of this executable (a crash, hang or exit
+    // in gmsh becomes an input error naming the file).
+    char exe[4096];
+    const ssize_t n = ::readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (n > 0) {
+      exe[n] = '\0';
+      stentor::enable_gmsh_process(exe);
+    }
+  }
   stentor::RunOptions opts;
   std::string deck;
   for (int i = 1; i < argc; ++i) {

@@ -126,7 +126,8 @@ bool parse_ll(const std::string& s0, long long& out) {
 }
 // The one reader of every real number in a deck (scalars and array entries, pass-through
 // lists included): a finite decimal number, [+-]digits[.digits][(e|E)[+-]digits] (".5"
-// and "5." too). No nan, inf, hex floats (0x1p-2) or overflow (1e999): strtod takes them
+// and "5." too). No nan, inf, hex floats (0x1p-2), overflow (1e999) or a non-zero value
+// that underflows to 0 (1e-400; denormals such as 1e-310 stay): strtod takes them
 // all and Teuchos turned some into 0. The value parsed here is the value used
 // (apply_numbers overwrites Teuchos' own conversion).
 bool parse_dbl(const std::string& s0, double& out) {
@@ -140,6 +141,7 @@ bool parse_dbl(const std::string& s0, double& out) {
     while (is_digit(i)) ++i, ++digits;
   }
   if (digits == 0) return false;
+  const bool nonzero = s.find_first_of("123456789") < i;  // in the digits before the exponent
   if (i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
     ++i;
     if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
@@ -149,6 +151,9 @@ bool parse_dbl(const std::string& s0, double& out) {
   if (i != s.size()) return false;
   errno = 0;
   out = std::strtod(s.c_str(), nullptr);
+  // Underflow to a denormal keeps a non-zero value; to 0 it would change the meaning
+  // (1e-400 as 'Mesh->size' meant the .geo's own size, as 'friction' no friction).
+  if (nonzero && out == 0.0) return false;
   return std::isfinite(out) && !(errno == ERANGE && std::abs(out) > 1.0);
 }
 
@@ -693,7 +698,8 @@ void DeckReader::check_dim_length(const std::vector<double>& v, const std::strin
 
 // Names that end up in output file names, CSV column headers and plot labels (loads,
 // probes, contact pairs, the basename) are restricted to a character set that no shell,
-// gnuplot or file system interprets: letters, digits, space and _ . + -
+// gnuplot or file system interprets: letters, digits, space and _ . + -, and to 100
+// characters (a file name holds at most 255 bytes).
 // A step the time loop can take: t + step > t up to the interval's end `end`, with a
 // margin (step >= 1e-12 x end), and far from underflow (step >= 1e-300), so that its
 // halvings and the default min dt (1e-6 x step) are positive normal numbers. A step of
@@ -705,6 +711,11 @@ void DeckReader::check_step(double step, double end, const std::string& what) co
 }
 
 void DeckReader::check_safe_name(const std::string& text, const std::string& path, const std::string& what) const {
+  // File names are at most 255 bytes: <basename>_reaction_<load>.gp.log must fit (a load
+  // named with 300 characters failed the run at its end, writing the plot script).
+  if (text.size() > 100)
+    fail(quoted(path) + ": " + what + " has " + std::to_string(text.size()) +
+         " characters; at most 100 (it names output files, CSV columns and plot labels)");
   for (const char c : text) {
     const auto u = static_cast<unsigned char>(c);
     if (std::isalnum(u) && u < 128) continue;
@@ -764,6 +775,7 @@ void DeckReader::read_mesh(const ParameterList& pl) {
   m.recombine = get_bool(pl, ls, "recombine");
   m.dimension = get_int(pl, ls, "dimension");
   m.max_cells = get_double(pl, ls, "max cells");
+  m.time_limit = get_double(pl, ls, "time limit");
   if (m.recombine && m.order == 2)
     fail("'Mesh->recombine' = true needs 'Mesh->order' = 1 (quad8/hex20 bodies are not supported)");
 }

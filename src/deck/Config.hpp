@@ -51,6 +51,7 @@ struct MeshConfig {
   bool recombine = false;  // "Mesh"->"recombine": quads (2D) / hexes (3D) from a .geo
   int dimension = 0;       // "Mesh"->"dimension": 2 or 3; 0 = highest dimension found in the mesh
   double max_cells = 5e6;  // "Mesh"->"max cells": refuse to mesh a .geo when the estimate is above
+  double time_limit = 600; // "Mesh"->"time limit" [s]: gmsh's process (reading + meshing) is stopped after it
 };
 
 struct MaterialConfig {

@@ -117,6 +117,11 @@ std::vector<ListSpec> build_schema() {
        dbl("max cells", 5e6,
            "Meshing a `.geo` is refused when the estimated number of cells (bounding box measure / size^dim, "
            "times the cells per size^dim) is above this; raise it to mesh finer on purpose.")
+           .gt(0.0),
+       dbl("time limit", 600.0,
+           "Seconds gmsh may take to read the mesh file and mesh a `.geo` (it runs in a process of its own); past "
+           "them it is stopped and the deck refused (a loop in the `.geo`, a mesh far too fine); raise it for a "
+           "slow mesh on purpose.")
            .gt(0.0)}));
 
   {
@@ -204,7 +209,7 @@ std::vector<ListSpec> build_schema() {
     auto l = list("Boundary Conditions", "Boundary Conditions",
                   "Loads and prescribed displacements. Parameters common to all types are in the "
                   "next table, type-specific ones in the tables after it. A load's name (its sublist name) heads CSV "
-                  "columns and plot labels: letters, digits, spaces and `_ . + -` only.");
+                  "columns and plot labels: letters, digits, spaces and `_ . + -` only, at most 100 characters.");
     l.named_sublists = "load";
     s.push_back(l);
   }
@@ -390,7 +395,7 @@ std::vector<ListSpec> build_schema() {
                       "the deck's file name without `.xml`, so each deck has its own folder by default; `--output` "
                       "overrides. A run writes only into a new or empty folder or a Stentor results folder, never "
                       "into the deck's own folder."),
-                   str("basename", "stentor", "File name stem.").allowed("letters, digits, spaces, `_ . + -`"),
+                   str("basename", "stentor", "File name stem.").allowed("letters, digits, spaces, `_ . + -`; at most 100 characters"),
                    integer("every", 1, "Write fields every N converged steps (and at t = 0, at `times`, at the end of every stage and of the run).").ge(1),
                    boolean("fields", true, "HDF5/XDMF field output on/off."),
                    str("field list", "default",
@@ -442,7 +447,7 @@ std::vector<ListSpec> build_schema() {
            .le(0.5)}));
   {
     auto l = list("Output/Probes", "Output->Probes", "Points whose displacement history is recorded. Probe names "
-                  "head CSV columns: letters, digits, spaces and `_ . + -` only.");
+                  "head CSV columns: letters, digits, spaces and `_ . + -` only, at most 100 characters.");
     l.named_sublists = "probe";
     s.push_back(l);
   }
@@ -453,7 +458,7 @@ std::vector<ListSpec> build_schema() {
                   "Frictional contact of slave nodes against rigid analytic obstacles or the boundary of another "
                   "deformable body (docs/contact.md), solved by the primal-dual active set "
                   "(semi-smooth Newton) method inside the Newton loop. Without this sublist no contact work is done. "
-                  "Pair names head CSV columns: letters, digits, spaces and `_ . + -` only.");
+                  "Pair names head CSV columns: letters, digits, spaces and `_ . + -` only, at most 100 characters.");
     l.named_sublists = "contact pair";
     s.push_back(l);
   }
@@ -521,7 +526,7 @@ std::vector<ListSpec> build_schema() {
                   "pairs active in it, and optional ramps in stage-local time. Without `Stages` the run is one "
                   "interval [0, `Stepping->end time`]; with it, `Stepping->end time` and `steps` are not used (the other "
                   "`Stepping` parameters apply to every stage, `min dt` 0 meaning 1e-6 x each stage's step). "
-                  "Stage names appear in the log and head no file: letters, digits, spaces and `_ . + -` only.");
+                  "Stage names appear in the log and head no file: letters, digits, spaces and `_ . + -` only, at most 100 characters.");
     l.named_sublists = "stage";
     s.push_back(l);
   }

@@ -30,7 +30,10 @@ namespace {
 namespace fs = std::filesystem;
 
 // gnuplot gets this long per plot; a plot is an extra, never a reason to hang or fail a run.
-constexpr std::chrono::seconds kPlotTimeLimit{60};
+std::chrono::milliseconds g_plot_time_limit{std::chrono::seconds(60)};
+// Set when gnuplot ran past the limit once: the later plots of the run are not tried (their
+// scripts are still written), so a gnuplot that hangs costs one limit, not one per plot.
+bool g_gnuplot_stopped = false;
 
 // Splits one CSV line (RFC 4180 quoting) into fields.
 std::vector<std::string> split_csv_line(const std::string& line) {
@@ -75,16 +78,21 @@ std::string gp_string(const std::string& s) {
   return r + "'";
 }
 
-// Waits for `pid` at most `limit`: 1 when it exited (status set), 0 when it ran past the
-// limit (then it is killed and reaped), -1 when waitpid failed.
-int wait_limited(pid_t pid, std::chrono::seconds limit, int& status) {
+// Waits for `pid` (the leader of its own process group) at most `limit`: 1 when it
+// exited (status set), 0 when it ran past the limit (then its whole group is killed and
+// it is reaped), -1 when waitpid failed. Whatever it left running is killed either way.
+int wait_limited(pid_t pid, std::chrono::milliseconds limit, int& status) {
+  struct KillGroup {
+    pid_t pid;
+    ~KillGroup() { ::kill(-pid, SIGKILL); }
+  } kill_group{pid};
   const auto deadline = std::chrono::steady_clock::now() + limit;
   for (;;) {
     const pid_t w = ::waitpid(pid, &status, WNOHANG);
     if (w == pid) return 1;
     if (w < 0 && errno != EINTR) return -1;
     if (std::chrono::steady_clock::now() >= deadline) {
-      ::kill(pid, SIGKILL);
+      ::kill(-pid, SIGKILL);
       while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
       }
       return 0;
@@ -99,6 +107,11 @@ bool warn(const std::string& msg) {
 }
 
 }  // namespace
+
+void set_plot_time_limit(std::chrono::milliseconds limit) {
+  g_plot_time_limit = limit;
+  g_gnuplot_stopped = false;
+}
 
 bool gnuplot_available() {
   const char* path = std::getenv("PATH");
@@ -162,20 +175,46 @@ bool run_gnuplot(const fs::path& script, const fs::path& png) {
 #endif
   std::string arg0 = "gnuplot", arg1 = script.string();
   char* argv[] = {arg0.data(), arg1.data(), nullptr};
+  posix_spawnattr_t attr;
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setpgroup(&attr, 0);  // its own process group: stopped with its helpers
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
   pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, "gnuplot", &fa, nullptr, argv, environ);
+  const int rc = posix_spawnp(&pid, "gnuplot", &fa, &attr, argv, environ);
   posix_spawn_file_actions_destroy(&fa);
+  posix_spawnattr_destroy(&attr);
   if (rc != 0) return warn("cannot run gnuplot");
   int status = 0;
-  const int w = wait_limited(pid, kPlotTimeLimit, status);
-  if (w == 0)
-    return warn("gnuplot took longer than " + std::to_string(kPlotTimeLimit.count()) + " s on " + script.string() +
-                " and was stopped");
-  if (w < 0) return warn("waitpid on gnuplot failed");
+  const int w = wait_limited(pid, g_plot_time_limit, status);
+  // A failed gnuplot may leave a truncated PNG behind (a full disk): no PNG then.
+  auto no_png = [&](const std::string& why) {
+    fs::remove(png, ec);
+    return warn(why);
+  };
+  if (w == 0) {
+    g_gnuplot_stopped = true;
+    std::ostringstream limit;
+    limit << std::chrono::duration<double>(g_plot_time_limit).count();
+    return no_png("gnuplot took longer than " + limit.str() + " s on " + script.filename().string() +
+                  " and was stopped; the later plots of this run are not tried");
+  }
+  if (w < 0) return no_png("waitpid on gnuplot failed");
   const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
   if (fs::exists(log, ec) && fs::file_size(log, ec) == 0) fs::remove(log, ec);
-  if (!ok) return warn("gnuplot failed on " + script.string() + ", see " + log);
-  if (!fs::exists(png, ec) || fs::file_size(png, ec) == 0) return warn("gnuplot wrote no " + png.string());
+  // Named without their folder: the run moves its staging folder into the results.
+  if (!ok)
+    return no_png("gnuplot failed on " + script.filename().string() + ", see " + fs::path(log).filename().string() +
+                  " beside it");
+  if (!fs::exists(png, ec) || fs::file_size(png, ec) == 0) return no_png("gnuplot wrote no " + png.string());
+  // A whole PNG ends with its IEND chunk: gnuplot exits 0 even when its write failed
+  // (a full disk, a file size limit) and leaves a truncated file.
+  static const unsigned char kEnd[12] = {0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82};
+  unsigned char tail[12] = {};
+  std::ifstream in(png, std::ios::binary);
+  in.seekg(-12, std::ios::end);
+  in.read(reinterpret_cast<char*>(tail), 12);
+  if (!in || !std::equal(tail, tail + 12, kEnd))
+    return no_png("gnuplot wrote an incomplete " + png.filename().string() + " (a full disk?)");
   return true;
 }
 
@@ -281,6 +320,7 @@ bool plot_png(const PlotTable& table, const std::string& png, const PlotSpec& sp
     std::error_code ec;
     fs::remove(png_abs, ec);  // a stale plot must not pass for a new one
     if (!gnuplot_available()) return false;
+    if (g_gnuplot_stopped) return false;  // it hung before: said once, in run_gnuplot
     return run_gnuplot(script, png_abs);
   } catch (const WriteError&) {
     throw;  // the disk is full (or the like): the run stops

@@ -1,5 +1,6 @@
 // PNG plots of CSV time series through gnuplot (optional at run time).
 #pragma once
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -40,7 +41,10 @@ struct PlotSpec {
 // (removed when empty). Every label and file name is written as a gnuplot single-quoted
 // string, where gnuplot expands nothing (no `command` substitution, no escapes): text from
 // the deck is never interpreted. Non-finite values are written as NaN (a gap in the curve).
-// gnuplot gets 60 s per plot, then is killed.
+// gnuplot gets 60 s per plot, then is killed with whatever it started (it runs in a
+// process group of its own); after that the run's later plots are not tried (their
+// scripts are written). A failed or stopped gnuplot leaves no PNG (not a truncated one),
+// nor does one that exits 0 with a PNG cut short (its write failed: a full disk).
 // Returns false when a column is missing, there is no curve or no row, gnuplot is not
 // installed, or gnuplot fails, times out or produces no PNG; the run can go on without
 // plots. Throws only WriteError, when the script itself cannot be written (a full disk:
@@ -55,5 +59,9 @@ bool plot_csv_png(const std::string& csv, const std::string& png, const std::str
 
 // True when a `gnuplot` executable is on PATH.
 bool gnuplot_available();
+
+// The time gnuplot gets per plot (60 s unless a test sets it); also forgets that gnuplot
+// was stopped before, so that plots are tried again.
+void set_plot_time_limit(std::chrono::milliseconds limit);
 
 }  // namespace stentor

@@ -7,11 +7,16 @@
 
 namespace stentor {
 
-// Reads `file` (and, recursively, every .geo it Includes or Merges by a literal file
-// name) and throws InputError("<file>:<line>: ...") at the first command that runs a
-// program, writes or deletes a file, ends the process, waits, meshes by itself, or sets
-// a General/Solver option that names a file or program. Comments and string contents
-// are not commands. Throws InputError when a file cannot be read.
+// Reads `file` (and, recursively, every file it Includes, Merges or
+// MergeWithBoundingBox's by a literal name: an Include'd file is .geo text whatever its
+// name, a Merge'd one too unless it is a .msh (then the .msh screen) or a CAD/mesh data
+// format; a name that is not a regular file, /dev/zero say, is refused) and throws
+// InputError("<file>:<line>: ...") at the first command that runs a program, writes or
+// deletes a file, ends the process, waits, meshes by itself, sets a General/Solver option
+// that names a file or program or General.AbortOnError, or a Printf/Sprintf whose format
+// is not a literal with numeric conversions (gmsh hands it to sprintf: %s or %n crash it).
+// Comments and string contents are not commands; strings are "..." or '...', with no
+// escapes, as gmsh's lexer reads them. Throws InputError when a file cannot be read.
 void screen_geo_file(const std::string& file);
 
 // The same check on `text` (for tests): `name` is the file name used in messages and

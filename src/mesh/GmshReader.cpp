@@ -1,8 +1,23 @@
 #include "mesh/GmshReader.hpp"
 
+#include <fcntl.h>
 #include <gmsh.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <thread>
 #include <cctype>
 #include <cmath>
 #include <exception>
@@ -18,6 +33,8 @@
 #include "mesh/GeoScreen.hpp"
 #include "mesh/Progress.hpp"
 #include "mesh/MshScreen.hpp"
+
+extern char** environ;
 
 namespace stentor {
 namespace {
@@ -244,9 +261,8 @@ struct RawBlock {
   std::vector<std::size_t> nodes;  // gmsh node tags
 };
 
-}  // namespace
-
-Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
+// read_mesh() in this process.
+Mesh read_mesh_here(const MeshConfig& cfg, bool verbose) {
   const std::string& file = cfg.file;
   {
     std::ifstream f(file, std::ios::binary);
@@ -407,6 +423,222 @@ Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
   make_blocks(vol_raw, m.volumes);
   make_blocks(bnd_raw, m.boundaries);
   return m;
+}
+
+// ------------------------------------------------------------- gmsh's own process
+//
+// gmsh runs the .geo language (loops, macros, includes) and meshes with no bound of its
+// own: a .geo can loop forever, recurse, crash gmsh (a bad format in Printf, a size field
+// of 1e-9 that runs out of memory inside an OpenMP region, where std::bad_alloc cannot be
+// caught), or end the process. So stentor reads every mesh in a child process
+// (`<stentor> --gmsh-helper DIR ...`, the same executable): it writes the Mesh into DIR,
+// or the input error into DIR/error.txt; a crash, an exit or a run past
+// 'Mesh->time limit' is an input error naming the file, and stentor goes on to report
+// it like any other. The child's HOME is DIR (gmsh/FLTK write preferences there) and its
+// address space is limited to the machine's memory (running out is a clean failure, not
+// the OOM killer).
+
+std::string g_helper_exe;  // empty: gmsh runs in this process
+
+constexpr const char* kMeshFile = "mesh.bin";
+constexpr const char* kErrorFile = "error.txt";
+
+std::string num17(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A temporary folder, removed with everything in it.
+struct TempDir {
+  std::string path;
+  TempDir() {
+    std::error_code ec;
+    std::string tmpl = (std::filesystem::temp_directory_path(ec) / "stentor-gmsh-XXXXXX").string();
+    if (ec) tmpl = "/tmp/stentor-gmsh-XXXXXX";
+    if (!::mkdtemp(tmpl.data()))
+      throw std::runtime_error("cannot create a temporary folder for gmsh (" + tmpl + "): " + std::strerror(errno));
+    path = tmpl;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+};
+
+std::string signal_text(int sig) {
+  const char* d = ::strsignal(sig);
+  return "signal " + std::to_string(sig) + (d ? std::string(", ") + d : std::string());
+}
+
+Mesh read_mesh_in_child(const MeshConfig& cfg, bool verbose) {
+  const std::string& file = cfg.file;
+  {
+    std::ifstream f(file, std::ios::binary);
+    if (!f) throw InputError(file + ": cannot open mesh file (missing or unreadable)");
+  }
+  // The screens first, here: nothing of a refused file ever reaches gmsh.
+  if (lower_extension(file) == ".msh")
+    screen_msh_file(file);
+  else
+    screen_geo_file(file);
+  TempDir dir;
+  std::vector<std::string> args = {g_helper_exe, "--gmsh-helper", dir.path, file, num17(cfg.size),
+                                   std::to_string(cfg.order), cfg.recombine ? "1" : "0", std::to_string(cfg.dimension),
+                                   num17(cfg.max_cells), verbose ? "1" : "0", std::to_string(::getpid())};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::vector<std::string> env_s;
+  for (char** e = environ; e && *e; ++e)
+    if (std::strncmp(*e, "HOME=", 5) != 0) env_s.emplace_back(*e);
+  env_s.push_back("HOME=" + dir.path);
+  std::vector<char*> envp;
+  for (auto& e : env_s) envp.push_back(e.data());
+  envp.push_back(nullptr);
+
+  posix_spawn_file_actions_t fa;
+  posix_spawnattr_t attr;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  const std::string log = dir.path + "/gmsh.log";
+  if (!verbose) {  // what gmsh or the C++ runtime prints when it fails: quoted in the message
+    posix_spawn_file_actions_addopen(&fa, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    posix_spawn_file_actions_adddup2(&fa, STDOUT_FILENO, STDERR_FILENO);
+  }
+  posix_spawnattr_init(&attr);
+  posix_spawnattr_setpgroup(&attr, 0);  // its own process group: stopped as a whole
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
+  pid_t pid = -1;
+  const int rc = ::posix_spawn(&pid, g_helper_exe.c_str(), &fa, &attr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&fa);
+  posix_spawnattr_destroy(&attr);
+  if (rc != 0)
+    throw std::runtime_error("cannot start gmsh's process (" + g_helper_exe + "): " + std::strerror(rc));
+
+  int status = 0;
+  bool timed_out = false;
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                            std::chrono::duration<double>(std::min(cfg.time_limit, 1e9)));
+  for (;;) {
+    const pid_t w = ::waitpid(pid, &status, WNOHANG);
+    if (w == pid) break;
+    if (w < 0 && errno != EINTR) throw std::runtime_error(std::string("waitpid on gmsh's process: ") + std::strerror(errno));
+    if (std::chrono::steady_clock::now() >= deadline) {
+      ::kill(-pid, SIGKILL);
+      while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+      }
+      timed_out = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ::kill(-pid, SIGKILL);  // anything it left running
+
+  if (timed_out) {
+    std::ostringstream os;
+    os << file << ": gmsh did not finish reading" << (lower_extension(file) == ".msh" ? "" : " and meshing")
+       << " it within 'Mesh->time limit' = " << cfg.time_limit
+       << " s and was stopped (a loop or recursion in the .geo, or a mesh far too fine?); raise 'Mesh->time limit' "
+          "to wait longer";
+    throw InputError(os.str());
+  }
+  std::string last;  // the last line gmsh's process printed
+  {
+    std::istringstream in(slurp(log));
+    for (std::string line; std::getline(in, line);)
+      if (line.find_first_not_of(" \t\r") != std::string::npos) last = line.substr(0, 300);
+  }
+  const std::string said = last.empty() ? "" : " (it said: " + last + ")";
+  if (WIFSIGNALED(status))
+    throw InputError(file + ": gmsh crashed reading or meshing it (" + signal_text(WTERMSIG(status)) + ")" + said +
+                     ": the file is malformed, or asks gmsh for more than it can do (out of memory?)");
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const std::string error = slurp(dir.path + "/" + kErrorFile);
+  if (code == 2 && !error.empty()) throw InputError(error);
+  if (code == 1 && !error.empty()) throw std::runtime_error(error);
+  if (code != 0)
+    throw InputError(file + ": gmsh ended its process with exit status " + std::to_string(code) +
+                     " while reading or meshing it" + (error.empty() ? said : ": " + error));
+  const std::string bytes = slurp(dir.path + "/" + kMeshFile);
+  try {
+    return deserialize_mesh(std::vector<char>(bytes.begin(), bytes.end()));
+  } catch (const std::exception& e) {
+    throw std::runtime_error(file + ": the mesh from gmsh's process cannot be read back: " + e.what());
+  }
+}
+
+void write_file(const std::string& path, const std::string& data) {
+  std::ofstream out(path, std::ios::binary);
+  out.write(data.data(), static_cast<std::streamsize>(data.size()));
+}
+
+}  // namespace
+
+void enable_gmsh_process(const std::string& exe) { g_helper_exe = exe; }
+
+Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
+  return g_helper_exe.empty() ? read_mesh_here(cfg, verbose) : read_mesh_in_child(cfg, verbose);
+}
+
+int gmsh_helper_main(int argc, char** argv) {
+  if (argc != 11) {
+    std::fprintf(stderr, "stentor --gmsh-helper: internal use only\n");
+    return 1;
+  }
+  // Ends with stentor: killed (a batch job's limit, SIGKILL), stentor must not leave gmsh
+  // looping in a process group of its own.
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != static_cast<pid_t>(std::atol(argv[10]))) return 1;  // it ended already
+  const std::string dir = argv[2];
+  // Address space at most the machine's memory: a mesh far too fine fails in gmsh
+  // (bad_alloc, or an abort where it cannot be caught) instead of swapping.
+  struct rlimit rl;
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  if (pages > 0 && page > 0 && ::getrlimit(RLIMIT_AS, &rl) == 0) {
+    const rlim_t phys = static_cast<rlim_t>(pages) * static_cast<rlim_t>(page);
+    if (rl.rlim_cur == RLIM_INFINITY || rl.rlim_cur > phys) {
+      rl.rlim_cur = phys;
+      ::setrlimit(RLIMIT_AS, &rl);
+    }
+  }
+  MeshConfig cfg;
+  cfg.file = argv[3];
+  cfg.size = std::strtod(argv[4], nullptr);
+  cfg.order = std::atoi(argv[5]);
+  cfg.recombine = std::atoi(argv[6]) != 0;
+  cfg.dimension = std::atoi(argv[7]);
+  cfg.max_cells = std::strtod(argv[8], nullptr);
+  const bool verbose = std::atoi(argv[9]) != 0;
+  try {
+    const Mesh m = read_mesh_here(cfg, verbose);
+    const std::vector<char> bytes = serialize_mesh(m);
+    write_file(dir + "/" + kMeshFile, std::string(bytes.begin(), bytes.end()));
+    return 0;
+  } catch (const InputError& e) {
+    write_file(dir + "/" + kErrorFile, e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    write_file(dir + "/" + kErrorFile, cfg.file + ": gmsh ran out of memory reading or meshing it; the mesh is too "
+                                       "fine for this machine (use a larger 'Mesh->size')");
+    return 2;
+  } catch (const std::exception& e) {
+    write_file(dir + "/" + kErrorFile, e.what());
+    return 1;
+  } catch (...) {
+    write_file(dir + "/" + kErrorFile, cfg.file + ": unknown error in gmsh's process");
+    return 1;
+  }
 }
 
 }  // namespace stentor

@@ -42,6 +42,20 @@ namespace stentor {
 // z = 0 plane. Orientation is NOT fixed here: a clockwise 2D surface gives
 // det J < 0 everywhere, which check_mesh() reports.
 // verbose: let gmsh print its progress to the terminal.
+//  * With enable_gmsh_process() (stentor's main does it), gmsh runs in a child process
+//    (this executable with --gmsh-helper) limited to cfg.time_limit seconds and the
+//    machine's memory: a crash, an exit, a hang or running out of memory in gmsh is an
+//    InputError naming the file ("gmsh crashed ...", "... within 'Mesh->time limit'"),
+//    and nothing gmsh writes (preferences) lands in the user's HOME. Without it (unit
+//    tests) gmsh runs in this process.
 Mesh read_mesh(const MeshConfig& cfg, bool verbose = false);
+
+// Makes read_mesh() run gmsh in a child process started from `exe`, which must answer
+// `exe --gmsh-helper ...` by calling gmsh_helper_main() (before MPI or Kokkos start).
+void enable_gmsh_process(const std::string& exe);
+
+// The child's side: reads and meshes as read_mesh() does in-process, writes the Mesh
+// (or the error) into the folder argv[2]; exit 0, 2 (input error) or 1.
+int gmsh_helper_main(int argc, char** argv);
 
 }  // namespace stentor

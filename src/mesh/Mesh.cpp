@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
 
 namespace stentor {
 namespace {
@@ -11,7 +14,109 @@ std::vector<std::string> unique_names(const std::vector<CellBlock>& blocks) {
     if (std::find(names.begin(), names.end(), b.name) == names.end()) names.push_back(b.name);
   return names;
 }
+
+// Minimal byte (de)serialiser (broadcast, gmsh process).
+struct Writer {
+  std::vector<char> buf;
+  template <class T>
+  void pod(const T& v) {
+    const char* p = reinterpret_cast<const char*>(&v);
+    buf.insert(buf.end(), p, p + sizeof(T));
+  }
+  template <class T>
+  void vec(const std::vector<T>& v) {
+    pod<std::uint64_t>(v.size());
+    const char* p = reinterpret_cast<const char*>(v.data());
+    buf.insert(buf.end(), p, p + v.size() * sizeof(T));
+  }
+  void str(const std::string& s) {
+    pod<std::uint64_t>(s.size());
+    buf.insert(buf.end(), s.begin(), s.end());
+  }
+};
+
+struct Reader {
+  const std::vector<char>& buf;
+  std::size_t pos = 0;
+  void need(std::uint64_t n) const {
+    if (n > buf.size() - pos) throw std::runtime_error("serialized mesh: truncated data");
+  }
+  template <class T>
+  T pod() {
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, buf.data() + pos, sizeof(T));
+    pos += sizeof(T);
+    return v;
+  }
+  template <class T>
+  std::vector<T> vec() {
+    const auto n = pod<std::uint64_t>();
+    if (n > (buf.size() - pos) / sizeof(T)) throw std::runtime_error("serialized mesh: truncated data");
+    std::vector<T> v(n);
+    if (n) std::memcpy(v.data(), buf.data() + pos, n * sizeof(T));
+    pos += n * sizeof(T);
+    return v;
+  }
+  std::string str() {
+    const auto n = pod<std::uint64_t>();
+    need(n);
+    std::string s(buf.data() + pos, n);
+    pos += n;
+    return s;
+  }
+};
+
+void write_blocks(Writer& w, const std::vector<CellBlock>& blocks) {
+  w.pod<std::uint64_t>(blocks.size());
+  for (const auto& b : blocks) {
+    w.str(b.name);
+    w.pod<int>(b.physical_tag);
+    w.pod<int>(static_cast<int>(b.type));
+    w.pod<int>(b.nodes_per_cell);
+    w.vec(b.conn);
+    w.vec(b.cell_id);
+  }
+}
+
+std::vector<CellBlock> read_blocks(Reader& r) {
+  const auto n = r.pod<std::uint64_t>();
+  r.need(n);  // every block takes more than one byte
+  std::vector<CellBlock> blocks(n);
+  for (auto& b : blocks) {
+    b.name = r.str();
+    b.physical_tag = r.pod<int>();
+    b.type = static_cast<CellType>(r.pod<int>());
+    b.nodes_per_cell = r.pod<int>();
+    b.conn = r.vec<GId>();
+    b.cell_id = r.vec<GId>();
+  }
+  return blocks;
+}
+
 }  // namespace
+
+std::vector<char> serialize_mesh(const Mesh& m) {
+  Writer w;
+  w.pod<int>(m.dim);
+  w.str(m.source);
+  w.vec(m.x);
+  write_blocks(w, m.volumes);
+  write_blocks(w, m.boundaries);
+  return std::move(w.buf);
+}
+
+Mesh deserialize_mesh(const std::vector<char>& buf) {
+  Reader r{buf};
+  Mesh out;
+  out.dim = r.pod<int>();
+  out.source = r.str();
+  out.x = r.vec<double>();
+  out.volumes = read_blocks(r);
+  out.boundaries = read_blocks(r);
+  if (r.pos != buf.size()) throw std::runtime_error("serialized mesh: trailing data");
+  return out;
+}
 
 std::vector<std::string> Mesh::volume_group_names() const { return unique_names(volumes); }
 std::vector<std::string> Mesh::boundary_group_names() const { return unique_names(boundaries); }

@@ -47,4 +47,10 @@ struct Mesh {
   Box bounding_box() const;
 };
 
+// The mesh as bytes and back (every field): for the broadcast and for the mesh that
+// gmsh's own process hands back (mesh/GmshReader.hpp). deserialize_mesh throws
+// std::runtime_error on truncated or trailing data.
+std::vector<char> serialize_mesh(const Mesh& m);
+Mesh deserialize_mesh(const std::vector<char>& buf);
+
 }  // namespace stentor

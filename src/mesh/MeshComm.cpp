@@ -15,77 +15,6 @@
 namespace stentor {
 namespace {
 
-// Minimal byte (de)serialiser for the broadcast.
-struct Writer {
-  std::vector<char> buf;
-  template <class T>
-  void pod(const T& v) {
-    const char* p = reinterpret_cast<const char*>(&v);
-    buf.insert(buf.end(), p, p + sizeof(T));
-  }
-  template <class T>
-  void vec(const std::vector<T>& v) {
-    pod<std::uint64_t>(v.size());
-    const char* p = reinterpret_cast<const char*>(v.data());
-    buf.insert(buf.end(), p, p + v.size() * sizeof(T));
-  }
-  void str(const std::string& s) {
-    pod<std::uint64_t>(s.size());
-    buf.insert(buf.end(), s.begin(), s.end());
-  }
-};
-
-struct Reader {
-  const std::vector<char>& buf;
-  std::size_t pos = 0;
-  template <class T>
-  T pod() {
-    T v;
-    std::memcpy(&v, buf.data() + pos, sizeof(T));
-    pos += sizeof(T);
-    return v;
-  }
-  template <class T>
-  std::vector<T> vec() {
-    const auto n = pod<std::uint64_t>();
-    std::vector<T> v(n);
-    if (n) std::memcpy(v.data(), buf.data() + pos, n * sizeof(T));
-    pos += n * sizeof(T);
-    return v;
-  }
-  std::string str() {
-    const auto n = pod<std::uint64_t>();
-    std::string s(buf.data() + pos, n);
-    pos += n;
-    return s;
-  }
-};
-
-void write_blocks(Writer& w, const std::vector<CellBlock>& blocks) {
-  w.pod<std::uint64_t>(blocks.size());
-  for (const auto& b : blocks) {
-    w.str(b.name);
-    w.pod<int>(b.physical_tag);
-    w.pod<int>(static_cast<int>(b.type));
-    w.pod<int>(b.nodes_per_cell);
-    w.vec(b.conn);
-    w.vec(b.cell_id);
-  }
-}
-
-std::vector<CellBlock> read_blocks(Reader& r) {
-  std::vector<CellBlock> blocks(r.pod<std::uint64_t>());
-  for (auto& b : blocks) {
-    b.name = r.str();
-    b.physical_tag = r.pod<int>();
-    b.type = static_cast<CellType>(r.pod<int>());
-    b.nodes_per_cell = r.pod<int>();
-    b.conn = r.vec<GId>();
-    b.cell_id = r.vec<GId>();
-  }
-  return blocks;
-}
-
 void bcast_bytes(std::vector<char>& buf, MPI_Comm comm, int root) {
   std::uint64_t n = buf.size();
   MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm);
@@ -119,25 +48,10 @@ void broadcast_mesh(Mesh& m, MPI_Comm comm, int root) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::vector<char> buf;
-  if (rank == root) {
-    Writer w;
-    w.pod<int>(m.dim);
-    w.str(m.source);
-    w.vec(m.x);
-    write_blocks(w, m.volumes);
-    write_blocks(w, m.boundaries);
-    buf.swap(w.buf);
-  }
+  if (rank == root) buf = serialize_mesh(m);
   bcast_bytes(buf, comm, root);
   if (rank == root) return;
-  Reader r{buf};
-  Mesh out;
-  out.dim = r.pod<int>();
-  out.source = r.str();
-  out.x = r.vec<double>();
-  out.volumes = read_blocks(r);
-  out.boundaries = read_blocks(r);
-  m = std::move(out);
+  m = deserialize_mesh(buf);
 }
 
 Mesh read_mesh_on_root(const MeshConfig& cfg, MPI_Comm comm, bool check, bool verbose, int root) {

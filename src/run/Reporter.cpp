@@ -1,5 +1,7 @@
 #include "run/Reporter.hpp"
 
+#include "io/WriteError.hpp"
+
 #include <mpi.h>
 
 #include <algorithm>
@@ -219,12 +221,22 @@ void Reporter::open() {
       }
       history_ = std::make_unique<CsvWriter>(stem + "_history.csv", history_columns());
       if (m_.dynamic) energy_csv_ = std::make_unique<CsvWriter>(stem + "_energy.csv", energy_columns());
+    } catch (const WriteError& e) {
+      // A failed write (a full disk, a file size limit) is a write failure like any later
+      // one: exit 3, and no MPI_Finalize, whose HDF5 shut-down crashed (SIGSEGV) on the
+      // file whose first flush failed (found by the corpus: a file size limit of 4 kB).
+      io_error = 2;
+      io_message = e.what();
     } catch (const std::exception& e) {
       io_error = 1;
       io_message = e.what();
     }
   }
   Teuchos::broadcast(*m_.comm, 0, &io_error);
+  if (io_error == 2) {
+    if (m_.rank == 0) throw WriteError("cannot create output in '" + out_dir_ + "': " + io_message);
+    throw WriteError("cannot create output");
+  }
   if (io_error) {
     if (m_.rank == 0) throw InputError("cannot create output in '" + out_dir_ + "': " + io_message);
     throw InputError("cannot create output");

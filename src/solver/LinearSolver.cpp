@@ -414,9 +414,14 @@ LinearSolver::Result LinearSolver::solve_once(const la::Vector& b, la::Vector& x
   if (!m.mg.is_null()) problem->setRightPrec(m.mg);
   problem->setProblem();
   auto params = m.belos_params;
-  if (tolerance > 0.0) {
+  // GMRES never needs more Krylov vectors than the system has rows, and Belos allocates
+  // all of them at once: 'restart' or Belos->Num Blocks = 1e9 asked for 119 GB (exit 1).
+  const auto rows = static_cast<long long>(m.A->getDomainMap()->getGlobalNumElements());
+  const bool clamp = params->isType<int>("Num Blocks") && params->get<int>("Num Blocks") > std::max(rows, 1LL);
+  if (tolerance > 0.0 || clamp) {
     params = Teuchos::rcp(new Teuchos::ParameterList(*m.belos_params));
-    params->set("Convergence Tolerance", tolerance);
+    if (tolerance > 0.0) params->set("Convergence Tolerance", tolerance);
+    if (clamp) params->set("Num Blocks", static_cast<int>(std::max(rows, 1LL)));
   }
   Belos::PseudoBlockGmresSolMgr<la::SC, la::MV, la::Operator> solver(problem, params);
   const Belos::ReturnType ret = solver.solve();

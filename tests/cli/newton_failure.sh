@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # A solve that must fail: exit status 3, "cutting dt" then a FAILED line, the
 # existing output folder untouched, the partial results kept in <out>.partial.
-# No CSV in <out>.partial holds nan or inf. Each FRAGMENT must occur in the log.
+# No CSV in <out>.partial holds nan or inf, nor any HDF5 dataset there (read with h5py:
+# Debian's /usr/bin/python3 with python3-h5py; the scan is skipped, with a note, where no
+# python has h5py). Each FRAGMENT must occur in the log.
 # --no-cut: a failure that no cut-back could help (the run stops without "cutting dt").
 # usage: newton_failure.sh [--no-cut] STENTOR WORKDIR DECK [FRAGMENT]...
 set -u
@@ -32,4 +34,29 @@ done
 for c in "$out.partial"/*.csv; do
   tail -n +2 "$c" | grep -qi -e nan -e inf && fail "$c holds nan or inf"
 done
+py=""
+for p in /usr/bin/python3 python3; do
+  "$p" -c "import h5py, numpy" 2> /dev/null && { py=$p; break; }
+done
+if ls "$out.partial"/*.h5 > /dev/null 2>&1; then
+  if [ -n "$py" ]; then
+    "$py" - "$out.partial"/*.h5 <<'PY' || fail "an HDF5 file in $out.partial holds nan or inf"
+import sys, h5py, numpy
+bad, n = [], 0
+def visit(name, obj):
+    global n
+    if isinstance(obj, h5py.Dataset) and obj.dtype.kind in "fc":
+        n += 1
+        if not numpy.all(numpy.isfinite(obj[()])):
+            bad.append(f"{f.filename}:/{name}")
+for path in sys.argv[1:]:
+    with h5py.File(path, "r") as f:
+        f.visititems(visit)
+print(f"HDF5: {n} datasets in {len(sys.argv) - 1} file(s), non-finite in: {bad or 'none'}")
+sys.exit(1 if bad else 0)
+PY
+  else
+    echo "NOTE: no python3 with h5py: the HDF5 files were not scanned"
+  fi
+fi
 echo "PASS"

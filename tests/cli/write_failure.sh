@@ -11,11 +11,28 @@
 #          a real failure: a file size limit (prlimit) set on the running process, a
 #          little above its .h5's size, makes HDF5's writes fail with EFBIG ("File too
 #          large"); skipped (77) without prlimit
+#        write_failure.sh STENTOR WORKDIR DECK tmpfs KB FRAGMENT
+#          a real full disk: the output folder on a tmpfs of KB kilobytes (in a mount
+#          namespace of its own: unshare -m; skipped (77) where mounting is not allowed)
 set -u
 . "$(dirname "$0")/lib.sh"
 stentor=$1 work=$2 deck=$3 mode=$4
-rm -rf "$work" && mkdir -p "$work" && cd "$work" || fail "cannot make $work"
-out=$work/results
+if [ "$mode" = tmpfs ] && [ -z "${STENTOR_TEST_IN_NS:-}" ]; then
+  rm -rf "$work" && mkdir -p "$work/disk" || fail "cannot make $work"
+  if ! unshare -m true 2> /dev/null || ! unshare -m mount -t tmpfs -o size=4k tmpfs "$work/disk" 2> /dev/null; then
+    echo "SKIP: cannot mount a tmpfs here (unshare -m / mount not permitted)"
+    exit 77
+  fi
+  STENTOR_TEST_IN_NS=1 exec unshare -m bash "$0" "$@"
+fi
+if [ "$mode" = tmpfs ]; then
+  mount -t tmpfs -o size="$5k" tmpfs "$work/disk" || fail "mount failed"
+  cd "$work" || fail "cannot enter $work"
+  out=$work/disk/results
+else
+  rm -rf "$work" && mkdir -p "$work" && cd "$work" || fail "cannot make $work"
+  out=$work/results
+fi
 make_results "$out"
 snapshot "$out" > snap.before
 rows() { tail -n +2 "$1" | wc -l; }
@@ -41,6 +58,11 @@ fsize)
   wait $pid
   rc=$?
   ;;
+tmpfs)
+  frag=$6 maxrows=""
+  "$stentor" --output "$out" "$deck" > stdout.txt 2> stderr.txt
+  rc=$?
+  ;;
 *) fail "unknown mode $mode" ;;
 esac
 echo "--- exit $rc; stderr:"; cat stderr.txt
@@ -50,7 +72,7 @@ grep -qF -- "$frag" stderr.txt || fail "stderr does not contain '$frag'"
 grep -qF -- "$out" stderr.txt || fail "stderr does not name the file in $out(.partial)"
 grep -q "^Results in " stdout.txt && fail "the run reported results"
 check_results_untouched "$out" snap.before
-[ -f "$out.partial/stentor_history.csv" ] || fail "the partial results were not kept"
+[ "$mode" = tmpfs ] || [ -f "$out.partial/stentor_history.csv" ] || fail "the partial results were not kept"
 if [ -n "$maxrows" ]; then
   n=$(rows "$out.partial/stentor_history.csv")
   [ "$n" -le "$maxrows" ] || fail "the run went on after the failed write: $n history rows, expected <= $maxrows"

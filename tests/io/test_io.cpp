@@ -4,6 +4,7 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -18,6 +19,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "io/Csv.hpp"
@@ -916,4 +918,84 @@ TEST(Plot, LabelsAreNeverInterpreted) {
   const std::string script = slurp(dir / "p`touch PWNED2`.gp");
   EXPECT_NE(script.find("'pull`touch PWNED`_x'"), std::string::npos) << script;
   EXPECT_NE(script.find("'it''s \\\"q\\\"'"), std::string::npos) << script;
+}
+
+// A gnuplot that fails or hangs never fails or stalls a run (issue 16): a fake gnuplot
+// first on PATH. One that exits 1 after writing half a PNG, or 0 after a PNG cut short
+// (a full disk): no plot, no PNG left, the script kept. One that hangs (and started a child of its own): stopped with its child
+// after the limit (1 s here; 60 s in a run), no PNG; the next plot is not tried at all.
+namespace {
+bool process_alive(long pid) {
+  std::ifstream st("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(st, line)) return false;
+  const std::size_t close = line.rfind(')');
+  return close != std::string::npos && close + 2 < line.size() && line[close + 2] != 'Z';
+}
+long read_pid(const fs::path& f) {
+  std::ifstream in(f);
+  long pid = 0;
+  in >> pid;
+  return pid;
+}
+}  // namespace
+
+TEST(Plot, FailingOrHangingGnuplotEndsWithoutPlot) {
+  const fs::path dir = scratch("plot_fake_gnuplot");
+  const fs::path bin = dir / "bin";
+  fs::create_directories(bin);
+  const std::string old_path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  ::setenv("PATH", (bin.string() + ":" + old_path).c_str(), 1);
+  struct Restore {
+    std::string path;
+    ~Restore() {
+      ::setenv("PATH", path.c_str(), 1);
+      set_plot_time_limit(std::chrono::seconds(60));
+    }
+  } restore{old_path};
+  PlotTable t;
+  t.add("time", {0.0, 1.0});
+  t.add("u", {0.0, 2.0});
+  const PlotSpec spec{"u", "time [s]", "u [m]", "time", {{"u", "u", ""}}, true};
+  auto fake = [&](const std::string& body) {
+    {
+      std::ofstream f(bin / "gnuplot");
+      f << "#!/bin/sh\n" << body << "\n";
+    }
+    fs::permissions(bin / "gnuplot", fs::perms::owner_all);
+  };
+
+  fake("printf '\\211PNG half' > \"$(basename \"$1\" .gp).png\"\necho 'broken' >&2\nexit 1");
+  ASSERT_TRUE(gnuplot_available());
+  EXPECT_FALSE(plot_png(t, (dir / "failed.png").string(), spec));
+  EXPECT_FALSE(fs::exists(dir / "failed.png"));
+  EXPECT_TRUE(fs::exists(dir / "failed.gp"));
+  EXPECT_EQ(slurp(dir / "failed.gp.log"), "broken\n");
+
+  // Exit 0 with a PNG cut short (its write failed, a full disk): no PNG either.
+  fake("printf '\\211PNG\\r\\n\\032\\n0123456789' > \"$(basename \"$1\" .gp).png\"\nexit 0");
+  EXPECT_FALSE(plot_png(t, (dir / "cut.png").string(), spec));
+  EXPECT_FALSE(fs::exists(dir / "cut.png"));
+  set_plot_time_limit(std::chrono::seconds(1));
+  fake("echo $$ > '" + (dir / "gnuplot.pid").string() + "'\nsleep 300 &\necho $! > '" +
+       (dir / "child.pid").string() + "'\nprintf '\\211PNG' > \"$(basename \"$1\" .gp).png\"\nwait");
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_FALSE(plot_png(t, (dir / "hung.png").string(), spec));
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_GE(waited, 0.9);
+  EXPECT_LT(waited, 10.0);
+  EXPECT_FALSE(fs::exists(dir / "hung.png"));
+  EXPECT_TRUE(fs::exists(dir / "hung.gp"));
+  const long gp = read_pid(dir / "gnuplot.pid"), child = read_pid(dir / "child.pid");
+  ASSERT_GT(gp, 0);
+  ASSERT_GT(child, 0);
+  for (int i = 0; i < 100 && (process_alive(gp) || process_alive(child)); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_FALSE(process_alive(gp)) << "gnuplot " << gp;
+  EXPECT_FALSE(process_alive(child)) << "its child " << child;
+  // gnuplot hung once: the next plot is not tried (no wait), its script still written.
+  const auto t1 = std::chrono::steady_clock::now();
+  EXPECT_FALSE(plot_png(t, (dir / "next.png").string(), spec));
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(), 0.5);
+  EXPECT_TRUE(fs::exists(dir / "next.gp"));
 }

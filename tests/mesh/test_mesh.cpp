@@ -483,6 +483,54 @@ TEST(GeoScreen, RefusesCommandsThatRunOrWrite) {
   EXPECT_FALSE(fs::exists(tmp.file("PWNED")));
 }
 
+// Ways a command hid from the screen (found by the hostile-input corpus, issue 16; each
+// ran `touch` through gmsh 4.8): gmsh's lexer takes '...' as a string too and has no
+// escapes ("\" is a string holding a backslash); Include parses any file as .geo, and
+// Merge/MergeWithBoundingBox parse any file that is not a mesh or CAD format; options may
+// be written "General . X"; General.AbortOnError = 4 makes gmsh exit at an Error(); a
+// Printf/Sprintf format is handed to sprintf with numbers (%s, %n crash or write memory).
+TEST(GeoScreen, RefusesCommandsHiddenFromTheFirstScreen) {
+  TempDir tmp;
+  const std::string dir = tmp.path.string();
+  auto refused = [&](const std::string& text, std::initializer_list<std::string> fragments) {
+    SCOPED_TRACE(text);
+    expect_input_error([&] { screen_geo_text(text, "x.geo", dir); }, fragments);
+  };
+  refused("Printf('\"');\nSystemCall 'touch PWNED';\nPrintf('\"');\n", {"x.geo:2: 'SystemCall'"});
+  refused("Printf(\"\\\");\nSystemCall \"touch PWNED\";\nPrintf(\"\\\");\n", {"x.geo:2: 'SystemCall'"});
+  tmp.write("cmds.txt", "\nSystemCall \"touch PWNED\";\n");
+  tmp.write("cmds", "Exit;\n");
+  tmp.write("inc.GEO", "Sleep 10;\n");
+  refused("Include \"cmds.txt\";", {"cmds.txt:2: 'SystemCall'"});
+  refused("Merge \"cmds.txt\";", {"cmds.txt:2: 'SystemCall'"});
+  refused("MergeWithBoundingBox \"cmds.txt\";", {"cmds.txt:2: 'SystemCall'"});
+  refused("Include \"cmds\";", {"cmds:1: 'Exit'"});
+  refused("Include \"inc.GEO\";", {"inc.GEO:1: 'Sleep'"});
+  refused("MergeWithBoundingBox StrCat(\"cm\", \"ds\");", {"x.geo:1: 'MergeWithBoundingBox' needs a literal"});
+  refused("Include \"/dev/zero\";", {"x.geo:1: 'Include' names '/dev/zero', which is not a regular file"});
+  refused("Include \"/\";", {"which is not a regular file"});
+  refused("Merge \"nope.geo\";", {"x.geo:1: 'Merge' names", "nope.geo', which does not exist"});
+  refused("General . OptionsFileName = \"/tmp/x\";", {"x.geo:1: 'General' sets an option that names a file"});
+  refused("General.AbortOnError = 4;\nError(\"x\");", {"x.geo:1: 'General' sets General.AbortOnError"});
+  refused("SendToServer \"x\";", {"x.geo:1: 'SendToServer' runs a program"});
+  refused("Printf(\"%s %s\", 1, 2);", {"x.geo:1: 'Printf' has a format conversion other than a number's"});
+  refused("x = 1;\nPrintf('%n');", {"x.geo:2: 'Printf' has a format conversion"});
+  refused("s = Sprintf(\"%999999999g\", 1);", {"'Sprintf' has a format width or precision of more than 3 digits"});
+  refused("Printf(StrCat(\"%\", \"n\"));", {"'Printf' needs a literal \"format\""});
+  // A merged .msh goes through the .msh screen.
+  tmp.write("bad.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 1 2\n2 1 0 5\n1\n2\n0 0 0\n1 0 0\n$EndNodes\n");
+  refused("Merge \"bad.msh\";", {"bad.msh: $Nodes section"});
+  // Still accepted: quotes of either kind holding the other, numeric formats, data files.
+  tmp.write("part.step", "ISO-10303-21;\n");
+  EXPECT_NO_THROW(screen_geo_text("Printf('say \"hi\" %g', 1);\nPrintf(\"it's %5.2f%%\", 2);\n"
+                                  "s = Sprintf(\"%g * (%g + %e)\", 1, 2, 3);\nGeneral.Terminal = 1;\n"
+                                  "Merge \"part.step\";\n",
+                                  "x.geo", dir));
+  for (const char* f : {"artery_ring.geo", "artery_ring_pins.geo", "necking_bar.geo", "s4_stent_artery.geo",
+                        "s3_ring_foundation.geo", "ironing.geo", "hertz.geo"})
+    EXPECT_NO_THROW(screen_geo_file(input(f))) << f;
+}
+
 // Meshing is bounded: a size far too small for the geometry is refused before gmsh
 // meshes (it used to run for minutes or die of std::bad_alloc); the limit can be raised.
 TEST(GmshReader, CellEstimateBoundsMeshing) {

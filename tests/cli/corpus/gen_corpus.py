@@ -9,11 +9,16 @@ negative/zero values, absurd mesh sizes, hostile file names, unwritable output
 folders, truncated and binary files, entity bombs, deep nesting) and OUT_DIR/meshes/
 *.msh (a valid gmsh 4.1 ASCII square and its malformed variants, each with a deck
 that reads it). OUT_DIR/cases.tsv lists one case a line:
-    name <TAB> kind <TAB> extra stentor arguments (space-separated, may be empty) <TAB> deck
+    name <TAB> kind <TAB> extra stentor arguments <TAB> deck [<TAB> flags]
+(arguments space-separated, or a JSON list when they hold spaces; flags: see
+issue16_cases). OUT_DIR/geo holds hostile .geo files and OUT_DIR/sentinel is the folder
+injected commands try to write into (it must stay empty).
 The output is deterministic (a fixed seed). Only the Python standard library is used.
 """
+import json
 import os
 import random
+import re
 import sys
 import xml.etree.ElementTree as ET
 
@@ -344,16 +349,594 @@ MESH_DECK = """<ParameterList name="stentor">
 """
 
 
+# ------------------------------------------------------------ issue 16: targeted classes
+#
+# Every case below may carry flags (the 5th column of cases.tsv, space-separated):
+#   run            a real run follows a passing --check (the case is cheap)
+#   np2            also one of the 2-rank cases (run_corpus.py --np2)
+#   concurrent=N   N runs of the deck into one output folder at once (no --check)
+#   failwrite=SPEC STENTOR_TEST_FAIL_WRITE=SPEC for the run (src/io/WriteError.hpp)
+#   fsize=BYTES    a file size limit (RLIMIT_FSIZE) on the run
+#   tmpfs=BYTES    the run writes into a tmpfs of that size (skipped where mount fails)
+#   timeout=S      a longer wall-clock limit for this case
+#   slow           run only with run_corpus.py --slow (it takes minutes by design)
+# Injected commands try to create PWNED_<case> files: relative to the working folder
+# of whatever runs them, and in the corpus' sentinel folder (absolute, and through
+# $PWN_DIR, which run_corpus.py points at it). run_corpus.py asserts none appears.
+
+STATIC_DECK = """<ParameterList name="stentor">
+  <ParameterList name="Problem">
+    <Parameter name="title" type="string" value="corpus: static pull"/>
+  </ParameterList>
+  <ParameterList name="Mesh">
+    <Parameter name="file" type="string" value="{mesh}"/>
+    <Parameter name="size" type="double" value="0.5"/>
+  </ParameterList>
+  <ParameterList name="Materials">
+    <ParameterList name="rubber">
+      <Parameter name="C1" type="double" value="0.5e6"/>
+      <Parameter name="D" type="double" value="0.35e6"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Bodies">
+    <ParameterList name="block">
+      <Parameter name="material" type="string" value="rubber"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Boundary Conditions">
+    <ParameterList name="clamp">
+      <Parameter name="type" type="string" value="Dirichlet"/>
+      <Parameter name="boundary" type="string" value="left"/>
+    </ParameterList>
+    <ParameterList name="pull">
+      <Parameter name="type" type="string" value="Dirichlet"/>
+      <Parameter name="boundary" type="string" value="right"/>
+      <Parameter name="components" type="string" value="x"/>
+      <Parameter name="values" type="Array(double)" value="{{0.1}}"/>
+    </ParameterList>
+    <ParameterList name="push">
+      <Parameter name="type" type="string" value="traction"/>
+      <Parameter name="boundary" type="string" value="top"/>
+      <Parameter name="traction" type="Array(double)" value="{{0, -1e4}}"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Stepping">
+    <Parameter name="end time" type="double" value="1.0"/>
+    <Parameter name="steps" type="int" value="2"/>
+  </ParameterList>
+  <ParameterList name="Linear Solver">
+    <Parameter name="method" type="string" value="direct"/>
+  </ParameterList>
+  <ParameterList name="Output">
+    <Parameter name="basename" type="string" value="st"/>
+    <ParameterList name="Probes">
+      <ParameterList name="corner">
+        <Parameter name="point" type="Array(double)" value="{{1, 1}}"/>
+      </ParameterList>
+    </ParameterList>
+  </ParameterList>
+</ParameterList>
+"""
+
+DYNAMIC_DECK = """<ParameterList name="stentor">
+  <ParameterList name="Problem">
+    <Parameter name="title" type="string" value="corpus: block sliding on a plane"/>
+    <Parameter name="analysis" type="string" value="dynamic"/>
+  </ParameterList>
+  <ParameterList name="Mesh">
+    <Parameter name="file" type="string" value="{mesh}"/>
+    <Parameter name="size" type="double" value="0.5"/>
+  </ParameterList>
+  <ParameterList name="Materials">
+    <ParameterList name="rubber">
+      <Parameter name="C1" type="double" value="0.5e6"/>
+      <Parameter name="D" type="double" value="0.35e6"/>
+      <Parameter name="density" type="double" value="1000"/>
+      <Parameter name="viscosity" type="double" value="1000"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Bodies">
+    <ParameterList name="block">
+      <Parameter name="material" type="string" value="rubber"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Boundary Conditions">
+    <ParameterList name="gravity">
+      <Parameter name="type" type="string" value="body force"/>
+      <Parameter name="force" type="Array(double)" value="{{0, -2e5}}"/>
+      <Parameter name="ramp" type="string" value="constant"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Initial Conditions">
+    <Parameter name="velocity" type="Array(double)" value="{{1.0, 0.0}}"/>
+  </ParameterList>
+  <ParameterList name="Contact">
+    <ParameterList name="floor">
+      <Parameter name="slave" type="string" value="bottom"/>
+      <Parameter name="obstacle" type="string" value="plane"/>
+      <Parameter name="point" type="Array(double)" value="{{0.0, 0.0}}"/>
+      <Parameter name="normal" type="Array(double)" value="{{0.0, 1.0}}"/>
+      <Parameter name="friction" type="double" value="0.3"/>
+    </ParameterList>
+  </ParameterList>
+  <ParameterList name="Stepping">
+    <Parameter name="end time" type="double" value="0.01"/>
+    <Parameter name="steps" type="int" value="5"/>
+  </ParameterList>
+  <ParameterList name="Linear Solver">
+    <Parameter name="method" type="string" value="direct"/>
+  </ParameterList>
+  <ParameterList name="Output">
+    <Parameter name="basename" type="string" value="dyn"/>
+    <ParameterList name="Probes">
+      <ParameterList name="corner">
+        <Parameter name="point" type="Array(double)" value="{{1, 1}}"/>
+      </ParameterList>
+    </ParameterList>
+  </ParameterList>
+</ParameterList>
+"""
+
+
+def find_path(root, path):
+    """The element at 'A->B->name' below `root` (lists and parameters by name), or None."""
+    node = root
+    for part in path.split("->"):
+        node = next((e for e in node if e.get("name") == part), None)
+        if node is None:
+            return None
+    return node
+
+
+def set_path(xml_text, path, ptype, value):
+    """`xml_text` with the parameter at 'A->B->name' set (sublists and parameter added
+    where absent)."""
+    root = ET.fromstring(xml_text)
+    *lists, pname = path.split("->")
+    node = root
+    for part in lists:
+        nxt = next((e for e in node if e.get("name") == part and e.tag == "ParameterList"), None)
+        if nxt is None:
+            nxt = ET.SubElement(node, "ParameterList", name=part)
+        node = nxt
+    p = next((e for e in node if e.get("name") == pname and e.tag == "Parameter"), None)
+    if p is None:
+        p = ET.SubElement(node, "Parameter", name=pname)
+    p.set("type", ptype)
+    p.set("value", value)
+    return ET.tostring(root, encoding="unicode")
+
+
+def rename_path(xml_text, path, new_name, refs=()):
+    """`xml_text` with the sublist at `path` renamed, and every parameter value in
+    `refs` (paths) that named it renamed too."""
+    root = ET.fromstring(xml_text)
+    old = find_path(root, path).get("name")
+    find_path(root, path).set("name", new_name)
+    for r in refs:
+        e = find_path(root, r)
+        if e is not None and e.get("value") == old:
+            e.set("value", new_name)
+    return ET.tostring(root, encoding="unicode")
+
+
+def payloads(cid, sentinel):
+    """(label, text) pairs: a command for the shell (backquotes, $(...)), for gnuplot
+    (system(), quote breaking, a newline then !), and file-name oddities."""
+    rel = f"touch PWNED_{cid}"
+    env = f'touch "$PWN_DIR/PWNED_{cid}_env"'
+    ab = f"touch {sentinel}/PWNED_{cid}_abs"
+    return [
+        ("bq", f"a`{rel}`b"), ("bqenv", f"a`{env}`b"), ("dollar", f"a$({env})b"),
+        ("sq_bq", f"a'`{ab}`'b"), ("sq_break", f"x'; system('{ab}'); print 'x"),
+        ("dq_break", f'x"; system("{ab}"); print "x'), ("concat", f"x' . system('{ab}') . 'x"),
+        ("newline", f"x\n!{ab}\n"), ("crlf", f"x\r\nsystem('{ab}')\r\n"), ("pipe", f"|{ab}"),
+        ("semicolon", f"x;{rel};"), ("backslash", f"x\\'; system('{ab}') #"),
+        ("dash", "-x"), ("dots", ".."), ("space", " "), ("long", "n" * 300),
+        ("rtl", "a\u202eb"), ("enhanced", "a@{/=40 x}^{2}_y"),
+    ]
+
+
+def injection_cases(mesh, sentinel):
+    """Deck text that reaches gnuplot scripts, CSV headers or file names."""
+    st = STATIC_DECK.format(mesh=mesh)
+    dy = DYNAMIC_DECK.format(mesh=mesh)
+    out = []
+    places = [
+        ("load", st, lambda x, v: rename_path(x, "Boundary Conditions->pull", v)),
+        ("traction", st, lambda x, v: rename_path(x, "Boundary Conditions->push", v)),
+        ("probe", st, lambda x, v: rename_path(x, "Output->Probes->corner", v)),
+        ("basename", st, lambda x, v: set_path(x, "Output->basename", "string", v)),
+        ("title", st, lambda x, v: set_path(x, "Problem->title", "string", v)),
+        ("body", st, lambda x, v: rename_path(x, "Bodies->block", v)),
+        ("material", st, lambda x, v: rename_path(x, "Materials->rubber", v, ["Bodies->block->material"])),
+        ("directory", st, lambda x, v: set_path(x, "Output->directory", "string", "out_" + v)),
+        ("contact", dy, lambda x, v: rename_path(x, "Contact->floor", v)),
+        ("dynprobe", dy, lambda x, v: rename_path(x, "Output->Probes->corner", v)),
+        ("stage", st, lambda x, v: set_path(set_path(x, f"Stages->{v}->steps", "int", "1"),
+                                            "Stepping->steps", "int", "2")),
+    ]
+    for where, base, edit in places:
+        for label, _ in payloads("x", sentinel):
+            cid = f"inj_{where}_{label}"
+            text = dict(payloads(cid, sentinel))[label]
+            try:
+                xml = edit(base, text)
+            except (ValueError, TypeError):
+                continue
+            out.append((cid, "inject-" + where, xml, "", "run"))
+    # The same through --output (a folder name) and a raw newline in an attribute (XML
+    # normalises it to a space) rather than &#10;.
+    for label, text in payloads("o", sentinel):
+        if "\n" in text or "\r" in text or label in ("long", "space"):
+            continue
+        cid = f"inj_cli_output_{label}"
+        text = dict(payloads(cid, sentinel))[label]
+        out.append((cid, "inject-output", st, ["--output", "o_" + text], "run"))
+    raw = st.replace('name="pull"', 'name="pu\nll`touch PWNED_inj_rawnl`"', 1)
+    out.append(("inj_load_rawnewline", "inject-load", raw, "", "run"))
+    return out
+
+
+GEO_BASE = """// corpus: the unit square of block2d.geo
+Point(1) = {0, 0, 0, 0.5};
+Point(2) = {1, 0, 0, 0.5};
+Point(3) = {1, 1, 0, 0.5};
+Point(4) = {0, 1, 0, 0.5};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Line(3) = {3, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Physical Surface("block") = {1};
+Physical Curve("left") = {4};
+Physical Curve("right") = {2};
+Physical Curve("bottom") = {1};
+Physical Curve("top") = {3};
+"""
+
+
+SLOW_GEO = ("loop", "loop_nested", "recursion", "mesh_smoothing")
+
+
+def geo_cases(geodir, sentinel, bad_msh):
+    """.geo files that try to run programs, write files, end the process, loop, or
+    mesh without bounds, each read by the static deck (and its run where --check passes)."""
+    s = sentinel
+    other = os.path.join(geodir, "other")
+    os.makedirs(other, exist_ok=True)
+    # Helper files an Include/Merge can reach: commands in files without a .geo name.
+    def helper(name, text):
+        p = os.path.join(other, name)
+        write(p, text)
+        return p
+    cases = {
+        "systemcall": 'SystemCall "touch {s}/PWNED_{id}";',
+        "system": 'System "touch {s}/PWNED_{id}";',
+        "nonblocking": 'NonBlockingSystemCall "touch {s}/PWNED_{id}";',
+        "onelabrun": 'OnelabRun("x", "touch {s}/PWNED_{id}");',
+        "onelabaction": 'OnelabAction "x";',
+        "printf_to_file": 'Printf("x") > "{s}/PWNED_{id}";',
+        "printf_append": 'Printf("x") >> "{s}/PWNED_{id}";',
+        "printf_relative": 'Printf("x") > "PWNED_{id}";',
+        "save": 'Save "{s}/PWNED_{id}.msh";',
+        "print": 'Print "{s}/PWNED_{id}.png";',
+        "createdir": 'CreateDir "{s}/PWNED_{id}";',
+        "exit": "Exit;",
+        "abort": "Abort;",
+        "sleep": "Sleep 1000;",
+        "mesh2": "Mesh 2;",
+        "refinemesh": "RefineMesh;",
+        "abort_on_error": 'General.AbortOnError = 4;\nError("x");',
+        "solver_executable": 'Solver.Executable0 = "/bin/sh";\nOnelabRun("x");',
+        "general_filename": 'General.DefaultFileName = "{s}/PWNED_{id}.geo";',
+        "save_options": 'General.OptionsFileName = "{s}/PWNED_{id}.opt";\nGeneral.SaveOptions = 1;',
+        "single_quotes": "Printf('\"');\nSystemCall 'touch {s}/PWNED_{id}';\nPrintf('\"');",
+        "backslash": 'Printf("\\");\nSystemCall "touch {s}/PWNED_{id}";\nPrintf("\\");',
+        "comment_trick": '/* "*/ SystemCall "touch {s}/PWNED_{id}"; // "',
+        "include_txt": 'Include "{h:inc.txt}";',
+        "include_noext": 'Include "{h:incfile}";',
+        "merge_txt": 'Merge "{h:inc.txt}";',
+        "merge_bbox": 'MergeWithBoundingBox "{h:inc.txt}";',
+        "merge_bbox_geo": 'MergeWithBoundingBox "{h:inc2.geo}";',
+        "include_upper": 'Include "{h:inc.GEO}";',
+        "include_geo": 'Include "{h:inc3.geo}";',
+        "include_exit": 'Include "{h:exit.geo}";',
+        "include_passwd": 'Include "/etc/passwd";',
+        "include_devzero": 'Include "/dev/zero";',
+        "include_stdin": 'Include "/dev/stdin";',
+        "include_proc": 'Include "/proc/self/environ";',
+        "include_dir": 'Include "/";',
+        "include_missing": 'Include "/nonexistent/x.geo";',
+        "include_traversal": 'Include "../../../../../../../../etc/hostname";',
+        "include_computed": 'Include StrCat("in", "c.geo");',
+        "include_self": 'Include "{self}";',
+        "merge_bad_msh": 'Merge "{bad_msh}";',
+        "merge_garbage_step": 'SetFactory("OpenCASCADE");\nMerge "{h:garbage.step}";',
+        "shapefromfile": 'SetFactory("OpenCASCADE");\nv() = ShapeFromFile("/etc/passwd");',
+        "listfromfile": 'x() = ListFromFile("/etc/hostname");',
+        "format_s": 'Printf("%s %s %s %s", 1, 2, 3, 4);',
+        "format_n": 'Printf("%n %n %n %n");',
+        "format_width": 'Printf("%999999999g", 1);',
+        "sprintf_n": 'x = StrLen(Sprintf("%n", 1));',
+        "loop": "For i In {1:1e9}\n  x = i;\nEndFor",
+        "loop_nested": "For i In {1:1e5}\nFor j In {1:1e5}\nEndFor\nEndFor",
+        "recursion": "Macro m\n  Call m;\nReturn\nCall m;",
+        "huge_list": "x[] = {1:1e9};",
+        "mesh_size_factor": "Mesh.MeshSizeFactor = 1e-9;",
+        "mesh_size_field": 'Field[1] = MathEval;\nField[1].F = "1e-9";\nBackground Field = 1;',
+        "mesh_size_min_max": "Mesh.MeshSizeMin = 1e-9;\nMesh.MeshSizeMax = 1e-9;",
+        "mesh_transfinite": "Transfinite Curve{1} = 1e9;",
+        "mesh_layers": "Extrude {0, 0.1, 0} { Curve{3}; Layers{100000000}; }",
+        "mesh_smoothing": "Mesh.Smoothing = 1000000000;",
+        "mesh_algorithm8": "Mesh.Algorithm = 8;\nMesh.RecombineAll = 1;",
+        "mesh_threads": "General.NumThreads = 100000;",
+        "mesh_min_curve_points": "Mesh.MinimumCurvePoints = 1000000000;",
+        "delete_physicals": "Delete Physicals;",
+        "delete_model": "Delete Model;",
+        "physical_injection": 'Physical Curve("r`touch {s}/PWNED_{id}`") = {2};',
+        "getenv": 'Printf(GetEnv("HOME"));',
+        "nan_point": "Point(99) = {0/0, 1e999, 0};",
+        "tiny_point_size": "Characteristic Length{1, 2, 3, 4} = 1e-300;",
+    }
+    helper("inc.txt", f'SystemCall "touch {s}/PWNED_geo_include_txt";\n'
+                      f'SystemCall "touch {s}/PWNED_geo_merge_txt";\n'
+                      f'SystemCall "touch {s}/PWNED_geo_merge_bbox";\n')
+    helper("incfile", f'SystemCall "touch {s}/PWNED_geo_include_noext";\n')
+    helper("inc2.geo", f'SystemCall "touch {s}/PWNED_geo_merge_bbox_geo";\n')
+    helper("inc.GEO", f'SystemCall "touch {s}/PWNED_geo_include_upper";\n')
+    helper("inc3.geo", f'Include "incfile";\nPrintf("x") > "{s}/PWNED_geo_include_geo";\n')
+    helper("exit.geo", "Exit;\n")
+    helper("garbage.step", "ISO-10303-21;\nHEADER;\n#1=garbage(\x01\x02;\nEND-ISO-10303-21;\n" + "x" * 1000)
+    out = []
+    for name, tail in cases.items():
+        cid = f"geo_{name}"
+        path = os.path.join(geodir, cid + ".geo")
+        text = tail.replace("{s}", s).replace("{id}", cid).replace("{self}", path)
+        text = text.replace("{bad_msh}", bad_msh)
+        text = re.sub(r"\{h:([^}]*)\}", lambda m: os.path.join(other, m.group(1)), text)
+        write(path, GEO_BASE + text + "\n")
+        deck = STATIC_DECK.format(mesh=path)
+        if name.startswith("physical_injection"):
+            deck = deck.replace('value="right"', f'value="r`touch {s}/PWNED_{cid}`"')
+        # These run until the default 'Mesh->time limit' (600 s) stops gmsh: only with
+        # run_corpus.py --slow; their *_limited twins below show the same with 3 s.
+        flags = "run slow timeout=700" if name in SLOW_GEO else "run"
+        out.append((cid, "geo-command", deck, "", flags))
+    # The same commands with a time limit in the deck, for the ones that take forever.
+    for name in SLOW_GEO:
+        cid = f"geo_{name}_limited"
+        path = os.path.join(geodir, f"geo_{name}.geo")
+        deck = set_path(STATIC_DECK.format(mesh=path), "Mesh->time limit", "double", "3")
+        out.append((cid, "geo-command", deck, "", "run"))
+    # A mesh file whose name hides .msh content (gmsh reads it by content).
+    dat = os.path.join(geodir, "bad_msh_content.dat")
+    with open(bad_msh, "rb") as f:
+        write(dat, f.read())
+    out.append(("geo_msh_as_dat", "geo-command", STATIC_DECK.format(mesh=dat), "", "run"))
+    # A file named with shell metacharacters (no shell is involved: it is just a name).
+    odd = os.path.join(geodir, "b`touch PWNED_geo_name`$(touch PWNED_geo_name2).geo")
+    write(odd, GEO_BASE)
+    out.append(("geo_odd_name", "geo-command", STATIC_DECK.format(mesh=odd), "", "run"))
+    return out
+
+
+# Values no deck number may take silently: NaN, infinities, overflow, hex floats,
+# denormals (accepted where in range: they are finite numbers), and near-misses of the
+# number syntax.
+SCALAR_SPECIALS = {
+    "nan": "nan", "NaN": "NaN", "negnan": "-nan", "inf": "inf", "Infinity": "Infinity",
+    "neginf": "-inf", "1e999": "1e999", "neg1e999": "-1e999", "hex": "0x1p-2", "hexint": "0x10",
+    "denormal": "4.9e-324", "denormal2": "1e-310", "underflow": "1e-400", "minnormal": "2.2250738585072014e-308",
+    "trailing": "1.0abc", "twodots": "1.0.0", "comma": "1,5", "exp_only": "1e", "arabic": "\u0661",
+    "fullwidth": "\uff11", "space_inside": "1 0",
+}
+ARRAY_SPECIALS = {
+    "nan": "{nan}", "inf": "{inf}", "hex": "{0x1p-2}", "1e999": "{1e999}", "neg1e999": "{-1e999}",
+    "denormal": "{4.9e-324}", "denormal2": "{1e-310}", "mixed_nan": "{1, nan}", "spaced_inf": "{ inf , 0 }",
+    "huge2": "{1e308, 1e308}", "text": "{1, a}", "nested": "{{1}}", "semicolon": "{1; 2}",
+    "empty_item": "{1,,2}", "trailing_comma": "{1, 2,}", "hexint": "{0x10, 0}",
+}
+
+
+def nonfinite_cases(mesh):
+    st = STATIC_DECK.format(mesh=mesh)
+    dy = DYNAMIC_DECK.format(mesh=mesh)
+    out = []
+    scalars = [(st, "Materials->rubber->C1", "double"), (st, "Stepping->end time", "double"),
+               (st, "Mesh->size", "double"), (st, "Stepping->steps", "int"),
+               (dy, "Materials->rubber->density", "double"), (dy, "Contact->floor->friction", "double"),
+               (st, "Newton->relative residual tolerance", "double"), (st, "Linear Solver->tolerance", "double")]
+    arrays = [(st, "Boundary Conditions->pull->values"), (st, "Boundary Conditions->push->traction"),
+              (st, "Output->Probes->corner->point"), (dy, "Contact->floor->point"),
+              (dy, "Contact->floor->normal"), (dy, "Initial Conditions->velocity"),
+              (dy, "Boundary Conditions->gravity->force")]
+    for base, path, ptype in scalars:
+        slug = path.split("->")[-1].replace(" ", "_")
+        for label, v in SCALAR_SPECIALS.items():
+            out.append((f"num_{slug}_{label}", "nonfinite-scalar", set_path(base, path, ptype, v), "", "run"))
+    for base, path in arrays:
+        slug = "_".join(path.split("->")[-2:]).replace(" ", "_")
+        for label, v in ARRAY_SPECIALS.items():
+            out.append((f"arr_{slug}_{label}", "nonfinite-array", set_path(base, path, "Array(double)", v), "", "run"))
+    # Values that are finite but overflow what is computed from them.
+    for path, v in [("Boundary Conditions->push->traction", "{0, 1e300}"), ("Materials->rubber->C1", "1e308"),
+                    ("Materials->rubber->D", "1e-308"), ("Boundary Conditions->pull->values", "{1e200}")]:
+        typ = "Array(double)" if v.startswith("{") else "double"
+        out.append((f"overflow_{path.split('->')[-1]}", "nonfinite-overflow", set_path(st, path, typ, v), "", "run"))
+    for path, v in [("Initial Conditions->velocity", "{1e300, 0}"), ("Materials->rubber->density", "1e-300"),
+                    ("Boundary Conditions->gravity->force", "{0, -1e300}")]:
+        typ = "Array(double)" if v.startswith("{") else "double"
+        out.append((f"overflow_dyn_{path.split('->')[-1]}", "nonfinite-overflow", set_path(dy, path, typ, v), "", "run"))
+    return out
+
+
+def deep_xml_cases(mesh):
+    st = STATIC_DECK.format(mesh=mesh)
+    out = []
+    for depth in (62, 63, 64, 65, 200, 300000):
+        inner = '<ParameterList name="a">' * depth + "</ParameterList>" * depth
+        out.append((f"deep_materials_{depth}", "xml-deep",
+                    st.replace('<ParameterList name="Materials">', '<ParameterList name="Materials">' + inner, 1), "", "run"))
+    out.append(("deep_parameters", "xml-deep", st.replace("<ParameterList name=\"Problem\">",
+                "<ParameterList name=\"Problem\">" + '<Parameter name="p">' * 20000 + "</Parameter>" * 20000, 1), "", ""))
+    out.append(("deep_other_elements", "xml-deep", st.replace("</ParameterList>\n</ParameterList>",
+                "</ParameterList>" + "<x>" * 50000 + "</x>" * 50000 + "\n</ParameterList>", 1), "", ""))
+    out.append(("deep_newlines", "xml-deep", '<ParameterList name="stentor">\n' + '<ParameterList name="a">\n' * 5000
+                + "</ParameterList>\n" * 5000 + "</ParameterList>\n", "", ""))
+    out.append(("deep_comments", "xml-deep", st.replace("<ParameterList name=\"Mesh\">",
+                "<!--" + "<ParameterList name='a'>" * 100000 + "--><ParameterList name=\"Mesh\">", 1), "", "run"))
+    out.append(("deep_unclosed_valid_prefix", "xml-deep", st[: st.index("<ParameterList name=\"Bodies\">")]
+                + '<ParameterList name="a">' * 100000, "", ""))
+    out.append(("wide_many_lists", "xml-deep", st.replace("<ParameterList name=\"Bodies\">",
+                "".join(f'<ParameterList name="m{i}"><Parameter name="C1" type="double" value="1"/></ParameterList>'
+                        for i in range(20000)) + "<ParameterList name=\"Bodies\">", 1), "", ""))
+    out.append(("many_probes", "xml-deep", st.replace("<ParameterList name=\"Probes\">", "<ParameterList name=\"Probes\">"
+                + "".join(f'<ParameterList name="p{i}"><Parameter name="point" type="Array(double)" value="{{0.5, 0.5}}"/>'
+                          "</ParameterList>" for i in range(2000)), 1), "", "run"))
+    return out
+
+
+def tiny_size_cases(mesh, mesh3d):
+    out = []
+    for label, v in [("1e-7", "1e-7"), ("1e-12", "1e-12"), ("1e-200", "1e-200"), ("denormal", "1e-310"),
+                     ("smallest", "4.9e-324"), ("minnormal", "2.2250738585072014e-308"), ("neg_denormal", "-1e-310"),
+                     ("0", "0"), ("neg0", "-0")]:
+        out.append((f"size2d_{label}", "mesh-tiny", set_path(STATIC_DECK.format(mesh=mesh), "Mesh->size", "double", v), "", "run"))
+        deck3d = set_path(set_path(STATIC_DECK.format(mesh=mesh3d), "Mesh->size", "double", v),
+                          "Boundary Conditions->push->traction", "Array(double)", "{0, -1e4, 0}")
+        deck3d = set_path(deck3d, "Output->Probes->corner->point", "Array(double)", "{1, 1, 1}")
+        out.append((f"size3d_{label}", "mesh-tiny", deck3d, "", ""))
+    for label, v in [("max_cells_denormal", "1e-310"), ("max_cells_0", "0")]:
+        out.append((f"size2d_{label}", "mesh-tiny", set_path(set_path(STATIC_DECK.format(mesh=mesh), "Mesh->size", "double", "1e-4"),
+                                                               "Mesh->max cells", "double", v), "", ""))
+    # 'Mesh->max cells' raised on purpose meshes as asked: bounded by 'Mesh->time limit'.
+    big = set_path(set_path(STATIC_DECK.format(mesh=mesh), "Mesh->size", "double", "1e-4"), "Mesh->max cells", "double", "1e300")
+    out.append(("size2d_max_cells_1e300_limited", "mesh-tiny", set_path(big, "Mesh->time limit", "double", "3"), "", ""))
+    for label, v in [("0", "0"), ("neg", "-1"), ("nan", "nan"), ("inf", "inf"), ("denormal", "1e-310"), ("huge", "1e308")]:
+        out.append((f"time_limit_{label}", "mesh-tiny", set_path(STATIC_DECK.format(mesh=mesh), "Mesh->time limit", "double", v), "", "run"))
+    # The .geo's own tiny sizes (no Mesh->size): the curve mesh is made first.
+    return out
+
+
+def solver_cases(mesh):
+    base = set_path(STATIC_DECK.format(mesh=mesh), "Linear Solver->method", "string", "gmres")
+    cases = [
+        ("Belos", "Num Blocks", "int", "0"), ("Belos", "Num Blocks", "int", "-1"), ("Belos", "Num Blocks", "int", "1000000000"),
+        ("Belos", "Num Blocks", "string", "abc"), ("Belos", "Num Blocks", "double", "2.5"),
+        ("Belos", "Maximum Iterations", "int", "-1"), ("Belos", "Maximum Iterations", "int", "0"),
+        ("Belos", "Convergence Tolerance", "double", "nan"), ("Belos", "Convergence Tolerance", "double", "-1"),
+        ("Belos", "Convergence Tolerance", "double", "inf"), ("Belos", "Convergence Tolerance", "string", "tight"),
+        ("Belos", "Orthogonalization", "string", "NOPE"), ("Belos", "Verbosity", "int", "2147483647"),
+        ("Belos", "Output Frequency", "int", "-5"), ("Belos", "Implicit Residual Scaling", "string", "NOPE"),
+        ("Belos", "Maximum Restarts", "int", "-1"), ("Belos", "Block Size", "int", "0"),
+        ("MueLu", "max levels", "int", "0"), ("MueLu", "max levels", "int", "-1"), ("MueLu", "max levels", "int", "1000000"),
+        ("MueLu", "max levels", "string", "many"), ("MueLu", "smoother: type", "string", "NOPE"),
+        ("MueLu", "coarse: type", "string", "NOPE"), ("MueLu", "coarse: max size", "int", "-1"),
+        ("MueLu", "coarse: max size", "int", "0"), ("MueLu", "aggregation: type", "string", "NOPE"),
+        ("MueLu", "multigrid algorithm", "string", "NOPE"), ("MueLu", "verbosity", "string", "NOPE"),
+        ("MueLu", "number of equations", "int", "0"), ("MueLu", "number of equations", "int", "7"),
+        ("MueLu", "problem: symmetric", "string", "maybe"), ("MueLu", "reuse: type", "string", "NOPE"),
+        ("MueLu", "repartition: enable", "bool", "true"), ("MueLu", "aggregation: drop tol", "double", "nan"),
+        ("MueLu", "sa: damping factor", "double", "inf"), ("MueLu", "smoother: params", "string", "x"),
+        ("MueLu", "no such key", "int", "1"),
+        ("Ifpack2", "schwarz: overlap level", "int", "-1"), ("Ifpack2", "schwarz: overlap level", "int", "1000000"),
+        ("Ifpack2", "fact: iluk level-of-fill", "int", "-1"), ("Ifpack2", "fact: drop tolerance", "double", "nan"),
+        ("Ifpack2", "schwarz: subdomain solver name", "string", "NOPE"), ("Ifpack2", "relaxation: type", "string", "NOPE"),
+        ("Ifpack2", "schwarz: combine mode", "string", "NOPE"), ("Ifpack2", "fact: absolute threshold", "string", "x"),
+        ("Amesos2", "Transpose", "string", "maybe"), ("Amesos2", "Foo", "int", "1"), ("Amesos2", "Transpose", "bool", "true"),
+    ]
+    out = []
+    for pkg, key, typ, v in cases:
+        pre = {"MueLu": "muelu", "Ifpack2": "schwarz", "Belos": "auto", "Amesos2": "auto"}[pkg]
+        deck = set_path(base, "Linear Solver->preconditioner", "string", pre)
+        if pkg == "Amesos2":
+            deck = set_path(deck, "Linear Solver->method", "string", "direct")
+        slug = re.sub(r"[^A-Za-z0-9]+", "_", f"{pkg}_{key}_{typ}_{v}")[:60]
+        out.append((f"solver_{slug}", "solver-list", set_path(deck, f"Linear Solver->{pkg}->{key}", typ, v), "", "run"))
+    # Sublists where parameters are expected, parameters where sublists are, and the
+    # documented option combinations.
+    out.append(("solver_belos_as_param", "solver-list", set_path(base, "Linear Solver->Belos", "string", "x"), "", "run"))
+    nested = set_path(base, "Linear Solver->MueLu->level 0->smoother: type", "string", "NOPE")
+    out.append(("solver_muelu_level_list", "solver-list", set_path(nested, "Linear Solver->preconditioner", "string", "muelu"), "", "run"))
+    for pre, sub in [("schwarz", "KLU2"), ("schwarz", "RILUK"), ("schwarz", "NOPE"), ("muelu", "KLU2"), ("NOPE", "RILUK")]:
+        d = set_path(set_path(base, "Linear Solver->preconditioner", "string", pre), "Linear Solver->subdomain solver", "string", sub)
+        out.append((f"solver_combo_{pre}_{sub}", "solver-list", d, "", "run"))
+    for key, v in [("fill level", "1000000"), ("overlap", "1000000"), ("restart", "1000000000"),
+                   ("max iterations", "2147483647"), ("preconditioner reuse", "-1")]:
+        d = set_path(set_path(base, "Linear Solver->preconditioner", "string", "schwarz"), f"Linear Solver->{key}", "int", v)
+        out.append((f"solver_{key.replace(' ', '_')}_{v}", "solver-list", d, "", "run"))
+    return out
+
+
+def concurrent_cases(mesh, out_dir):
+    """Runs into one output folder at once (run_corpus.py starts them together, or 0.3 s
+    apart with `stagger`); `alt=FILE`: every other run reads that deck instead."""
+    st = set_path(STATIC_DECK.format(mesh=mesh), "Stepping->steps", "int", "6")
+    alt = os.path.join(os.path.abspath(out_dir), "decks", "concurrent_alt_deck.xml")
+    write(alt, set_path(st, "Output->basename", "string", "other"))
+    return [
+        ("concurrent_2_same", "concurrent", st, "", "concurrent=2"),
+        ("concurrent_3_same", "concurrent", st, "", "concurrent=3"),
+        ("concurrent_4_same", "concurrent", st, "", "concurrent=4"),
+        ("concurrent_2_other_basename", "concurrent", st, "", f"concurrent=2 alt={alt}"),
+        ("concurrent_2_overwrite", "concurrent", st, ["--overwrite"], "concurrent=2"),
+        ("concurrent_3_staggered", "concurrent", st, "", "concurrent=3 stagger"),
+    ]
+
+
+def write_failure_cases(mesh):
+    st = set_path(STATIC_DECK.format(mesh=mesh), "Stepping->steps", "int", "4")
+    dy = DYNAMIC_DECK.format(mesh=mesh)
+    out = []
+    for name, spec in [("history", "st_history.csv:2"), ("h5", "st.h5:2"), ("xdmf", "st.xmf"), ("log", "st.log:5"),
+                       ("gp", "st_reactions.gp"), ("probes_gp", "st_probes.gp"), ("manifest", "stentor-manifest.txt.tmp"),
+                       ("h5_first", "st.h5")]:
+        out.append((f"failwrite_{name}", "write-fail", st, "", f"failwrite={spec}"))
+    for name, spec in [("energy", "dyn_energy.csv:2"), ("energy_gp", "dyn_energy.gp")]:
+        out.append((f"failwrite_dyn_{name}", "write-fail", dy, "", f"failwrite={spec}"))
+    for size in (1, 512, 4096, 20000, 60000, 200000):
+        out.append((f"fsize_{size}", "write-fail", st, "", f"fsize={size}"))
+    for size in (4096, 32768, 131072, 262144):
+        out.append((f"tmpfs_{size}", "write-fail", st, "", f"tmpfs={size}"))
+        out.append((f"tmpfs_dyn_{size}", "write-fail", dy, "", f"tmpfs={size}"))
+    return out
+
+
+def issue16_cases(inputs, out_dir, meshdir):
+    """All the issue-16 classes: (name, kind, deck text, args, flags)."""
+    sentinel = os.path.join(os.path.abspath(out_dir), "sentinel")
+    os.makedirs(sentinel, exist_ok=True)
+    geodir = os.path.join(os.path.abspath(out_dir), "geo")
+    os.makedirs(geodir, exist_ok=True)
+    mesh = os.path.abspath(os.path.join(inputs, "block2d.geo"))
+    mesh3d = os.path.abspath(os.path.join(inputs, "block3d.geo"))
+    bad_msh = os.path.abspath(os.path.join(meshdir, "node_count_fewer.msh"))
+    cases = []
+    cases += injection_cases(mesh, sentinel)
+    cases += geo_cases(geodir, sentinel, bad_msh)
+    cases += nonfinite_cases(mesh)
+    cases += deep_xml_cases(mesh)
+    cases += tiny_size_cases(mesh, mesh3d)
+    cases += solver_cases(mesh)
+    cases += concurrent_cases(mesh, out_dir)
+    cases += write_failure_cases(mesh)
+    return cases
+
+
 def main():
     inputs, out = sys.argv[1], sys.argv[2]
     for sub in ("decks", "meshes"):
         os.makedirs(os.path.join(out, sub), exist_ok=True)
     rows = []
 
-    def add(name, kind, data, ext="xml", args=""):
+    def add(name, kind, data, ext="xml", args="", flags=""):
         path = os.path.join(out, "decks", f"{name}.{ext}")
         write(path, data)
-        rows.append((name, kind, args, path))
+        if isinstance(args, list):
+            args = json.dumps(args)
+        rows.append((name, kind, args, path, flags))
 
     decks = load_decks(inputs)
     for name, kind, xml in deck_mutants(decks, 17):
@@ -372,9 +955,11 @@ def main():
         mpath = os.path.join(meshdir, f"{name}.msh")
         write(mpath, data)
         add(f"msh_{name}", kind, MESH_DECK.format(mesh=mpath))
+    for name, kind, data, args, flags in issue16_cases(inputs, out, meshdir):
+        add(name, kind, data, args=args, flags=flags)
     with open(os.path.join(out, "cases.tsv"), "w") as f:
         for r in rows:
-            f.write("\t".join(r) + "\n")
+            f.write("\t".join(r).rstrip("\t") + "\n")
     print(f"{len(rows)} cases ({sum(1 for r in rows if r[0].startswith('msh_'))} .msh files) in {out}")
 
 
