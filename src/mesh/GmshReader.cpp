@@ -203,8 +203,7 @@ double mean_edge_length() {
 // geometry (simplices per h^dim: 2.3 in 2D, 8.5 in 3D, x4 for subdivided hexes) is
 // above cfg.max_cells. Cheap and coarse (it over-estimates thin shapes): it stops
 // a tiny size from meshing for hours or exhausting memory.
-// Returns the estimate.
-double check_cell_estimate(const MeshConfig& cfg, const std::string& file, int dim, double h, const char* source) {
+void check_cell_estimate(const MeshConfig& cfg, const std::string& file, int dim, double h, const char* source) {
   double lo[3], hi[3];
   gmsh::model::getBoundingBox(-1, -1, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
   std::vector<double> ext;
@@ -213,7 +212,7 @@ double check_cell_estimate(const MeshConfig& cfg, const std::string& file, int d
   double est = dim == 3 ? 8.5 : 2.3;
   if (dim == 3 && cfg.recombine) est *= 4.0;
   for (int c = 0; c < dim; ++c) est *= std::max(ext[static_cast<std::size_t>(c)], h) / h;
-  if (est <= cfg.max_cells) return est;
+  if (est <= cfg.max_cells) return;
   std::ostringstream os;
   os << file << ": meshing with element size " << h << " (" << source << ") would make about " << std::setprecision(3)
      << est << " cells, more than 'Mesh->max cells' = " << cfg.max_cells
@@ -223,20 +222,15 @@ double check_cell_estimate(const MeshConfig& cfg, const std::string& file, int d
 
 // Meshes the .geo model already opened: bounded by check_cell_estimate, with the
 // deck's size (or the .geo's own, estimated from the curve mesh), order and recombination.
-// Meshing longer than 10 s prints a progress line every 10 s.
 void mesh_geo(GmshSession& session, const MeshConfig& cfg, const std::string& file, int dim) {
-  double estimate = 0.0;
   if (cfg.size > 0) {
-    estimate = check_cell_estimate(cfg, file, dim, cfg.size, "'Mesh->size'");
+    check_cell_estimate(cfg, file, dim, cfg.size, "'Mesh->size'");
     gmsh_call(session, file, "mesh the geometry", [&] { set_size_max(cfg.size); });
   } else {
     gmsh_call(session, file, "mesh the curves", [&] { gmsh::model::mesh::generate(1); });
     const double h = mean_edge_length();
-    if (h > 0) estimate = check_cell_estimate(cfg, file, dim, h, "mean curve element length of the .geo's own sizes");
+    if (h > 0) check_cell_estimate(cfg, file, dim, h, "mean curve element length of the .geo's own sizes");
   }
-  std::ostringstream detail;
-  if (estimate > 0) detail << " (at most about " << std::setprecision(2) << estimate << " cells expected)";
-  const Progress progress(std::cout, "meshing  " + file, detail.str(), 10.0);
   gmsh_call(session, file, "mesh the geometry", [&] {
     gmsh::option::setNumber("Mesh.ElementOrder", cfg.order);
     gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 1);
@@ -527,6 +521,11 @@ Mesh read_mesh_in_child(const MeshConfig& cfg, bool verbose) {
 
   int status = 0;
   bool timed_out = false;
+  // gmsh reports nothing while it meshes: a line every 10 s from here (its own output goes
+  // to its log), with the time limit that will stop it.
+  std::ostringstream limit;
+  limit << " (stopped at 'Mesh->time limit' = " << cfg.time_limit << " s)";
+  const Progress progress(std::cout, "meshing  " + file, limit.str(), 10.0);
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                             std::chrono::duration<double>(std::min(cfg.time_limit, 1e9)));
