@@ -890,14 +890,18 @@ def write_failure_cases(mesh):
     st = set_path(STATIC_DECK.format(mesh=mesh), "Stepping->steps", "int", "4")
     dy = DYNAMIC_DECK.format(mesh=mesh)
     out = []
-    for name, spec in [("history", "st_history.csv:2"), ("h5", "st.h5:2"), ("xdmf", "st.xmf"), ("log", "st.log:5"),
+    for name, spec in [("history", "st_history.csv:2"), ("h5", "st.h5:2"), ("xdmf", "st.xdmf.tmp:3"), ("log", "st.log:5"),
                        ("gp", "st_reactions.gp"), ("probes_gp", "st_probes.gp"), ("manifest", "stentor-manifest.txt.tmp"),
                        ("h5_first", "st.h5")]:
         out.append((f"failwrite_{name}", "write-fail", st, "", f"failwrite={spec}"))
     for name, spec in [("energy", "dyn_energy.csv:2"), ("energy_gp", "dyn_energy.gp")]:
         out.append((f"failwrite_dyn_{name}", "write-fail", dy, "", f"failwrite={spec}"))
+    # The limit is set once the run's folder exists (run_corpus.py): 200 steps keep the
+    # run writing for a second or more after that, so it meets the .h5 and the CSV, not
+    # only the plots at the end.
+    long_run = set_path(st, "Stepping->steps", "int", "200")
     for size in (1, 512, 4096, 20000, 60000, 200000):
-        out.append((f"fsize_{size}", "write-fail", st, "", f"fsize={size}"))
+        out.append((f"fsize_{size}", "write-fail", long_run, "", f"fsize={size}"))
     for size in (4096, 32768, 131072, 262144):
         out.append((f"tmpfs_{size}", "write-fail", st, "", f"tmpfs={size}"))
         out.append((f"tmpfs_dyn_{size}", "write-fail", dy, "", f"tmpfs={size}"))
