@@ -602,9 +602,14 @@ int gmsh_helper_main(int argc, char** argv) {
   const std::string dir = argv[2];
   // Address space at most the machine's memory: a mesh far too fine fails in gmsh
   // (bad_alloc, or an abort where it cannot be caught) instead of swapping.
+  // Not where the process already maps more than half of it (AddressSanitizer's shadow
+  // memory: terabytes of address space, and every allocation would fail).
   struct rlimit rl;
   const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
-  if (pages > 0 && page > 0 && ::getrlimit(RLIMIT_AS, &rl) == 0) {
+  unsigned long long mapped_pages = 0;
+  std::ifstream("/proc/self/statm") >> mapped_pages;
+  if (pages > 0 && page > 0 && mapped_pages < static_cast<unsigned long long>(pages) / 2 &&
+      ::getrlimit(RLIMIT_AS, &rl) == 0) {
     const rlim_t phys = static_cast<rlim_t>(pages) * static_cast<rlim_t>(page);
     if (rl.rlim_cur == RLIM_INFINITY || rl.rlim_cur > phys) {
       rl.rlim_cur = phys;
