@@ -51,9 +51,13 @@ run test_plasticity ./test_plasticity
 run test_contact ./test_contact --gtest_filter="${STENTOR_ASAN_CONTACT:-Contact.StaticBlockOnPlane:Contact.ImpactPersistenceConservesEnergy:Contact.CoulombSlipAboveLimit}"
 run test_plasticity_fe ./test_plasticity_fe --gtest_filter="${STENTOR_ASAN_PLASTIC:-*}"
 # The corpus subset, without the address-space limit (ASan reserves terabytes of it)
-# and with more time (ASan runs 2-5x slower).
+# and with more time (ASan runs 2-5x slower). Left out: the .geo cases that only an
+# address-space limit stops quickly (a list of 1e9 numbers, sizes and counts without
+# bound: under ASan gmsh's process runs without one, so they run until 'Mesh->time
+# limit'; geo_huge_list went past 90 s), which the Release build's corpus covers.
+asan_skip='^(?!geo_(huge_list|mesh_size_factor|mesh_size_field|mesh_size_min_max|mesh_transfinite|mesh_layers|mesh_min_curve_points|mesh_threads|mesh_smoothing)$)'
 run cli_corpus bash "$src/tests/cli/corpus/corpus.sh" ./stentor "$src/inputs" "$PWD/asan-corpus" \
-    --subset 24 --jobs 2 --mem-mb 0 --timeout 90
+    --subset 24 --jobs 2 --mem-mb 0 --timeout 90 --match "$asan_skip"
 # Bad inputs, run as a user would (some, like a non-finite initial energy, are only
 # found when the run starts): exit 2 expected.
 rm -rf asan-out && mkdir -p asan-out
