@@ -100,6 +100,13 @@ double first_step(const Config& cfg) {
   return cfg.stages.empty() ? cfg.stepping.end_time / cfg.stepping.num_steps : cfg.stages.front().step();
 }
 
+// The state at t = 0 before the initial conditions: u = 0, the deck's step control (each
+// stage restarts it with its own step).
+RunState fresh_state(const Model& model) {
+  const SteppingConfig& st = model.cfg.stepping;
+  return RunState(model.dist->owned_map(), StepControl(st.end_time / st.num_steps, st.max_cutbacks, st.growth, st.min_step()));
+}
+
 // --check: every check a run makes before its first step, and nothing written: the names
 // in the mesh (done by Model), the stent metrics' groups, the contact pairs and the time
 // scheme (discretise: slave sets, facet types, persistence in statics), the initial state
@@ -110,8 +117,7 @@ void check_before_first_step(Model& model, Reporter& reporter, Timers& timers) {
   model.discretise(timers);
   model.check_numeric_range(first_step(cfg));
   Stepper stepper(model, timers, nullptr, nullptr);
-  const SteppingConfig& st = cfg.stepping;
-  RunState state(model.dist->owned_map(), StepControl(st.end_time / st.num_steps, st.max_cutbacks, st.growth, st.min_step()));
+  RunState state = fresh_state(model);
   if (model.dynamic) {
     const std::string bad = nonfinite_initial_state(model, stepper, state, stepper.initialize_dynamics(state));
     if (!bad.empty()) throw InputError(bad);
@@ -286,8 +292,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   std::ostringstream sink;
   std::ostream* contact_log = opts.verbose ? (verbose0 ? static_cast<std::ostream*>(&std::cout) : &sink) : nullptr;
   Stepper stepper(model, timers, verbose0 ? &std::cout : nullptr, contact_log);
-  const SteppingConfig& st = cfg.stepping;
-  RunState state(model.dist->owned_map(), StepControl(st.end_time / st.num_steps, st.max_cutbacks, st.growth, st.min_step()));
+  RunState state = fresh_state(model);
   Run run{model, stepper, reporter, state, timers, checkpoint_path(reporter, model)};
 
   if (restarting)

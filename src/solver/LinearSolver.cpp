@@ -200,6 +200,11 @@ const LinearSolver::Times& LinearSolver::times() const { return impl_->times; }
 
 void LinearSolver::setup(const la::RCP<la::CrsMatrix>& A) {
   Clock clock{impl_->times.setup, impl_->times.setups};
+  setup_or_fall_back(A);
+}
+
+// setup_once, stepping down the fallback chain while it fails on any rank.
+void LinearSolver::setup_or_fall_back(const la::RCP<la::CrsMatrix>& A) {
   for (;;) {
     std::string why;
     try {
@@ -354,7 +359,7 @@ LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x, dou
       if (threw) throw LinearSolverFailure(why);
       return res;
     }
-    setup(impl_->A_last);  // the same matrix with the new configuration (falling back further if need be), then solve again
+    setup_or_fall_back(impl_->A_last);  // the same matrix, new configuration (further down if need be; timed as this solve)
   }
 }
 

@@ -74,6 +74,7 @@ class LinearSolver {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   void setup_once(const la::RCP<la::CrsMatrix>& A);
+  void setup_or_fall_back(const la::RCP<la::CrsMatrix>& A);
   Result solve_once(const la::Vector& b, la::Vector& x, double tolerance);
   bool fall_back(const std::string& why);
   Agreement agree(const std::string& why) const;
