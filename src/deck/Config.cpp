@@ -311,6 +311,7 @@ class DeckReader {
   Ramp read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls, const std::string& key = "ramp") const;
   void read_contact(const ParameterList& pl);
   void read_stages(const ParameterList& pl, const ParameterList* stepping);
+  void read_body_initial_state(const ParameterList& sub, const std::string& path, BodyConfig& b);
   void check_analysis(bool initial_conditions, bool time_integration);
   void read_stage_analysis(const ParameterList& sub, const std::string& path, StageConfig& st);
   std::vector<bool> read_active(const ParameterList& sub, const std::string& path, const std::string& key,
@@ -923,6 +924,35 @@ void DeckReader::read_materials(const ParameterList& pl) {
   if (cfg_.materials.empty()) fail("'Materials' defines no material; add one sublist per material");
 }
 
+// A body's own initial rotation and displacement (its "initial velocity" is read above).
+void DeckReader::read_body_initial_state(const ParameterList& sub, const std::string& path, BodyConfig& b) {
+  const ListSpec& ls = deck_list_spec("Bodies/*");
+  const bool w = sub.isParameter("initial angular velocity"), c = sub.isParameter("rotation center");
+  if (w != c)
+    fail(quoted(path + (w ? "->rotation center" : "->initial angular velocity")) + " is required with " +
+         quoted(path + (w ? "->initial angular velocity" : "->rotation center")));
+  if (w) {
+    const auto a = get_array(sub, ls, "initial angular velocity");
+    if (a.size() != 1 && a.size() != 3)
+      fail(quoted(path + "->initial angular velocity") + " must have 1 value (2D, about z) or 3 values (3D), got " + std::to_string(a.size()));
+    check_dim_length(a, path + "->initial angular velocity", 1, 3);
+    if (a.size() == 1)
+      b.angular_velocity[2] = a[0];
+    else
+      for (std::size_t k = 0; k < 3; ++k) b.angular_velocity[k] = a[k];
+    const auto x = get_array(sub, ls, "rotation center");
+    check_dim_length(x, path + "->rotation center");
+    for (std::size_t k = 0; k < x.size() && k < 3; ++k) b.center[k] = x[k];
+    b.has_angular_velocity = true;
+  }
+  if (sub.isParameter("initial displacement")) {
+    const auto d = get_array(sub, ls, "initial displacement");
+    check_dim_length(d, path + "->initial displacement");
+    for (std::size_t k = 0; k < d.size() && k < 3; ++k) b.displacement[k] = d[k];
+    b.has_displacement = true;
+  }
+}
+
 void DeckReader::read_bodies(const ParameterList& pl) {
   const ListSpec& top = deck_list_spec("Bodies");
   const ListSpec& ls = deck_list_spec("Bodies/*");
@@ -947,6 +977,7 @@ void DeckReader::read_bodies(const ParameterList& pl) {
       b.has_velocity = true;
       for (std::size_t k = 0; k < v.size() && k < 3; ++k) b.velocity[k] = v[k];
     }
+    read_body_initial_state(sub, path, b);
     if (std::find(defined.begin(), defined.end(), b.material) == defined.end()) {
       std::string msg = quoted(path + "->material") + " names undefined material '" + b.material +
                         "'; defined materials: " + join(defined);
@@ -1550,6 +1581,12 @@ void DeckReader::check_analysis(bool initial_conditions, bool time_integration) 
         fail("'Materials->" + m.name + "->density' must be > 0 in a dynamic analysis (" +
              (staged ? std::string("a stage has 'analysis' = dynamic") : std::string("'Problem->analysis' = dynamic")) + ")");
   }
+  if (!cfg_.dynamic_in(0))
+    for (const auto& b : cfg_.bodies)
+      if (b.own_velocity() || b.has_displacement)
+        fail(quoted("Bodies->" + b.name + (b.has_velocity ? "->initial velocity" : b.has_angular_velocity ? "->initial angular velocity" : "->initial displacement")) +
+             " needs " + (staged ? "the first stage " + quoted("Stages->" + cfg_.stages.front().name) + " to be dynamic (a static stage starts at rest)"
+                                 : std::string("'Problem->analysis' = dynamic (a static analysis has no initial state)")));
   if (initial_conditions && !cfg_.dynamic_in(0))
     fail(staged ? "'Initial Conditions' needs the first stage " + quoted("Stages->" + cfg_.stages.front().name) +
                       " to be dynamic (a static stage starts at rest)"

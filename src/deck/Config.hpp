@@ -79,6 +79,13 @@ struct BodyConfig {
   std::string material;  // "material": name of a sublist of "Materials"
   bool has_velocity = false;            // "initial velocity" given: replaces Initial Conditions' velocity
   std::array<double, 3> velocity{};     //   (and angular velocity) on this body's nodes
+  bool has_angular_velocity = false;    // "initial angular velocity" (with "rotation center") given: idem
+  std::array<double, 3> angular_velocity{}, center{};
+  bool has_displacement = false;        // "initial displacement" given: replaces Initial Conditions' displacement
+  std::array<double, 3> displacement{};
+  // v0 on the body's nodes when it has its own (has_velocity or has_angular_velocity):
+  // velocity + angular_velocity x (X - center).
+  bool own_velocity() const { return has_velocity || has_angular_velocity; }
 };
 
 // One entry of "Boundary Conditions" (sublist name = name).

@@ -203,6 +203,22 @@ std::vector<ListSpec> build_schema() {
                         "replaces `Initial Conditions` velocity and angular velocity on the body's nodes (a node "
                         "shared with another body takes the value of the body listed last).")
                         .len(2, 3)
+                        .dflt_doc("`Initial Conditions`"),
+                    arr("initial angular velocity",
+                        "This body's initial rigid rotation rate [rad/s] about `rotation center` (dynamic analysis): 1 "
+                        "value (about z) in 2D, 3 in 3D. With it the body's v0 = `initial velocity` (0 if not given) + "
+                        "angular velocity x (X - rotation center), replacing `Initial Conditions` velocity and angular "
+                        "velocity on its nodes.")
+                        .len(1, 3)
+                        .dflt_doc("`Initial Conditions`"),
+                    arr("rotation center", "Centre of the body's initial rotation [m], one value per dimension.")
+                        .len(2, 3)
+                        .dflt_doc("required with `initial angular velocity`"),
+                    arr("initial displacement",
+                        "This body's uniform initial displacement [m] (dynamic analysis), one value per dimension; it "
+                        "replaces `Initial Conditions` displacement on the body's nodes (shared nodes: the body listed "
+                        "last). Prescribed dofs keep their prescribed values.")
+                        .len(2, 3)
                         .dflt_doc("`Initial Conditions`")}));
 
   {

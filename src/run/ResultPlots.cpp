@@ -168,9 +168,9 @@ bool deck_at_rest_unloaded(const Model& m) {
     for (int k = 0; k < 3; ++k)
       if (c.initial.displacement[k] != 0.0 || c.initial.velocity[k] != 0.0 || c.initial.angular_velocity[k] != 0.0) return false;
   for (const BodyConfig& b : c.bodies)
-    if (dynamic0 && b.has_velocity)
-      for (double v : b.velocity)
-        if (v != 0.0) return false;
+    if (dynamic0)
+      for (int k = 0; k < 3; ++k)
+        if (b.velocity[k] != 0.0 || b.angular_velocity[k] != 0.0 || b.displacement[k] != 0.0) return false;
   for (const LoadConfig& l : c.loads) {
     if (l.ramp(0.0, T) == 0.0) continue;
     if (l.field) return false;

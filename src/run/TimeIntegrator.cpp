@@ -85,34 +85,49 @@ std::vector<std::pair<std::string, la::Vector*>> TimeIntegrator::carried() {
 EnergyAudit TimeIntegrator::initialize(la::Vector& u0, double end_time) {
   const int dim = dist_.dim();
   const auto& ic = cfg_.initial;
+  // The body whose own initial velocity / displacement a node takes (the last listed wins
+  // on shared nodes), -1: Initial Conditions'.
+  std::vector<int> vel_of(mesh_.num_nodes(), -1), disp_of(mesh_.num_nodes(), -1);
+  for (std::size_t b = 0; b < cfg_.bodies.size(); ++b) {
+    const BodyConfig& bc = cfg_.bodies[b];
+    if (!bc.own_velocity() && !bc.has_displacement) continue;
+    for (const auto& vb : mesh_.volumes)
+      if (vb.name == bc.group)
+        for (GId g : vb.conn) {
+          if (bc.own_velocity()) vel_of[static_cast<std::size_t>(g)] = static_cast<int>(b);
+          if (bc.has_displacement) disp_of[static_cast<std::size_t>(g)] = static_cast<int>(b);
+        }
+  }
+  // v0 = v + w x (X - c) of the body, or of Initial Conditions.
+  auto rigid = [](const std::array<double, 3>& v, const std::array<double, 3>& w, const std::array<double, 3>& c, const double* X,
+                  double* out) {
+    const double r[3] = {X[0] - c[0], X[1] - c[1], X[2] - c[2]};
+    out[0] = v[0] + w[1] * r[2] - w[2] * r[1];
+    out[1] = v[1] + w[2] * r[0] - w[0] * r[2];
+    out[2] = v[2] + w[0] * r[1] - w[1] * r[0];
+  };
   {
     auto uh = u0.getLocalViewHost(Tpetra::Access::ReadWrite);
-    for (la::LO i = 0; i < static_cast<la::LO>(u0.getLocalLength()); ++i)
-      if (!assembler_.is_dirichlet(i)) uh(i, 0) = ic.displacement[static_cast<std::size_t>(i % dim)];
-  }
-  // Bodies with their own "initial velocity" (the last listed wins on shared nodes).
-  std::vector<int> body_of(mesh_.num_nodes(), -1);
-  for (std::size_t b = 0; b < cfg_.bodies.size(); ++b) {
-    if (!cfg_.bodies[b].has_velocity) continue;
-    for (const auto& vb : mesh_.volumes)
-      if (vb.name == cfg_.bodies[b].group)
-        for (GId g : vb.conn) body_of[static_cast<std::size_t>(g)] = static_cast<int>(b);
-  }
-  {
     auto vh = v_->getLocalViewHost(Tpetra::Access::OverwriteAll);
     for (la::LO n = 0; n < dist_.num_owned_nodes(); ++n) {
-      const GId g = dist_.global_node(n);
-      const double* X = &mesh_.x[3 * static_cast<std::size_t>(g)];
-      const double r[3] = {X[0] - ic.center[0], X[1] - ic.center[1], X[2] - ic.center[2]};
-      const auto& w = ic.angular_velocity;
-      double v[3] = {ic.velocity[0] + w[1] * r[2] - w[2] * r[1], ic.velocity[1] + w[2] * r[0] - w[0] * r[2],
-                     ic.velocity[2] + w[0] * r[1] - w[1] * r[0]};
-      const int b = body_of[static_cast<std::size_t>(g)];
-      if (b >= 0)
-        for (int c = 0; c < 3; ++c) v[c] = cfg_.bodies[static_cast<std::size_t>(b)].velocity[static_cast<std::size_t>(c)];
+      const auto g = static_cast<std::size_t>(dist_.global_node(n));
+      const double* X = &mesh_.x[3 * g];
+      double v[3];
+      if (vel_of[g] >= 0) {
+        const BodyConfig& bc = cfg_.bodies[static_cast<std::size_t>(vel_of[g])];
+        rigid(bc.velocity, bc.angular_velocity, bc.center, X, v);
+      } else {
+        rigid(ic.velocity, ic.angular_velocity, ic.center, X, v);
+      }
+      const auto& d = disp_of[g] >= 0 ? cfg_.bodies[static_cast<std::size_t>(disp_of[g])].displacement : ic.displacement;
       for (int c = 0; c < dim; ++c) {
         const la::LO i = n * dim + c;
-        vh(i, 0) = assembler_.is_dirichlet(i) ? 0.0 : v[c];
+        if (assembler_.is_dirichlet(i)) {
+          vh(i, 0) = 0.0;
+        } else {
+          uh(i, 0) = d[static_cast<std::size_t>(c)];
+          vh(i, 0) = v[c];
+        }
       }
     }
   }

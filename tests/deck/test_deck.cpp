@@ -1064,3 +1064,29 @@ TEST_F(Deck, StageAnalysisErrors) {
   const Config ok = read_deck(write(with_lists(pair + stages_list(kDynamic, R"(<Parameter name="contact" type="string" value="none"/>)"))));
   EXPECT_EQ(ok.stages.size(), 2u);
 }
+
+// Per-body initial rotation and displacement: read, and their errors.
+TEST_F(Deck, BodyInitialRotationAndDisplacement) {
+  const std::string body = R"X(<Parameter name="initial angular velocity" type="Array(double)" value="{2}"/>
+      <Parameter name="rotation center" type="Array(double)" value="{0.5, 0.05}"/>
+      <Parameter name="initial displacement" type="Array(double)" value="{0.1, 0.2}"/>)X";
+  const std::string dyn = "<ParameterList name=\"Problem\">" + kDynamic + "</ParameterList>\n";
+  auto deck = [&](const std::string& params, const std::string& more) {
+    return replace(with_lists(more), "<Parameter name=\"material\" type=\"string\" value=\"steel\"/>",
+                   "<Parameter name=\"material\" type=\"string\" value=\"steel\"/>" + params);
+  };
+  const Config c = read_deck(write(deck(body, dyn)));
+  const BodyConfig& b = c.bodies.front();
+  EXPECT_TRUE(b.has_angular_velocity && b.own_velocity() && !b.has_velocity && b.has_displacement);
+  EXPECT_EQ(b.angular_velocity, (std::array<double, 3>{0, 0, 2}));
+  EXPECT_EQ(b.center, (std::array<double, 3>{0.5, 0.05, 0}));
+  EXPECT_EQ(b.displacement, (std::array<double, 3>{0.1, 0.2, 0}));
+  expect_error(deck(R"X(<Parameter name="initial angular velocity" type="Array(double)" value="{2}"/>)X", dyn),
+               {"'Bodies->stent->rotation center' is required with 'Bodies->stent->initial angular velocity'"});
+  expect_error(deck(R"X(<Parameter name="initial angular velocity" type="Array(double)" value="{2, 1}"/>
+      <Parameter name="rotation center" type="Array(double)" value="{0.5, 0.05}"/>)X", dyn),
+               {"'Bodies->stent->initial angular velocity' must have 1 value (2D, about z) or 3 values (3D), got 2"});
+  expect_error(deck(body, ""), {"'Bodies->stent->initial angular velocity' needs 'Problem->analysis' = dynamic"});
+  expect_error(deck(R"X(<Parameter name="initial velocity" type="Array(double)" value="{1, 0}"/>)X", stages_list("", kDynamic)),
+               {"'Bodies->stent->initial velocity' needs the first stage 'Stages->one' to be dynamic"});
+}
