@@ -65,10 +65,12 @@ Gathered gather_on_root(const std::vector<long long>& ids, const std::vector<dou
 
 // Contact fields on all nodes: status -1 marks nodes that are no slave node (then the
 // other fields are 0); 0 free, 1 inactive, 2 stick, 3 slip.
-// Master surfaces: contact_master_traction = the reaction force on each master node
-// (summed over ranks) divided by its tributary area (zero on other nodes).
+// Master surfaces: contact_master_traction = the reaction forces on the master nodes
+// (summed over ranks) projected on the master surfaces like the contact pressure
+// (mesh/SurfaceProjection.hpp; zero on other nodes).
 // Only the fields of Output->field list are written.
-void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, std::size_t nn, const Gathered& slaves, const Gathered* masters) {
+void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, std::size_t nn, const Gathered& slaves, const Gathered* masters,
+                          const SurfaceProjection* master_surface) {
   constexpr int kv = Contact::kNodalValues;
   std::vector<double> status(nn, double(contact::NotSlave)), gap(nn, 0.0), lambda_n(nn, 0.0), pressure(nn, 0.0), lambda_t(3 * nn, 0.0), slip(3 * nn, 0.0);
   for (std::size_t i = 0; i < slaves.ids.size(); ++i) {
@@ -92,16 +94,17 @@ void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, std::size_t n
   put("contact_pressure", 1, pressure);
   put("contact_lambda_tangent", 3, lambda_t);
   put("contact_slip", 3, slip);
-  if (!masters || !o.wants("contact_master_traction")) return;  // no master surface in the deck, or not asked for
+  if (!masters || !master_surface || !o.wants("contact_master_traction")) return;  // no master surface in the deck, or not asked for
   constexpr int km = Contact::kMasterValues;
-  std::vector<double> traction(3 * nn, 0.0), area(nn, 0.0);
+  const SurfaceProjection& s = *master_surface;
+  std::vector<double> force(3 * s.nodes().size(), 0.0), traction(3 * nn, 0.0);
   for (std::size_t i = 0; i < masters->ids.size(); ++i) {
-    const auto g = static_cast<std::size_t>(masters->ids[i]);
-    for (int k = 0; k < 3; ++k) traction[3 * g + k] += masters->values[km * i + k];
-    area[g] = masters->values[km * i + 3];
+    const long at = s.index(static_cast<GId>(masters->ids[i]));  // every master node is on a master surface
+    for (std::size_t k = 0; k < 3 && at >= 0; ++k) force[3 * static_cast<std::size_t>(at) + k] += masters->values[km * i + k];
   }
-  for (std::size_t g = 0; g < nn; ++g)
-    for (int k = 0; k < 3; ++k) traction[3 * g + k] = area[g] > 0.0 ? traction[3 * g + k] / area[g] : 0.0;
+  const std::vector<double> t = s.project(force, 3);
+  for (std::size_t i = 0; i < s.nodes().size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k) traction[3 * static_cast<std::size_t>(s.nodes()[i]) + k] = t[3 * i + k];
   xdmf.node_field("contact_master_traction", 3, traction);
 }
 
@@ -213,6 +216,10 @@ void Reporter::open() {
       if (!staging_->notice().empty()) out_ << "  output   " << staging_->notice() << "\n";
       if (metrics_) metrics_->open(stem);
       if (cfg_.output.fields) xdmf_ = std::make_unique<XdmfWriter>(staging_->path(), cfg_.output.basename, m_.mesh);
+      std::vector<std::string> master_groups;
+      for (const ContactPairConfig& c : cfg_.contact)
+        if (!c.master.empty()) master_groups.push_back(c.master);
+      if (cfg_.output.fields && !master_groups.empty()) master_surface_ = std::make_unique<SurfaceProjection>(m_.mesh, master_groups);
       const bool rigid = std::any_of(cfg_.contact.begin(), cfg_.contact.end(), [](const ContactPairConfig& c) { return !c.obstacle.empty(); });
       if (cfg_.output.fields && m_.contact && rigid) {
         const Mesh::Box box = m_.mesh.bounding_box();
@@ -335,7 +342,7 @@ void Reporter::write_fields(double t, const la::Vector& u) {
     if (c.name == "J" && o.wants("mpi_rank")) xdmf_->cell_field("mpi_rank", 1, owner);
   }
   if (!o.wants("J") && o.wants("mpi_rank")) xdmf_->cell_field("mpi_rank", 1, owner);
-  if (m_.contact) write_contact_fields(*xdmf_, o, nn, slaves, m_.contact->has_master_surfaces() ? &masters : nullptr);
+  if (m_.contact) write_contact_fields(*xdmf_, o, nn, slaves, m_.contact->has_master_surfaces() ? &masters : nullptr, master_surface_.get());
   xdmf_->end_step();
   write_obstacles(t);
 }
