@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 
 #include "io/LogCopy.hpp"
 #include "mesh/NodalRecovery.hpp"
@@ -64,7 +65,9 @@ Gathered gather_on_root(const std::vector<long long>& ids, const std::vector<dou
 }
 
 // Contact fields on all nodes: status -1 marks nodes that are no slave node (then the
-// other fields are 0); 0 free, 1 inactive, 2 stick, 3 slip.
+// gap is NaN, the value without meaning that ParaView draws in its NaN colour, so that no
+// node off the contact surfaces reads as touching; the forces, pressure and slip are 0);
+// 0 free, 1 inactive, 2 stick, 3 slip.
 // Master surfaces: contact_master_traction = the reaction forces on the master nodes
 // (summed over ranks) projected on the master surfaces like the contact pressure
 // (mesh/SurfaceProjection.hpp; zero on other nodes).
@@ -72,7 +75,8 @@ Gathered gather_on_root(const std::vector<long long>& ids, const std::vector<dou
 void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, std::size_t nn, const Gathered& slaves, const Gathered* masters,
                           const SurfaceProjection* master_surface) {
   constexpr int kv = Contact::kNodalValues;
-  std::vector<double> status(nn, double(contact::NotSlave)), gap(nn, 0.0), lambda_n(nn, 0.0), pressure(nn, 0.0), lambda_t(3 * nn, 0.0), slip(3 * nn, 0.0);
+  std::vector<double> status(nn, double(contact::NotSlave)), gap(nn, std::numeric_limits<double>::quiet_NaN()), lambda_n(nn, 0.0),
+      pressure(nn, 0.0), lambda_t(3 * nn, 0.0), slip(3 * nn, 0.0);
   for (std::size_t i = 0; i < slaves.ids.size(); ++i) {
     const auto g = static_cast<std::size_t>(slaves.ids[i]);
     const double* v = &slaves.values[kv * i];

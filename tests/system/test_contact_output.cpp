@@ -6,6 +6,9 @@
 //      tri3 and quad4, line3 of tri6, tri3 of tet4, tri6 of tet10, quad4 of hex8); and
 //      against another body (tri6 interface of two tet10 blocks) the master side's
 //      contact_master_traction too (mesh/SurfaceProjection.hpp).
+//   2. contact_gap: the gap at every slave node (0 where the block touches the plane, the
+//      distance to a second plane above its top where it does not), NaN at every other
+//      node (not 0, which would read as touching).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -61,7 +64,9 @@ struct BlockCase {
 };
 
 // The unit square / cube on the rigid plane y = 0 (z = 0 in 3D), pressed by the dead
-// traction p on its top; rollers on x = 0 (and y = 0 in 3D) remove the rigid motions.
+// traction p on its top; rollers on x = 0 (and y = 0 in 3D) remove the rigid motions. A
+// second pair, "lid", has the top's nodes as slaves against the plane y = 1.2 (z = 1.2),
+// which they never reach.
 std::string block_on_plane_deck(const BlockCase& c) {
   const bool d3 = c.dim == 3;
   const std::string geo = c.hex ? hex_cube_geo() : kInputs + (d3 ? "block3d.geo" : "block2d.geo");
@@ -91,6 +96,10 @@ std::string block_on_plane_deck(const BlockCase& c) {
     <Parameter name="slave" type="string" value="bottom"/><Parameter name="obstacle" type="string" value="plane"/>
     <Parameter name="point" type="Array(double)" value=")X" + (d3 ? "{0, 0, 0}" : "{0, 0}") + R"X("/>
     <Parameter name="normal" type="Array(double)" value=")X" + (d3 ? "{0, 0, 1}" : "{0, 1}") + R"X("/>
+  </ParameterList><ParameterList name="lid">
+    <Parameter name="slave" type="string" value="top"/><Parameter name="obstacle" type="string" value="plane"/>
+    <Parameter name="point" type="Array(double)" value=")X" + (d3 ? "{0, 0, 1.2}" : "{0, 1.2}") + R"X("/>
+    <Parameter name="normal" type="Array(double)" value=")X" + (d3 ? "{0, 0, -1}" : "{0, -1}") + R"X("/>
   </ParameterList></ParameterList>
   <ParameterList name="Stepping"><Parameter name="steps" type="int" value="1"/></ParameterList>
   <ParameterList name="Linear Solver"><Parameter name="method" type="string" value="direct"/></ParameterList>
@@ -132,8 +141,9 @@ TEST(ContactOutput, UniformPressureOnEveryFacetType) {
     double worst = 0.0;
     std::size_t on_surface = 0;
     for (std::size_t n = 0; n < pr.size(); ++n) {
-      const bool bottom = X[3 * n + static_cast<std::size_t>(c.dim - 1)] == 0.0;
-      EXPECT_EQ(st[n] >= 0.0, bottom) << c.name << " node " << n << ": a slave node exactly when on the bottom";
+      const double h = X[3 * n + static_cast<std::size_t>(c.dim - 1)];
+      const bool bottom = h == 0.0;
+      EXPECT_EQ(st[n] >= 0.0, bottom || h == 1.0) << c.name << " node " << n << ": a slave node exactly when on the bottom or the top";
       if (!bottom) {
         EXPECT_EQ(pr[n], 0.0) << c.name << " node " << n;
         continue;
@@ -192,4 +202,42 @@ TEST(ContactOutput, PressureAndMasterTractionUniformOnTri6Interface) {
   EXPECT_EQ(slaves, 49);  // 7 x 7 nodes of a 3 x 3 grid of P2 squares
   EXPECT_EQ(masters, 49);
   EXPECT_LT(worst, 1e-9);
+}
+
+// contact_gap where the block of UniformPressureOnEveryFacetType rests on the plane (0, the
+// nodes active: status 2 or 3), below the lid (1.2 - the top's height, status
+// 1: checked, not in contact) and elsewhere (NaN, status -1). Measured before: 0 on every
+// node that is no slave node.
+TEST(ContactOutput, GapOnSlaveNodesOnlyNaNElsewhere) {
+  for (const BlockCase& c : {BlockCase{"gap_tri6", 2, 2, false, false}, BlockCase{"gap_tet10", 3, 2, false, false}}) {
+    const fs::path out = run_deck(c.name, block_on_plane_deck(c));
+    H5 h5(out / "block.h5");
+    ASSERT_EQ(h5.times().size(), 2u) << c.name;
+    const auto X = h5.read("/mesh/coordinates"), u = h5.read("/step_1/displacement"), st = h5.read("/step_1/contact_status"),
+               gap = h5.read("/step_1/contact_gap");
+    ASSERT_EQ(gap.size() * 3, X.size()) << c.name;
+    const auto d = static_cast<std::size_t>(c.dim - 1);
+    int n_bottom = 0, n_top = 0, n_other = 0;
+    double lid_gap = 0.0;
+    for (std::size_t n = 0; n < gap.size(); ++n) {
+      const double h = X[3 * n + d], x = h + u[3 * n + d];
+      if (h == 0.0) {
+        ++n_bottom;
+        EXPECT_NEAR(gap[n], 0.0, 1e-12) << c.name << " node " << n;
+        EXPECT_GE(st[n], 2.0) << c.name << " node " << n;
+      } else if (h == 1.0) {
+        ++n_top;
+        lid_gap = gap[n];
+        EXPECT_NEAR(gap[n], 1.2 - x, 1e-12) << c.name << " node " << n;
+        EXPECT_EQ(st[n], 1.0) << c.name << " node " << n;
+      } else {
+        ++n_other;
+        EXPECT_TRUE(std::isnan(gap[n])) << c.name << " node " << n << ": gap " << gap[n];
+        EXPECT_EQ(st[n], -1.0) << c.name << " node " << n;
+      }
+    }
+    std::printf("%s: %d bottom nodes (gap 0), %d top nodes (gap to the lid %.6f), %d other nodes (NaN)\n", c.name.c_str(), n_bottom,
+                n_top, lid_gap, n_other);
+    EXPECT_GT(n_other, n_top);
+  }
 }
