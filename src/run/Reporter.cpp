@@ -224,11 +224,13 @@ void Reporter::open() {
       for (const ContactPairConfig& c : cfg_.contact)
         if (!c.master.empty()) master_groups.push_back(c.master);
       if (cfg_.output.fields && !master_groups.empty()) master_surface_ = std::make_unique<SurfaceProjection>(m_.mesh, master_groups);
-      const bool rigid = std::any_of(cfg_.contact.begin(), cfg_.contact.end(), [](const ContactPairConfig& c) { return !c.obstacle.empty(); });
-      if (cfg_.output.fields && m_.contact && rigid) {
+      std::vector<std::string> rigid;  // the rigid pairs, in Contact::rigid_obstacles() order
+      for (const ContactPairConfig& c : cfg_.contact)
+        if (c.master.empty()) rigid.push_back(c.name);
+      if (cfg_.output.fields && m_.contact && !rigid.empty()) {
         const Mesh::Box box = m_.mesh.bounding_box();
         const std::array<double, 3> c{0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]), 0.5 * (box.lo[2] + box.hi[2])};
-        obstacles_ = std::make_unique<ObstacleVtkWriter>(staging_->path(), cfg_.output.basename, m_.dim, box.diagonal(), c);
+        obstacles_ = std::make_unique<ObstacleWriter>(staging_->path(), cfg_.output.basename, m_.dim, box.diagonal(), c, rigid);
       }
       history_ = std::make_unique<CsvWriter>(stem + "_history.csv", history_columns());
       if (m_.dynamic) energy_csv_ = std::make_unique<CsvWriter>(stem + "_energy.csv", energy_columns());
@@ -270,6 +272,7 @@ void Reporter::open() {
 void Reporter::discard() {
   if (m_.rank != 0) return;
   xdmf_.reset();
+  obstacles_.reset();
   history_.reset();
   energy_csv_.reset();
   staging_->discard();
@@ -351,7 +354,7 @@ void Reporter::write_fields(double t, const la::Vector& u) {
   write_obstacles(t);
 }
 
-// The rigid obstacles at t as <basename>_obstacles_<k>.vtp (rank 0, with the fields).
+// The rigid obstacles at t in <basename>_obstacles.xdmf/.h5 (rank 0, with the fields).
 void Reporter::write_obstacles(double t) {
   if (!obstacles_) return;
   std::vector<ObstacleShape> shapes;
@@ -527,6 +530,8 @@ void Reporter::finish(bool failed) {
   history_.reset();
   energy_csv_.reset();
   xdmf_.reset();
+  const bool obstacles = obstacles_ != nullptr;
+  obstacles_.reset();
   if (metrics_) metrics_->close();
   if (failed) {
     out_ << "Partial results kept in " << staging_->path() << "; earlier results in " << out_dir_ << " were not touched\n";
@@ -535,8 +540,9 @@ void Reporter::finish(bool failed) {
   plots();
   log_copy::check();
   staging_->commit();
-  out_ << "Results in " << std::filesystem::absolute(out_dir_).string() << "/ (" << cfg_.output.basename << ".xdmf for ParaView, "
-       << cfg_.output.basename << "_history.csv)\n";
+  out_ << "Results in " << std::filesystem::absolute(out_dir_).string() << "/ (" << cfg_.output.basename << ".xdmf"
+       << (obstacles ? " and " + cfg_.output.basename + "_obstacles.xdmf" : std::string()) << " for ParaView, " << cfg_.output.basename
+       << "_history.csv)\n";
 }
 
 }  // namespace stentor

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "io/Csv.hpp"
-#include "io/ObstacleVtk.hpp"
+#include "io/Obstacles.hpp"
 #include "io/OutputDir.hpp"
 #include "io/XdmfWriter.hpp"
 #include "mesh/SurfaceProjection.hpp"
@@ -99,7 +99,7 @@ class Reporter {
   std::unique_ptr<XdmfWriter> xdmf_;
   std::unique_ptr<CsvWriter> history_, energy_csv_;
   std::unique_ptr<MetricsReport> metrics_;  // null without Output->Stent Metrics
-  std::unique_ptr<ObstacleVtkWriter> obstacles_;  // rank 0, fields on and rigid obstacles present
+  std::unique_ptr<ObstacleWriter> obstacles_;  // rank 0, fields on and rigid obstacles present
   std::unique_ptr<SurfaceProjection> master_surface_;  // rank 0, fields on and master surfaces present
   void write_obstacles(double t);
   double total_energy_ = 0.0;               // kinetic + strain of the last energy_row

@@ -241,3 +241,40 @@ TEST(ContactOutput, GapOnSlaveNodesOnlyNaNElsewhere) {
     EXPECT_GT(n_other, n_top);
   }
 }
+
+// The rigid obstacles in <basename>_obstacles.xdmf/.h5 (io/Obstacles.hpp): at the field
+// file's times, one block per rigid pair named after it ("0: floor; 1: lid"), line segments
+// in 2D and quadrilaterals in 3D, every point on its plane (y or z = 0 for the floor, 1.2
+// for the lid), displacement 0 (the planes stay put). Before: no such file (a .pvd of .vtp
+// files that meshio cannot read as a time series).
+TEST(ContactOutput, RigidObstaclesInTheirOwnXdmf) {
+  for (const BlockCase& c : {BlockCase{"obstacles_tri3", 2, 1, false, false}, BlockCase{"obstacles_tet4", 3, 1, false, false}}) {
+    const fs::path out = run_deck(c.name, block_on_plane_deck(c));
+    H5 h5(out / "block_obstacles.h5"), fields(out / "block.h5");
+    ASSERT_GE(h5.f, 0) << c.name;
+    EXPECT_EQ(h5.times(), fields.times()) << c.name;
+    std::ifstream xin(out / "block_obstacles.xdmf");
+    std::stringstream xs;
+    xs << xin.rdbuf();
+    EXPECT_NE(xs.str().find(R"(<Information Name="cell_block" Value="0: floor; 1: lid"/>)"), std::string::npos) << c.name;
+    EXPECT_NE(xs.str().find(c.dim == 2 ? R"(TopologyType="Polyline")" : R"(TopologyType="Quadrilateral")"), std::string::npos);
+    const std::size_t npc = c.dim == 2 ? 2 : 4;
+    const auto topo = h5.read("/mesh/topology"), block = h5.read("/mesh/cell_block");
+    ASSERT_EQ(topo.size(), npc * block.size()) << c.name;
+    for (std::size_t k = 0; k < h5.times().size(); ++k) {
+      const std::string step = "/step_" + std::to_string(k) + "/";
+      const auto x = h5.read(step + "coordinates"), u = h5.read(step + "displacement");
+      ASSERT_EQ(u.size(), x.size());
+      for (double v : u) EXPECT_EQ(v, 0.0);
+      int on_floor = 0, on_lid = 0;
+      for (std::size_t e = 0; e < block.size(); ++e)
+        for (std::size_t a = 0; a < npc; ++a) {
+          const double h = x[3 * static_cast<std::size_t>(topo[npc * e + a]) + static_cast<std::size_t>(c.dim - 1)];
+          EXPECT_EQ(h, block[e] == 0.0 ? 0.0 : 1.2) << c.name << " cell " << e;
+          (block[e] == 0.0 ? on_floor : on_lid) += 1;
+        }
+      EXPECT_GT(on_floor, 0);
+      EXPECT_GT(on_lid, 0);
+    }
+  }
+}
