@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Render 2D Stentor results (plane strain) from the HDF5 output, as a user would see
 them in ParaView: the deformed mesh of every body coloured by a cell field, the rigid
-obstacles of the same output step (from the <basename>_obstacles_<k>.vtp files), one
-panel per requested time.
+obstacles of the same output step (from <basename>_obstacles.h5: its /mesh/topology
+segments at /step_<k>/coordinates), one panel per requested time.
 
 usage: render_section.py RESULTS_DIR BASENAME OUT.png FIELD LABEL T1[:TITLE1] T2[:TITLE2] ...
   FIELD   a cell field of the HDF5 (von_mises, equivalent_plastic_strain, J, ...), or one
@@ -36,15 +36,17 @@ def output_times(xdmf):
     return [float(v) for v in re.findall(r'<Time Value="([^"]+)"', text)]
 
 
-def obstacle_lines(path):
+def obstacle_lines(path, k):
+    """The rigid obstacles' segments at output step k as one (x, y) polyline with NaN
+    breaks between segments; None without an obstacle file."""
     if not os.path.exists(path):
-        return []
-    text = open(path).read()
-    lines = []
-    for piece in re.findall(r"<Points>.*?format=\"ascii\">(.*?)</DataArray>", text, re.S):
-        xyz = np.array(piece.split(), dtype=float).reshape(-1, 3)
-        lines.append(np.vstack([xyz, xyz[:1]])[:, :2])
-    return lines
+        return None
+    with h5py.File(path, "r") as f:
+        seg = f["mesh/topology"][()]
+        xy = f["step_%d/coordinates" % k][:, :2]
+    line = np.full((3 * len(seg), 2), np.nan)
+    line[0::3], line[1::3] = xy[seg[:, 0]], xy[seg[:, 1]]
+    return line
 
 
 def main():
@@ -76,7 +78,8 @@ def main():
             tri = mtri.Triangulation(xy[:, 0], xy[:, 1], tris)
             pc = ax.tripcolor(tri, facecolors=colours, cmap="viridis", vmin=vmin, vmax=vmax, edgecolors="none")
             first += len(c)
-        for line in obstacle_lines(os.path.join(res, "%s_obstacles_%d.vtp" % (base, k))):
+        line = obstacle_lines(os.path.join(res, base + "_obstacles.h5"), k)
+        if line is not None:
             ax.plot(line[:, 0], line[:, 1], color="crimson", lw=1.2, label=os.environ.get("OBSTACLE_LABEL", "rigid balloon"))
         ax.set_aspect("equal")
         ax.set_title(("%s (t = %.3g s)" if title else "%st = %.3g s") % (title, times[k]), fontsize=10)

@@ -14,6 +14,7 @@
 #include "fem/Quadrature.hpp"
 #include "fem/Shape.hpp"
 #include "mesh/MeshQuery.hpp"
+#include "mesh/SurfaceProjection.hpp"
 
 namespace stentor {
 namespace {
@@ -23,7 +24,9 @@ const char* kAxes[3] = {"x", "y", "z"};
 using contact::dot3;
 
 // Tributary (lumped) reference area of each node of a boundary group: the row sums of the
-// facet mass matrix scaled diagonally (HRZ), so quadratic facets get positive areas.
+// facet mass matrix scaled diagonally (HRZ), so quadratic facets get positive areas. They
+// scale the deck's per-area c_normal and c_tangent; the output's contact pressure is a
+// projection on the surface instead (mesh/SurfaceProjection.hpp).
 std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group) {
   std::map<GId, double> area;
   for (const CellBlock* b : boundary_blocks(mesh, group)) {
@@ -116,6 +119,7 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
     throw InputError(where + "->formulation = persistence needs a dynamic analysis ('Problem->analysis' = dynamic); use gap in statics");
   const std::vector<GId> nodes = boundary_nodes(mesh, pc.slave);  // throws InputError naming the group
   const auto areas = tributary_areas(mesh, pc.slave);
+  p.surface = std::make_unique<SurfaceProjection>(mesh, std::vector<std::string>{pc.slave});
   long excluded = 0, partial = 0;
   for (GId g : nodes) {
     const auto gi = static_cast<std::size_t>(g);
@@ -860,21 +864,40 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
   return s;
 }
 
+// Pair p's contact pressure at its owned slave nodes (in p.nodes order): the normal forces
+// of its active nodes summed over the ranks into one vector over the slave surface's nodes,
+// projected on the surface by every rank alike (the same sums, the same solve: the same
+// pressures on any number of ranks).
+std::vector<double> Contact::slave_pressures(const Pair& p) const {
+  const SurfaceProjection& s = *p.surface;
+  std::vector<double> loc(s.nodes().size(), 0.0), f(loc.size(), 0.0);
+  for (const Slave& nd : p.nodes)
+    if (nd.state >= contact::Stick) loc[static_cast<std::size_t>(s.index(nd.gid))] = dot3(nd.normal, nd.f);
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), f.data());
+  const std::vector<double> pressure = s.project(f, 1);
+  std::vector<double> out;
+  for (const Slave& nd : p.nodes) out.push_back(pressure[static_cast<std::size_t>(s.index(nd.gid))]);
+  return out;
+}
+
 Contact::NodalFields Contact::nodal_fields() const {
   NodalFields out;
-  for (const Pair& p : pairs_)
-    for (const Slave& nd : p.nodes) {
+  for (const Pair& p : pairs_) {
+    const std::vector<double> pressure = slave_pressures(p);
+    for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+      const Slave& nd = p.nodes[i];
       const bool active = nd.state >= contact::Stick;
       const double fn = dot3(nd.normal, nd.f);
       out.nodes.push_back(static_cast<long long>(nd.gid));
       out.values.push_back(static_cast<double>(nd.state));
       out.values.push_back(nd.gap);
       out.values.push_back(active ? -fn : 0.0);
-      out.values.push_back(active && nd.area > 0.0 ? fn / nd.area : 0.0);
+      out.values.push_back(pressure[i]);
       for (int c = 0; c < 3; ++c) out.values.push_back(active ? -(nd.f[c] - fn * nd.normal[c]) : 0.0);
       const double reln = dot3(nd.rel, nd.normal);
       for (int c = 0; c < 3; ++c) out.values.push_back(active ? nd.rel[c] - reln * nd.normal[c] : 0.0);
     }
+  }
   return out;
 }
 

@@ -33,6 +33,7 @@
 namespace stentor {
 
 class MasterSurface;
+class SurfaceProjection;
 
 class Contact {
  public:
@@ -82,8 +83,11 @@ class Contact {
   StepStats accept(const la::Vector& u_np1);
 
   // Per owned slave node, for the HDF5 output: global node id and kNodalValues values
-  // (state: 0 free, 1 inactive, 2 stick, 3 slip; gap; lambda_nu; contact pressure
-  // -lambda_nu / A_p; lambda_tau x, y, z; slip increment x, y, z), from the last apply().
+  // (state: 0 free, 1 inactive, 2 stick, 3 slip; gap; lambda_nu; contact pressure;
+  // lambda_tau x, y, z; slip increment x, y, z), from the last apply(). The contact
+  // pressure is the projection M_s p = f of the active nodes' normal forces -lambda_nu on
+  // the pair's slave surface (mesh/SurfaceProjection.hpp): force per reference area.
+  // Collective (the forces of each slave surface are summed over the ranks).
   static constexpr int kNodalValues = 10;
   struct NodalFields {
     std::vector<long long> nodes;
@@ -91,8 +95,9 @@ class Contact {
   };
   NodalFields nodal_fields() const;
   // Per master node touched by an active slave of this rank: global node id and 4 values
-  // (the reaction force on the master node, -sum N_a F, x y z; its tributary area). The same
-  // node may come from several ranks: sum the forces, keep the area.
+  // (the reaction force on the master node, -sum N_a F, x y z; its HRZ tributary area). The
+  // same node may come from several ranks: sum the forces, keep the area. (The output's
+  // contact_master_traction projects the summed forces instead: mesh/SurfaceProjection.hpp.)
   static constexpr int kMasterValues = 4;
   bool has_master_surfaces() const { return has_master_; }
   // The rigid obstacles at time t (position and radius), in deck order (for drawing).
@@ -130,7 +135,7 @@ class Contact {
     double x_n[3] = {0, 0, 0};
     double d_n = 0.0, d_prev = 0.0;
     double scale = 1.0;                // s_p
-    double area = 0.0;                 // tributary area A_p (reference), for the contact pressure
+    double area = 0.0;                 // tributary area A_p (reference, HRZ-lumped): scales the deck's c_normal, c_tangent
     bool was_active = false;           // active at the end of the last accepted step
     int state = contact::Free;
     int prev_state = contact::Free;
@@ -148,6 +153,7 @@ class Contact {
     ContactPairConfig cfg;
     bool persistence = true;
     std::unique_ptr<MasterSurface> master;  // null: rigid obstacle
+    std::unique_ptr<SurfaceProjection> surface;  // the slave group's facets (every rank: the whole group)
     std::vector<Slave> nodes;
     std::vector<contact::NodeOutput> out;   // per slave node, last apply()
     long excluded = 0;                      // slave nodes with every component prescribed (left out), global
@@ -174,6 +180,7 @@ class Contact {
   std::array<long, 2> pattern_signature() const;
   bool refill(const la::CrsMatrix& K, const la::CrsMatrix& D);
   void update_changed();
+  std::vector<double> slave_pressures(const Pair& p) const;
 
   int dim_;
   double end_time_ = 1.0, t0_ = 0.0, t1_ = 0.0, dt_ = 1.0, dt_last_ = 0.0, gap_tol_ = 0.0, model_size_ = 0.0;

@@ -37,14 +37,14 @@ const std::vector<OutputField>& output_fields() {
       {"mandel_hill_norm", W::Cell, 1, "stress", N::Plasticity, true, "Norm of the Mandel stress in the yield function."},
       {"yielding", W::Cell, 1, "", N::Plasticity, true, "1 where the last step yielded, else 0."},
       {"plastic_dissipation", W::Cell, 1, "stress", N::Plasticity, true, "Accumulated plastic dissipation per volume [J/m^3 = Pa]."},
-      {"contact_status", W::Node, 1, "", N::Contact, true, "-1 not a slave node, 0 free, 1 inactive, 2 stick, 3 slip."},
-      {"contact_gap", W::Node, 1, "length", N::Contact, true, "Normal gap of slave nodes (0 elsewhere)."},
+      {"contact_status", W::Node, 1, "", N::Contact, true, "-1 not a slave node, 0 free (not checked), 1 inactive (checked, apart), 2 stick, 3 slip."},
+      {"contact_gap", W::Node, 1, "length", N::Contact, true, "Normal gap of slave nodes (NaN on other nodes)."},
       {"contact_lambda_normal", W::Node, 1, "force", N::Contact, true, "Normal contact force of slave nodes."},
-      {"contact_pressure", W::Node, 1, "stress", N::Contact, true, "Contact pressure: normal force per tributary area."},
+      {"contact_pressure", W::Node, 1, "stress", N::Contact, true, "Contact pressure: normal contact force per reference area, recovered on the slave surface."},
       {"contact_lambda_tangent", W::Node, 3, "force", N::Contact, true, "Tangential (friction) force of slave nodes."},
       {"contact_slip", W::Node, 3, "length", N::Contact, true, "Tangential relative displacement of slave nodes over the last step."},
       {"contact_master_traction", W::Node, 3, "stress", N::MasterSurface, true,
-       "Reaction on master-surface nodes per tributary area."},
+       "Reaction on the master surface per reference area, recovered like contact_pressure."},
   };
   return f;
 }

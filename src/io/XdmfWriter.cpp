@@ -18,6 +18,7 @@ namespace stentor {
 
 const char* xdmf_topology_name(CellType t) {
   switch (t) {
+    case CellType::Line2: return "Polyline";  // with NodesPerElement="2": line segments
     case CellType::Tri3: return "Triangle";
     case CellType::Tri6: return "Triangle_6";
     case CellType::Quad4: return "Quadrilateral";
@@ -182,6 +183,7 @@ struct XdmfWriter::Impl {
     double time = 0.0;
     std::string group;
     std::vector<Field> fields;
+    std::string geometry = "/mesh/coordinates";  // the node positions (geometry(): the step's own)
   };
 
   std::string h5_path, h5_name, xdmf_path;
@@ -256,6 +258,7 @@ struct XdmfWriter::Impl {
     const std::string dset = dataset_name(name);
     if (name == "cell_block") fail(std::string(kind) + ": the field name 'cell_block' is reserved");
     if (dset == "." || dset == "..") fail(std::string(kind) + ": invalid field name '" + name + "'");
+    if (current.geometry == current.group + "/" + dset) fail(std::string(kind) + ": '" + name + "' is the step's geometry dataset");
     for (const auto& f : current.fields)
       if (f.name == name || dataset_name(f.name) == dset)
         fail(std::string(kind) + ": field '" + name + "' written twice in one step" +
@@ -311,6 +314,7 @@ struct XdmfWriter::Impl {
       block_legend += (i ? "; " : "") + std::to_string(i) + ": " + blocks[i].grid_name;
     }
     mixed = types.size() != 1;
+    if (mixed && types.count(CellType::Line2)) fail("line cells (Polyline) cannot be mixed with other cell types");
     std::vector<long long> topo, cell_block;
     cell_block.reserve(num_cells);
     for (std::size_t i = 0; i < blocks.size(); ++i) {
@@ -353,15 +357,15 @@ struct XdmfWriter::Impl {
     for (const auto& s : steps) {
       o << "      <Grid Name=\"" << s.group.substr(1) << "\" GridType=\"Uniform\">\n"
         << "        <Time Value=\"" << fmt_double(s.time) << "\"/>\n"
-        << "        <Topology TopologyType=\"" << topology << "\" NumberOfElements=\"" << num_cells
-        << "\">\n";
+        << "        <Topology TopologyType=\"" << topology << "\" NumberOfElements=\"" << num_cells << "\""
+        << (topology == "Polyline" ? " NodesPerElement=\"2\"" : "") << ">\n";
       if (mixed)
         o << data_item("/mesh/topology", topology_size, 1, true, in);
       else
         o << data_item("/mesh/topology", num_cells, npc, true, in);
       o << "        </Topology>\n"
         << "        <Geometry GeometryType=\"XYZ\">\n"
-        << data_item("/mesh/coordinates", num_nodes, 3, false, in) << "        </Geometry>\n"
+        << data_item(s.geometry, num_nodes, 3, false, in) << "        </Geometry>\n"
         << "        <Attribute Name=\"cell_block\" AttributeType=\"Scalar\" Center=\"Cell\">\n"
         << data_item("/mesh/cell_block", num_cells, 1, true, in) << "        </Attribute>\n";
       for (const auto& f : s.fields) {
@@ -486,6 +490,20 @@ void XdmfWriter::node_field(const std::string& name, int ncomp, const std::vecto
 
 void XdmfWriter::cell_field(const std::string& name, int ncomp, const std::vector<double>& data) {
   impl_->add_field(name, false, ncomp, data);
+}
+
+void XdmfWriter::geometry(const std::vector<double>& x) {
+  Impl& m = *impl_;
+  if (!m.in_step) m.fail("geometry() called outside begin_step/end_step");
+  const std::string path = m.current.group + "/coordinates";
+  if (m.current.geometry == path) m.fail("geometry() called twice in one step");
+  for (const auto& f : m.current.fields)
+    if (f.path == path) m.fail("geometry(): a field named 'coordinates' holds its dataset name");
+  if (x.size() != 3 * m.num_nodes)
+    m.fail("geometry(): expected " + std::to_string(m.num_nodes) + " x 3 values, got " + std::to_string(x.size()));
+  const hsize_t dims[2] = {static_cast<hsize_t>(m.num_nodes), 3};
+  m.write_dataset(m.step_group.get(), "coordinates", H5T_NATIVE_DOUBLE, 2, dims, x.data(), path);
+  m.current.geometry = path;
 }
 
 void XdmfWriter::end_step() {

@@ -16,6 +16,7 @@
 //   /mesh/block_<i>/connectivity num_cells_i x nodes_per_cell int64 (the same node order);
 //                                attributes "name" (physical group), "topology"
 //   /step_<k>                    one group per step, attribute "time" (double)
+//   /step_<k>/coordinates        a moving mesh only (geometry()): the step's node positions
 //   /step_<k>/<field>            (characters other than [A-Za-z0-9_.+-] replaced by '_';
 //                                the XDMF Attribute keeps the name as given)
 //                                num_nodes x ncomp (node field) or num_cells x ncomp
@@ -54,6 +55,8 @@
 namespace stentor {
 
 // XDMF TopologyType of a cell type ("Tetrahedron_10", ...); nullptr when it has none here.
+// Line2 cells (rigid obstacles' outlines) are "Polyline" with NodesPerElement 2, in a mesh
+// of line cells only.
 const char* xdmf_topology_name(CellType t);
 
 // Node permutation gmsh -> XDMF: xdmf_conn[j] = gmsh_conn[perm[j]]. Returns the number of
@@ -80,6 +83,10 @@ class XdmfWriter {
   // num_volume_cells*ncomp values, cells in block order (all of volumes[0], then ...).
   // The name "cell_block" is reserved (the writer's own block index).
   void cell_field(const std::string& name, int ncomp, const std::vector<double>& data);
+  // A moving mesh: this step's node positions (num_nodes x 3) as /step_<k>/coordinates,
+  // the step grid's Geometry instead of /mesh/coordinates (meshio's TimeSeriesReader reads
+  // the first step's points only: write a displacement field too).
+  void geometry(const std::vector<double>& x);
   // Flushes the step's datasets to the .h5, then rewrites the .xdmf.
   void end_step();
 

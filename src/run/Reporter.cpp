@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 
 #include "io/LogCopy.hpp"
 #include "mesh/NodalRecovery.hpp"
@@ -64,13 +65,18 @@ Gathered gather_on_root(const std::vector<long long>& ids, const std::vector<dou
 }
 
 // Contact fields on all nodes: status -1 marks nodes that are no slave node (then the
-// other fields are 0); 0 free, 1 inactive, 2 stick, 3 slip.
-// Master surfaces: contact_master_traction = the reaction force on each master node
-// (summed over ranks) divided by its tributary area (zero on other nodes).
+// gap is NaN, the value without meaning that ParaView draws in its NaN colour, so that no
+// node off the contact surfaces reads as touching; the forces, pressure and slip are 0);
+// 0 free, 1 inactive, 2 stick, 3 slip.
+// Master surfaces: contact_master_traction = the reaction forces on the master nodes
+// (summed over ranks) projected on the master surfaces like the contact pressure
+// (mesh/SurfaceProjection.hpp; zero on other nodes).
 // Only the fields of Output->field list are written.
-void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, std::size_t nn, const Gathered& slaves, const Gathered* masters) {
+void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, std::size_t nn, const Gathered& slaves, const Gathered* masters,
+                          const SurfaceProjection* master_surface) {
   constexpr int kv = Contact::kNodalValues;
-  std::vector<double> status(nn, double(contact::NotSlave)), gap(nn, 0.0), lambda_n(nn, 0.0), pressure(nn, 0.0), lambda_t(3 * nn, 0.0), slip(3 * nn, 0.0);
+  std::vector<double> status(nn, double(contact::NotSlave)), gap(nn, std::numeric_limits<double>::quiet_NaN()), lambda_n(nn, 0.0),
+      pressure(nn, 0.0), lambda_t(3 * nn, 0.0), slip(3 * nn, 0.0);
   for (std::size_t i = 0; i < slaves.ids.size(); ++i) {
     const auto g = static_cast<std::size_t>(slaves.ids[i]);
     const double* v = &slaves.values[kv * i];
@@ -92,16 +98,17 @@ void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, std::size_t n
   put("contact_pressure", 1, pressure);
   put("contact_lambda_tangent", 3, lambda_t);
   put("contact_slip", 3, slip);
-  if (!masters || !o.wants("contact_master_traction")) return;  // no master surface in the deck, or not asked for
+  if (!masters || !master_surface || !o.wants("contact_master_traction")) return;  // no master surface in the deck, or not asked for
   constexpr int km = Contact::kMasterValues;
-  std::vector<double> traction(3 * nn, 0.0), area(nn, 0.0);
+  const SurfaceProjection& s = *master_surface;
+  std::vector<double> force(3 * s.nodes().size(), 0.0), traction(3 * nn, 0.0);
   for (std::size_t i = 0; i < masters->ids.size(); ++i) {
-    const auto g = static_cast<std::size_t>(masters->ids[i]);
-    for (int k = 0; k < 3; ++k) traction[3 * g + k] += masters->values[km * i + k];
-    area[g] = masters->values[km * i + 3];
+    const long at = s.index(static_cast<GId>(masters->ids[i]));  // every master node is on a master surface
+    for (std::size_t k = 0; k < 3 && at >= 0; ++k) force[3 * static_cast<std::size_t>(at) + k] += masters->values[km * i + k];
   }
-  for (std::size_t g = 0; g < nn; ++g)
-    for (int k = 0; k < 3; ++k) traction[3 * g + k] = area[g] > 0.0 ? traction[3 * g + k] / area[g] : 0.0;
+  const std::vector<double> t = s.project(force, 3);
+  for (std::size_t i = 0; i < s.nodes().size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k) traction[3 * static_cast<std::size_t>(s.nodes()[i]) + k] = t[3 * i + k];
   xdmf.node_field("contact_master_traction", 3, traction);
 }
 
@@ -227,11 +234,17 @@ void Reporter::open() {
       if (!staging_->notice().empty()) out_ << "  output   " << staging_->notice() << "\n";
       if (metrics_) metrics_->open(stem);
       if (cfg_.output.fields) xdmf_ = std::make_unique<XdmfWriter>(staging_->path(), cfg_.output.basename, m_.mesh);
-      const bool rigid = std::any_of(cfg_.contact.begin(), cfg_.contact.end(), [](const ContactPairConfig& c) { return !c.obstacle.empty(); });
-      if (cfg_.output.fields && m_.contact && rigid) {
+      std::vector<std::string> master_groups;
+      for (const ContactPairConfig& c : cfg_.contact)
+        if (!c.master.empty()) master_groups.push_back(c.master);
+      if (cfg_.output.fields && !master_groups.empty()) master_surface_ = std::make_unique<SurfaceProjection>(m_.mesh, master_groups);
+      std::vector<std::string> rigid;  // the rigid pairs, in Contact::rigid_obstacles() order
+      for (const ContactPairConfig& c : cfg_.contact)
+        if (c.master.empty()) rigid.push_back(c.name);
+      if (cfg_.output.fields && m_.contact && !rigid.empty()) {
         const Mesh::Box box = m_.mesh.bounding_box();
         const std::array<double, 3> c{0.5 * (box.lo[0] + box.hi[0]), 0.5 * (box.lo[1] + box.hi[1]), 0.5 * (box.lo[2] + box.hi[2])};
-        obstacles_ = std::make_unique<ObstacleVtkWriter>(staging_->path(), cfg_.output.basename, m_.dim, box.diagonal(), c);
+        obstacles_ = std::make_unique<ObstacleWriter>(staging_->path(), cfg_.output.basename, m_.dim, box.diagonal(), c, rigid);
       }
       history_ = std::make_unique<CsvWriter>(stem + "_history.csv", history_columns());
       if (m_.any_dynamic) energy_csv_ = std::make_unique<CsvWriter>(stem + "_energy.csv", energy_columns());
@@ -273,6 +286,7 @@ void Reporter::open() {
 void Reporter::discard() {
   if (m_.rank != 0) return;
   xdmf_.reset();
+  obstacles_.reset();
   history_.reset();
   energy_csv_.reset();
   staging_->discard();
@@ -349,12 +363,12 @@ void Reporter::write_fields(double t, const la::Vector& u) {
     if (c.name == "J" && o.wants("mpi_rank")) xdmf_->cell_field("mpi_rank", 1, owner);
   }
   if (!o.wants("J") && o.wants("mpi_rank")) xdmf_->cell_field("mpi_rank", 1, owner);
-  if (m_.contact) write_contact_fields(*xdmf_, o, nn, slaves, m_.contact->has_master_surfaces() ? &masters : nullptr);
+  if (m_.contact) write_contact_fields(*xdmf_, o, nn, slaves, m_.contact->has_master_surfaces() ? &masters : nullptr, master_surface_.get());
   xdmf_->end_step();
   write_obstacles(t);
 }
 
-// The rigid obstacles at t as <basename>_obstacles_<k>.vtp (rank 0, with the fields).
+// The rigid obstacles at t in <basename>_obstacles.xdmf/.h5 (rank 0, with the fields).
 void Reporter::write_obstacles(double t) {
   if (!obstacles_) return;
   std::vector<ObstacleShape> shapes;
@@ -531,6 +545,8 @@ void Reporter::finish(bool failed) {
   history_.reset();
   energy_csv_.reset();
   xdmf_.reset();
+  const bool obstacles = obstacles_ != nullptr;
+  obstacles_.reset();
   if (metrics_) metrics_->close();
   if (failed) {
     out_ << "Partial results kept in " << staging_->path() << "; earlier results in " << out_dir_ << " were not touched\n";
@@ -539,8 +555,9 @@ void Reporter::finish(bool failed) {
   plots();
   log_copy::check();
   staging_->commit();
-  out_ << "Results in " << std::filesystem::absolute(out_dir_).string() << "/ (" << cfg_.output.basename << ".xdmf for ParaView, "
-       << cfg_.output.basename << "_history.csv)\n";
+  out_ << "Results in " << std::filesystem::absolute(out_dir_).string() << "/ (" << cfg_.output.basename << ".xdmf"
+       << (obstacles ? " and " + cfg_.output.basename + "_obstacles.xdmf" : std::string()) << " for ParaView, " << cfg_.output.basename
+       << "_history.csv)\n";
 }
 
 }  // namespace stentor

@@ -10,9 +10,10 @@
 #include <vector>
 
 #include "io/Csv.hpp"
-#include "io/ObstacleVtk.hpp"
+#include "io/Obstacles.hpp"
 #include "io/OutputDir.hpp"
 #include "io/XdmfWriter.hpp"
+#include "mesh/SurfaceProjection.hpp"
 #include "run/MetricsReport.hpp"
 #include "run/Model.hpp"
 #include "run/ResultPlots.hpp"
@@ -99,7 +100,8 @@ class Reporter {
   std::unique_ptr<XdmfWriter> xdmf_;
   std::unique_ptr<CsvWriter> history_, energy_csv_;
   std::unique_ptr<MetricsReport> metrics_;  // null without Output->Stent Metrics
-  std::unique_ptr<ObstacleVtkWriter> obstacles_;  // rank 0, fields on and rigid obstacles present
+  std::unique_ptr<ObstacleWriter> obstacles_;  // rank 0, fields on and rigid obstacles present
+  std::unique_ptr<SurfaceProjection> master_surface_;  // rank 0, fields on and master surfaces present
   void write_obstacles(double t);
   double total_energy_ = 0.0;               // kinetic + strain of the last energy_row
   InitialState initial_;                    // t = 0 for the plots (initial_metrics)

@@ -9,7 +9,11 @@ checks, for every output step: meshio reads the points (= /mesh/coordinates), th
 tetra10/triangle6 is the midpoint of meshio's edge, tetrahedra and hexahedra have positive
 volume in VTK's vertex order), the time (= the history CSV's time column, = the HDF5 step
 group's "time" attribute), the node and cell fields with the right shapes, and the
-displacement equal to h5py's /step_<k>/displacement. With --results, the same checks of
+displacement equal to h5py's /step_<k>/displacement; with rigid obstacles in the deck, their
+<base>_obstacles.xdmf the same way (io/Obstacles.hpp): the field file's times, line
+segments (2D) or quadrilaterals (3D), cell_block naming the rigid pairs in deck order, each
+step's displacement = its /step_<k>/coordinates - the first step's, non-zero at the end
+when the deck moves or inflates an obstacle; without rigid obstacles no such file. With --results, the same checks of
 the results folder DIR as it is, e.g. a run's <out>.partial after `kill -9` (restart.sh):
 each XDMF step's time is 0 or a history row's, in order (fields are written after the
 row). Needs Debian's python3-meshio, python3-h5py and python3-numpy (ci/setup.sh
@@ -17,6 +21,7 @@ installs them); exit 77 (skipped) without.
 """
 import csv
 import os
+import xml.etree.ElementTree as ET
 import re
 import shutil
 import subprocess
@@ -57,6 +62,52 @@ def hex_volumes(p, c):
     return [tet_volumes(p, c[:, list(t)]) for t in tets]
 
 
+def rigid_pairs(deck_text):
+    """Names of the deck's contact pairs with an `obstacle`, in deck order."""
+    root = ET.fromstring(deck_text)
+    names = []
+    for lst in root.iter("ParameterList"):
+        if lst.get("name") == "Contact":
+            for pair in lst.findall("ParameterList"):
+                if any(p.get("name") == "obstacle" for p in pair.findall("Parameter")):
+                    names.append(pair.get("name"))
+    return names
+
+
+def check_obstacles(out, base, times, pairs, moving):
+    """<out>/<base>_obstacles.xdmf/.h5 as meshio and h5py read them (see the module doc)."""
+    xdmf = os.path.join(out, base + "_obstacles.xdmf")
+    if not pairs:
+        check(not os.path.exists(xdmf), "no rigid obstacle: no %s" % xdmf)
+        return
+    check(os.path.exists(xdmf), "rigid obstacles %s: %s exists" % (pairs, xdmf))
+    if not os.path.exists(xdmf):
+        return
+    legend = ET.parse(xdmf).getroot().find("Domain/Information[@Name='cell_block']").get("Value")
+    check(legend == "; ".join("%d: %s" % (i, n) for i, n in enumerate(pairs)), "obstacles named %r" % legend)
+    h5 = h5py.File(os.path.join(out, base + "_obstacles.h5"), "r")
+    with meshio.xdmf.TimeSeriesReader(xdmf) as reader:
+        points, cells = reader.read_points_cells()
+        X0 = h5["step_0/coordinates"][()]
+        check(np.array_equal(points, X0), "obstacles: points = /step_0/coordinates")
+        check(len(cells) == 1 and cells[0].type in ("line", "quad"), "obstacles: one block of lines or quads")
+        check(np.array_equal(cells[0].data, h5["mesh/topology"][()]), "obstacles: cells = /mesh/topology")
+        check(reader.num_steps == len(times), "obstacles: %d steps, the field file's %d" % (reader.num_steps, len(times)))
+        u = None
+        for k in range(min(reader.num_steps, len(times))):
+            t, point_data, cell_data = reader.read_data(k)
+            check(t == times[k], "obstacles step %d: time %r = the field file's %r" % (k, t, times[k]))
+            u = point_data.get("displacement")
+            x = h5["step_%d/coordinates" % k][()]
+            check(u is not None and np.array_equal(u, x - X0), "obstacles step %d: displacement = coordinates - first" % k)
+            check(np.array_equal(cell_data["cell_block"][0], h5["mesh/cell_block"][()]), "obstacles step %d: cell_block" % k)
+        if moving and u is not None:
+            check(np.max(np.abs(u)) > 0, "obstacles: moved or inflated by the end")
+        print("obstacles: %s, %d points, %d %s cells, %d steps, last max |u| %g" %
+              (pairs, len(points), len(cells[0].data), cells[0].type, reader.num_steps, np.max(np.abs(u)) if u is not None else -1))
+    h5.close()
+
+
 def run_deck(stentor, work, deck, order):
     """Runs a copy of DECK with fields at every step; returns (results folder, basename)."""
     shutil.rmtree(work, ignore_errors=True)
@@ -85,10 +136,10 @@ def run_deck(stentor, work, deck, order):
         sys.exit(1)
     m = re.search(r'name="basename" type="string" value="([^"]+)"', text)
     base = m.group(1) if m else "stentor"
-    return out, base
+    return out, base, text
 
 
-def check_results(out, base, every_step):
+def check_results(out, base, every_step, deck_text=None):
     """meshio and h5py read <out>/<base>.xdmf/.h5 alike, step by step. every_step: the XDMF
     steps are the initial state and one per history row; else each step's time is 0 or a
     history row's time, in increasing order (a folder a killed run left)."""
@@ -172,7 +223,11 @@ def check_results(out, base, every_step):
                 check(d.shape[0] == nn, "step %d: node field %s has %d rows" % (k, name, nn))
         print("%d steps, times %s" % (reader.num_steps, [reader.read_data(k)[0] for k in range(reader.num_steps)]))
         print("node fields: %s; cell fields: %s" % (sorted(point_data), sorted(cell_data)))
+        times = [reader.read_data(k)[0] for k in range(reader.num_steps)]
     h5.close()
+    if deck_text is not None:
+        moving = re.search(r'name="(translation|radius change)"', deck_text) is not None
+        check_obstacles(out, base, times, rigid_pairs(deck_text), moving)
 
 
 if len(sys.argv) == 4 and sys.argv[1] == "--results":
@@ -180,7 +235,8 @@ if len(sys.argv) == 4 and sys.argv[1] == "--results":
 else:
     stentor, work, deck = sys.argv[1:4]
     order = sys.argv[4] if len(sys.argv) > 4 else None
-    check_results(*run_deck(stentor, work, deck, order), True)
+    out, base, text = run_deck(stentor, work, deck, order)
+    check_results(out, base, True, text)
 if failures:
     print("%d check(s) failed" % len(failures))
     sys.exit(1)

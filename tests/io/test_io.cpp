@@ -367,7 +367,8 @@ TEST(XdmfWriter, TopologyNamesAndPermutation) {
   EXPECT_STREQ(xdmf_topology_name(CellType::Tet4), "Tetrahedron");
   EXPECT_STREQ(xdmf_topology_name(CellType::Tet10), "Tetrahedron_10");
   EXPECT_STREQ(xdmf_topology_name(CellType::Hex8), "Hexahedron");
-  EXPECT_EQ(xdmf_topology_name(CellType::Line2), nullptr);
+  EXPECT_STREQ(xdmf_topology_name(CellType::Line2), "Polyline");
+  EXPECT_EQ(xdmf_topology_name(CellType::Line3), nullptr);
   int perm[kMaxCellNodes];
   ASSERT_EQ(xdmf_node_permutation(CellType::Tri6, perm), 6);
   for (int j = 0; j < 6; ++j) EXPECT_EQ(perm[j], j);
@@ -568,9 +569,13 @@ TEST(XdmfWriter, Errors) {
     EXPECT_NE(std::string(e.what()).find("r.h5"), std::string::npos) << e.what();
   }
   H5Eset_auto2(H5E_DEFAULT, old_func, old_data);
-  // Volume cells without an XDMF topology.
+  // Volume cells without an XDMF topology (line3), line cells (Polyline) mixed with others.
   Mesh bad = mesh;
   bad.volumes.push_back(mesh.boundaries[0]);
+  EXPECT_THROW(XdmfWriter(dir.string(), "bad", bad), std::runtime_error);
+  bad.volumes.back().type = CellType::Line3;
+  bad.volumes.back().nodes_per_cell = 3;
+  bad.volumes.back().conn = {0, 1, 2};
   EXPECT_THROW(XdmfWriter(dir.string(), "bad", bad), std::runtime_error);
   // Node out of range.
   bad = mesh;
@@ -592,6 +597,52 @@ TEST(XdmfWriter, Errors) {
   EXPECT_THROW(w.cell_field("u", 1, std::vector<double>(4)), std::runtime_error);  // same name
   w.end_step();
   EXPECT_EQ(w.num_steps(), 1);
+}
+
+// A moving mesh of line segments (the rigid obstacles' outlines, io/Obstacles.hpp): XDMF
+// "Polyline" with NodesPerElement 2, each step's Geometry on its own /step_<k>/coordinates.
+TEST(XdmfWriter, MovingPolylineMesh) {
+  const fs::path dir = scratch("xdmf_moving");
+  Mesh m;
+  m.dim = 2;
+  m.x = {0, 0, 0, 1, 0, 0, 1, 1, 0};
+  CellBlock b;
+  b.name = "balloon";
+  b.type = CellType::Line2;
+  b.nodes_per_cell = 2;
+  b.conn = {0, 1, 1, 2};
+  b.cell_id = {0, 1};
+  m.volumes = {b};
+  {
+    XdmfWriter w(dir.string(), "ob", m);
+    EXPECT_THROW(w.geometry(m.x), std::runtime_error);  // no step
+    for (int k = 0; k < 2; ++k) {
+      w.begin_step(k);
+      std::vector<double> x = m.x;
+      for (std::size_t i = 1; i < x.size(); i += 3) x[i] += 0.5 * k;
+      EXPECT_THROW(w.geometry(std::vector<double>(8)), std::runtime_error);
+      w.geometry(x);
+      EXPECT_THROW(w.geometry(x), std::runtime_error);                                 // twice
+      EXPECT_THROW(w.node_field("coordinates", 3, x), std::runtime_error);             // its dataset
+      w.node_field("displacement", 3, std::vector<double>(9, 0.5 * k));
+      w.end_step();
+    }
+  }
+  const XmlNode x = XmlParser(slurp(dir / "ob.xdmf")).document();
+  const auto steps = x.children("Domain")[0]->children("Grid")[0]->children("Grid");
+  ASSERT_EQ(steps.size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    const XmlNode& topo = *steps[static_cast<std::size_t>(k)]->children("Topology")[0];
+    EXPECT_EQ(topo.attr("TopologyType"), "Polyline");
+    EXPECT_EQ(topo.attr("NodesPerElement"), "2");
+    const XmlNode& geo = *steps[static_cast<std::size_t>(k)]->children("Geometry")[0]->children("DataItem")[0];
+    EXPECT_EQ(trim(geo.text), "ob.h5:/step_" + std::to_string(k) + "/coordinates");
+  }
+  H5File f((dir / "ob.h5").string());
+  EXPECT_EQ(read_ints(f.id, "/mesh/topology"), (std::vector<long long>{0, 1, 1, 2}));
+  int count = 0;
+  check_data_items(x, dir, count);
+  EXPECT_EQ(count, 2 * 4);
 }
 
 // ---------------------------------------------------------------------------------------

@@ -5,8 +5,9 @@
 //  2. A capsule of length 0 is a circle: the staged rigid-balloon deck gives the same
 //     results with either (to 1e-12).
 //  3. Obstacles drawn for ParaView: every sampled point of a capsule (2D stadium, 3D
-//     surface) lies at the radius from its segment; the staged balloon run writes one
-//     .vtp per field output, listed in the .pvd, with the balloon at its radius then.
+//     surface) lies at the radius from its segment; the staged balloon run writes the
+//     balloon into <basename>_obstacles.h5/.xdmf at every field output (the field file's
+//     times), at its radius then, its displacement = position - first position.
 //  4. Metrics of an artery cross-section under lumen pressure (inputs/artery_ring.xml at
 //     1 kPa, linear regime) against independent calculations: mean and smallest lumen
 //     radius and the lumen area from the mesh and the final displacement (recomputed
@@ -20,11 +21,13 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "CsvSeries.hpp"
 #include "contact/NodeLaw.hpp"
-#include "io/ObstacleVtk.hpp"
+#include "H5Results.hpp"
+#include "io/Obstacles.hpp"
 #include "mesh/MeshQuery.hpp"
 #include "run/Simulation.hpp"
 
@@ -61,35 +64,33 @@ double expected_gap(const contact::Obstacle& o, const double x[3], double n[3]) 
   return d - o.radius;
 }
 
-// The points of a .vtp written by ObstacleVtkWriter.
-std::vector<std::array<double, 3>> vtp_points(const fs::path& file) {
-  std::ifstream f(file);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  const std::string t = ss.str();
-  const auto a = t.find("format=\"ascii\">", t.find("<Points>")) + 15, b = t.find("</DataArray></Points>");
-  std::istringstream in(t.substr(a, b - a));
-  std::vector<std::array<double, 3>> pts;
-  std::array<double, 3> x{};
-  while (in >> x[0] >> x[1] >> x[2]) pts.push_back(x);
-  return pts;
-}
-
 }  // namespace
 
+// Every obstacle kind the output draws (plane, circle, sphere, cylinder, capsule): every
+// sampled point on it (gap 0 to 1e-12), every cell's points in range.
 TEST(StentTools, ObstacleSurfacesLieOnTheObstacle) {
-  for (int dim : {2, 3}) {
-    const contact::Obstacle o = capsule(dim);
+  std::vector<std::pair<int, contact::Obstacle>> cases = {{2, capsule(2)}, {3, capsule(3)}};
+  for (int dim : {2, 3})
+    for (int kind : {0, 1, 2}) {
+      if (dim == 2 && kind == 2) continue;  // no cylinder in 2D
+      contact::Obstacle o;
+      o.kind = kind;
+      const double p[3] = {0.3, -0.2, dim == 3 ? 0.7 : 0.0}, n[3] = {0.6, 0.0, 0.8}, n2[3] = {0.6, 0.8, 0.0};
+      for (int k = 0; k < 3; ++k) o.point[k] = p[k], o.normal[k] = dim == 3 ? n[k] : n2[k], o.axis[k] = n[k];
+      o.radius = 0.4;
+      cases.emplace_back(dim, o);
+    }
+  for (const auto& [dim, o] : cases) {
     ObstacleShape s;
-    s.kind = 3;
-    for (int k = 0; k < 3; ++k) s.point[k] = o.point[k], s.axis[k] = o.axis[k];
+    s.kind = o.kind;
+    for (int k = 0; k < 3; ++k) s.point[k] = o.point[k], s.normal[k] = o.normal[k], s.axis[k] = o.axis[k];
     s.radius = o.radius;
     s.length = o.length;
     const ObstacleSurface surf = sample_obstacle(s, dim, 10.0, {0, 0, 0});
-    ASSERT_GT(surf.points.size(), 60u);
+    ASSERT_GE(surf.points.size(), 2u);
     for (const auto& x : surf.points) {
-      double n[3];
-      EXPECT_NEAR(contact::rigid_gap(o, x.data(), n), 0.0, 1e-12) << "dim " << dim;
+      double nx[3];
+      EXPECT_NEAR(contact::rigid_gap(o, x.data(), nx), 0.0, 1e-12) << "dim " << dim << " kind " << o.kind;
     }
     for (const auto& c : surf.cells)
       for (int k : c) EXPECT_LT(static_cast<std::size_t>(k), surf.points.size());
@@ -148,18 +149,22 @@ TEST(StentTools, CapsuleOfLengthZeroIsACircle) {
   EXPECT_GT(std::abs(ha["contact_balloon_force_y"].at(3)), 0.0) << "the balloon never touched the block";
   EXPECT_NEAR(ha["contact_balloon_force_y"].at(3), hb["contact_balloon_force_y"].at(3), 1e-9 * std::abs(ha["contact_balloon_force_y"].at(3)));
 
-  // The balloon for ParaView: 1 + 8 outputs (t = 0 and every step); at t = 1 (output 4,
-  // end of inflation) its radius is 0.45 + 0.15 about (0.5, -0.5).
-  std::ifstream pvd(kDir / "capsule" / "balloon_stages_obstacles.pvd");
-  std::stringstream ss;
-  ss << pvd.rdbuf();
-  std::size_t n = 0;
-  for (std::size_t at = ss.str().find("<DataSet"); at != std::string::npos; at = ss.str().find("<DataSet", at + 1)) ++n;
-  EXPECT_EQ(n, ha.rows() + 1);
-  EXPECT_NE(ss.str().find("timestep=\"1\" file=\"balloon_stages_obstacles_4.vtp\""), std::string::npos);
-  const auto pts = vtp_points(kDir / "capsule" / "balloon_stages_obstacles_4.vtp");
-  ASSERT_GT(pts.size(), 60u);
-  for (const auto& x : pts) EXPECT_NEAR(std::hypot(x[0] - 0.5, x[1] + 0.5), 0.6, 1e-12);
+  // The balloon for ParaView: outputs at t = 0 and every step, the field file's times; at
+  // t = 1 (output 4, end of inflation) its radius is 0.45 + 0.15 about (0.5, -0.5).
+  using H5 = stentor::testing::H5Results;
+  H5 obstacles(kDir / "capsule" / "balloon_stages_obstacles.h5"), fields(kDir / "capsule" / "balloon_stages.h5");
+  ASSERT_GE(obstacles.f, 0);
+  const std::vector<double> t = obstacles.times();
+  EXPECT_EQ(t.size(), ha.rows() + 1);
+  EXPECT_EQ(t, fields.times());
+  EXPECT_EQ(t.at(4), 1.0);
+  const auto x0 = obstacles.read("/step_0/coordinates"), x4 = obstacles.read("/step_4/coordinates"), u4 = obstacles.read("/step_4/displacement");
+  ASSERT_GT(x4.size(), 180u);
+  ASSERT_EQ(u4.size(), x4.size());
+  for (std::size_t i = 0; i < x4.size(); i += 3) {
+    EXPECT_NEAR(std::hypot(x4[i] - 0.5, x4[i + 1] + 0.5), 0.6, 1e-12);
+    for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(u4[i + c], x4[i + c] - x0[i + c]);
+  }
 }
 
 TEST(StentTools, MetricsOfAPressurisedArteryRing) {

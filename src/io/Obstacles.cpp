@@ -1,13 +1,8 @@
-#include "io/ObstacleVtk.hpp"
+#include "io/Obstacles.hpp"
 
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
-#include <sstream>
-
-#include "io/Csv.hpp"
-#include "io/WriteError.hpp"
+#include <stdexcept>
+#include <utility>
 
 namespace stentor {
 
@@ -123,55 +118,57 @@ ObstacleSurface sample_obstacle(const ObstacleShape& o, int dim, double extent, 
   return revolve(o.point, a, profile(o, zc - extent, zc + extent, false));
 }
 
-ObstacleVtkWriter::ObstacleVtkWriter(std::string dir, std::string basename, int dim, double extent, std::array<double, 3> centre)
-    : dir_(std::move(dir)), basename_(std::move(basename)), dim_(dim), extent_(extent), centre_(centre) {}
+ObstacleWriter::ObstacleWriter(std::string dir, std::string basename, int dim, double extent, std::array<double, 3> centre,
+                               std::vector<std::string> names)
+    : dir_(std::move(dir)), basename_(std::move(basename)), dim_(dim), extent_(extent), centre_(centre), names_(std::move(names)) {}
 
-void ObstacleVtkWriter::write(double t, const std::vector<ObstacleShape>& shapes) {
-  const std::string name = basename_ + "_obstacles_" + std::to_string(steps_.size()) + ".vtp";
-  const std::string path = dir_ + "/" + name;
-  std::ostringstream pts, conn, offs, ids;
-  pts.precision(17);
-  std::size_t np = 0, nc = 0, off = 0;
-  for (std::size_t i = 0; i < shapes.size(); ++i) {
-    const ObstacleSurface s = sample_obstacle(shapes[i], dim_, extent_, centre_);
-    for (const auto& x : s.points) pts << x[0] << " " << x[1] << " " << x[2] << "\n";
+ObstacleWriter::~ObstacleWriter() = default;
+
+namespace {
+
+// The shapes as a mesh: one block per obstacle (line segments in 2D, quadrilaterals in 3D).
+Mesh obstacle_mesh(const std::vector<ObstacleSurface>& surfaces, const std::vector<std::string>& names, int dim) {
+  Mesh m;
+  m.dim = dim;
+  GId cell = 0;
+  for (std::size_t i = 0; i < surfaces.size(); ++i) {
+    const ObstacleSurface& s = surfaces[i];
+    const GId off = static_cast<GId>(m.num_nodes());
+    for (const auto& x : s.points) m.x.insert(m.x.end(), x.begin(), x.end());
+    CellBlock b;
+    b.name = names[i];
+    b.type = dim == 2 ? CellType::Line2 : CellType::Quad4;
+    b.nodes_per_cell = dim == 2 ? 2 : 4;
     for (const auto& c : s.cells) {
-      for (int k : c) conn << k + static_cast<int>(np) << " ";
-      off += c.size();
-      offs << off << " ";
-      ids << i << " ";
-      ++nc;
+      if (dim == 2)  // a polyline: its segments
+        for (std::size_t j = 0; j + 1 < c.size(); ++j) b.conn.insert(b.conn.end(), {off + c[j], off + c[j + 1]});
+      else
+        for (int k : c) b.conn.push_back(off + k);
     }
-    np += s.points.size();
+    for (std::size_t c = 0; c < b.num_cells(); ++c) b.cell_id.push_back(cell++);
+    m.volumes.push_back(std::move(b));
   }
-  const char* cell_kind = dim_ == 2 ? "Lines" : "Polys";
-  {
-    std::ofstream f(path);
-    f << "<?xml version=\"1.0\"?>\n<!-- Stentor rigid obstacles at t = " << t << " -->\n"
-      << "<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n<PolyData>\n<Piece NumberOfPoints=\"" << np
-      << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << (dim_ == 2 ? nc : 0) << "\" NumberOfStrips=\"0\" NumberOfPolys=\""
-      << (dim_ == 2 ? 0 : nc) << "\">\n<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n" << pts.str()
-      << "</DataArray></Points>\n<" << cell_kind << "><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">" << conn.str()
-      << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">" << offs.str() << "</DataArray></" << cell_kind
-      << ">\n<CellData Scalars=\"obstacle\"><DataArray type=\"Int32\" Name=\"obstacle\" format=\"ascii\">" << ids.str()
-      << "</DataArray></CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
-    f.flush();
-    errno = 0;
-    check_write(static_cast<bool>(f), "writing", path);
+  return m;
+}
+
+}  // namespace
+
+void ObstacleWriter::write(double t, const std::vector<ObstacleShape>& shapes) {
+  if (shapes.size() != names_.size()) throw std::logic_error("ObstacleWriter: one shape per named obstacle expected");
+  std::vector<ObstacleSurface> surfaces;
+  for (const ObstacleShape& o : shapes) surfaces.push_back(sample_obstacle(o, dim_, extent_, centre_));
+  const Mesh m = obstacle_mesh(surfaces, names_, dim_);
+  if (!xdmf_) {
+    xdmf_ = std::make_unique<XdmfWriter>(dir_, basename_ + "_obstacles", m);
+    x0_ = m.x;
   }
-  steps_.emplace_back(t, name);
-  const std::string pvd = dir_ + "/" + basename_ + "_obstacles.pvd", tmp = pvd + ".tmp";
-  {
-    std::ofstream f(tmp);
-    f.precision(17);
-    f << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
-    for (const auto& s : steps_) f << "    <DataSet timestep=\"" << format_double(s.first) << "\" file=\"" << s.second << "\"/>\n";
-    f << "  </Collection>\n</VTKFile>\n";
-    f.flush();
-    errno = 0;
-    check_write(static_cast<bool>(f), "writing", pvd);
-  }
-  if (std::rename(tmp.c_str(), pvd.c_str()) != 0) throw_write_error("renaming to", pvd, errno);
+  if (m.x.size() != x0_.size()) throw std::logic_error("ObstacleWriter: the obstacles' sampling changed between outputs");
+  std::vector<double> u(m.x.size());
+  for (std::size_t i = 0; i < u.size(); ++i) u[i] = m.x[i] - x0_[i];
+  xdmf_->begin_step(t);
+  xdmf_->geometry(m.x);
+  xdmf_->node_field("displacement", 3, u);
+  xdmf_->end_step();
 }
 
 }  // namespace stentor
