@@ -32,7 +32,7 @@ using NeoHookeanDamage = IsotropicDamage<NeoHookean>;
 
 // Every law a block can have. A new law with history is added here (and, when a deck may
 // name it, in make_material below).
-using Material = std::variant<ElasticLaw, CiarletGeymonatPlasticity, NeoHookeanDamage>;
+using Material = std::variant<ElasticLaw, CiarletGeymonatPlasticity, NeoHookeanPlasticity, NeoHookeanDamage>;
 
 // The stateless law of a material; a new hyperelastic law also goes into ElasticLaw's switch.
 inline ElasticLaw elastic_law(const MaterialConfig& m) {

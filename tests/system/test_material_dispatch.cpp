@@ -1,12 +1,13 @@
 // The material dispatch of the assembler (issue 11, "material dispatch"; docs/plasticity.md,
-// "Adding a material"): a second law with Gauss-point history, NeoHookeanDamage
-// (material/Damage.hpp, its own history layout of 3 values), runs through the same
-// kernels, history views and cell output as CiarletGeymonatPlasticity without a line of
-// src/assembly naming it. Checked through the global assembly: the tangent against
-// central differences of the residual (damage growing at most points, and unloading),
-// d_inf = 0 against the stateless neo-Hookean kernel bit for bit, the exact energy
-// identity of a Gonzalez step, and a deck with two laws with history in two blocks
-// (history widths, output columns, commit / roll back).
+// "Adding a material"): two more laws with Gauss-point history, NeoHookeanDamage
+// (material/Damage.hpp, its own history layout of 3 values) and NeoHookeanPlasticity
+// (material/Plasticity.hpp), run through the same kernels, history views and cell output
+// as CiarletGeymonatPlasticity without a line of src/assembly naming them. Checked through
+// the global assembly: the tangent against central differences of the residual (damage
+// growing at most points, and unloading; plastic flow at most points), d_inf = 0 against
+// the stateless neo-Hookean kernel bit for bit, the exact energy identity of a Gonzalez
+// step with damage, and a deck with two laws with history in two blocks (history widths,
+// output columns, commit / roll back).
 #include <gtest/gtest.h>
 
 #include <Tpetra_Core.hpp>
@@ -170,6 +171,30 @@ TEST(MaterialDispatch, DamageTangentMatchesFiniteDifferences) {
       EXPECT_GT(grow, ngp / 2);
     else
       EXPECT_EQ(grow, 0);
+    EXPECT_LT(rel, 1e-6);
+  }
+}
+
+// The second plasticity law (the return map over the neo-Hookean law) through the global
+// assembly: tangent against central differences from a plastic committed state, most
+// points flowing, perfect plasticity and hardening.
+TEST(MaterialDispatch, NeoHookeanPlasticityTangentMatchesFiniteDifferences) {
+  for (const double H : {0.0, 0.5e6}) {
+    Fixture s(write_and_read(cube_deck(), "cube"), {NeoHookeanPlasticity{NeoHookean{kMu, kLambda}, 0.1e6, H}});
+    ASSERT_EQ(s.as->committed_history(0).extent(1), static_cast<std::size_t>(NeoHookeanPlasticity::kNumHist));
+    la::Vector u(s.dist->owned_map()), r(s.dist->owned_map());
+    s.fill(u, 0.6);
+    s.as->assemble(u, 1.0, 1.0, r, false);
+    s.as->commit_history();
+    s.fill(u, 1.0, 0.03);
+    const double rel = tangent_error(s, u);
+    s.as->assemble(u, 1.0, 1.0, r, false);
+    const std::vector<double> h = host_copy(s.as->trial_history(0));
+    int flowing = 0, ngp = 0;
+    for (std::size_t i = NeoHookeanPlasticity::kYielding; i < h.size(); i += NeoHookeanPlasticity::kNumHist) flowing += h[i] > 0.0, ++ngp;
+    std::cout << "[ nh-plastic ] H = " << H << ": " << flowing << "/" << ngp << " Gauss points flowing, |K du - FD|/|K du| = " << rel
+              << "\n";
+    EXPECT_GT(flowing, ngp / 2);
     EXPECT_LT(rel, 1e-6);
   }
 }
