@@ -83,7 +83,7 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
     block_law_.push_back(laws[static_cast<std::size_t>(block_material[b])]);
     block_density_.push_back(m.density);
     // Viscosity acts only in dynamics (it needs a time step); statics pays nothing for it.
-    block_eta_.push_back(cfg.problem.dynamic() ? m.viscosity : 0.0);
+    block_eta_.push_back(cfg.any_dynamic() ? m.viscosity : 0.0);
     quad_degree_.push_back(default_quadrature_degree(mesh.volumes[b].type));
   }
   if (cfg.problem.assembly == "coloring") color_cells();

@@ -74,6 +74,7 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
     : dim_(mesh.dim), end_time_(cfg.stepping.end_time), dist_(dist) {
   model_size_ = mesh.bounding_box().diagonal();
   gap_tol_ = 1e-12 * model_size_;
+  mixed_analysis_ = cfg.any_dynamic() && cfg.any_static();
 
   // Master surfaces first: their nodes may not be slaves of any pair.
   std::vector<char> is_master(mesh.num_nodes(), 0);
@@ -110,8 +111,8 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
     if ((pc.obstacle == "cylinder" || pc.obstacle == "sphere") && dim_ != 3)
       throw InputError(where + "->obstacle = " + pc.obstacle + " is 3D only; use circle in 2D");
   }
-  p.persistence = pc.formulation == "persistence" || (pc.formulation == "auto" && cfg.problem.dynamic());
-  if (pc.formulation == "persistence" && !cfg.problem.dynamic())
+  p.persistence = pc.formulation == "persistence" || (pc.formulation == "auto" && cfg.dynamic_in(0));
+  if (pc.formulation == "persistence" && !cfg.any_dynamic())  // static stages with the pair active: refused by the deck reader
     throw InputError(where + "->formulation = persistence needs a dynamic analysis ('Problem->analysis' = dynamic); use gap in statics");
   const std::vector<GId> nodes = boundary_nodes(mesh, pc.slave);  // throws InputError naming the group
   const auto areas = tributary_areas(mesh, pc.slave);
@@ -213,7 +214,11 @@ std::string Contact::description() const {
       os << "master surface '" << p.cfg.master << "' (" << p.master->facets().size() << " facets)";
     else
       os << p.cfg.obstacle;
-    os << ", " << (p.persistence ? "persistence (leapfrog)" : "gap") << ", mu " << p.cfg.friction;
+    if (mixed_analysis_ && p.cfg.formulation == "auto")
+      os << ", persistence (leapfrog) in dynamic stages, gap in static ones";
+    else
+      os << ", " << (p.persistence ? "persistence (leapfrog)" : "gap");
+    os << ", mu " << p.cfg.friction;
     if (p.excluded) os << " (" << p.excluded << " slave nodes with every component prescribed left out)";
     if (p.partial) os << " (" << p.partial << " slave nodes with some prescribed components: contact on the free ones)";
   }
@@ -342,6 +347,11 @@ long Contact::restore_step_history(std::size_t pair, const NodalFields& sorted) 
 
 void Contact::set_active_pairs(const std::vector<bool>& active) {
   for (std::size_t i = 0; i < pairs_.size() && i < active.size(); ++i) pairs_[i].active = active[i];
+}
+
+void Contact::set_analysis(bool dynamic) {
+  for (auto& p : pairs_)
+    if (p.cfg.formulation == "auto") p.persistence = dynamic;
 }
 
 void Contact::begin_step(double t_n, double dt, const la::Vector& u_n) {

@@ -60,6 +60,10 @@ class Contact {
   // Which pairs enforce contact (one flag per Config::contact entry; all by default): the
   // slave nodes of an inactive pair are free. "Stages" switch pairs per stage.
   void set_active_pairs(const std::vector<bool>& active);
+  // The analysis of the stage about to run: pairs with formulation `auto` enforce
+  // persistence in a dynamic stage and the gap condition in a static one. The gap history
+  // (d_n, d_{n-1}) is kept in both, so a switch needs nothing else.
+  void set_analysis(bool dynamic);
 
   struct PairStats {
     long active = 0, stick = 0, slip = 0;
@@ -179,6 +183,7 @@ class Contact {
   // Master surfaces: every master node's dofs on every rank (replicated), imported each
   // evaluation; positions at the start of the step; Dirichlet flags of those dofs.
   bool has_master_ = false;
+  bool mixed_analysis_ = false;  // static and dynamic stages: `auto` pairs switch (set_analysis)
   std::vector<GId> master_nodes_;          // sorted
   std::vector<int> master_pos_;            // per mesh node: index in master_nodes_, or -1
   std::vector<double> master_X_;           // reference coordinates, 3 per master node

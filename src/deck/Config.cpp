@@ -79,6 +79,16 @@ const MaterialConfig& Config::material(const std::string& name) const {
                    (defined.empty() ? "(none)" : defined));
 }
 
+bool Config::any_dynamic() const {
+  if (stages.empty()) return problem.dynamic();
+  return std::any_of(stages.begin(), stages.end(), [](const StageConfig& s) { return s.dynamic(); });
+}
+
+bool Config::any_static() const {
+  if (stages.empty()) return !problem.dynamic();
+  return std::any_of(stages.begin(), stages.end(), [](const StageConfig& s) { return !s.dynamic(); });
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -301,6 +311,8 @@ class DeckReader {
   Ramp read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls, const std::string& key = "ramp") const;
   void read_contact(const ParameterList& pl);
   void read_stages(const ParameterList& pl, const ParameterList* stepping);
+  void check_analysis(bool initial_conditions, bool time_integration);
+  void read_stage_analysis(const ParameterList& sub, const std::string& path, StageConfig& st);
   std::vector<bool> read_active(const ParameterList& sub, const std::string& path, const std::string& key,
                                 const std::vector<std::string>& names, const std::string& what) const;
   void read_stage_ramps(const ParameterList& sub, const std::string& path, std::size_t k);
@@ -1359,7 +1371,7 @@ void DeckReader::read_output(const ParameterList& pl) {
 void DeckReader::resolve_output() {
   OutputConfig& o = cfg_.output;
   OutputDeckTraits traits;
-  traits.dynamic = cfg_.problem.dynamic();
+  traits.dynamic = cfg_.any_dynamic();
   traits.contact = !cfg_.contact.empty();
   for (const auto& c : cfg_.contact) traits.master_surface |= !c.master.empty();
   for (const auto& b : cfg_.bodies)
@@ -1500,6 +1512,53 @@ void DeckReader::read_stage_ramps(const ParameterList& sub, const std::string& p
   }
 }
 
+// A stage's analysis and scheme (defaults: Problem->analysis, Time Integration->scheme),
+// and the contact pairs that need a dynamic stage.
+void DeckReader::read_stage_analysis(const ParameterList& sub, const std::string& path, StageConfig& st) {
+  const ListSpec& ls = deck_list_spec("Stages/*");
+  st.analysis = sub.isParameter("analysis") ? get_string(sub, ls, "analysis") : cfg_.problem.analysis;
+  st.scheme = cfg_.time.scheme;
+  if (sub.isParameter("scheme")) {
+    if (!st.dynamic())
+      fail(quoted(path + "->scheme") + " is the time scheme of a dynamic stage, and the stage is static; set " +
+           quoted(path + "->analysis") + " = dynamic or remove 'scheme'");
+    st.scheme = get_string(sub, ls, "scheme");
+  }
+  if (st.dynamic()) return;
+  for (std::size_t i = 0; i < cfg_.contact.size(); ++i)
+    if (st.contact_active[i] && cfg_.contact[i].formulation == "persistence")
+      fail(quoted("Contact->" + cfg_.contact[i].name + "->formulation") + " = persistence needs a dynamic analysis, and the pair is active in the static stage " +
+           quoted(path) + "; use gap or auto (gap in static stages), or leave the pair out of the stage's 'contact'");
+}
+
+// What the analysis asks of the rest of the deck, once the stages (each with its own
+// analysis and scheme) are known.
+void DeckReader::check_analysis(bool initial_conditions, bool time_integration) {
+  const bool staged = !cfg_.stages.empty();
+  const int n = staged ? static_cast<int>(cfg_.stages.size()) : 1;
+  for (int k = 0; k < n; ++k) {
+    if (!cfg_.dynamic_in(k) || cfg_.scheme_in(k) != "midpoint") continue;
+    for (const auto& m : cfg_.materials)
+      if (m.plastic())
+        fail("'Materials->" + m.name + "->model' = Ciarlet-Geymonat plasticity needs " +
+             (staged ? quoted("Stages->" + cfg_.stages[static_cast<std::size_t>(k)].name + "->scheme") : std::string("'Time Integration->scheme'")) +
+             " = gonzalez (energy-dissipative), newmark or hht, not midpoint");
+  }
+  if (cfg_.any_dynamic()) {
+    for (const auto& m : cfg_.materials)
+      if (!(m.density > 0.0))
+        fail("'Materials->" + m.name + "->density' must be > 0 in a dynamic analysis (" +
+             (staged ? std::string("a stage has 'analysis' = dynamic") : std::string("'Problem->analysis' = dynamic")) + ")");
+  }
+  if (initial_conditions && !cfg_.dynamic_in(0))
+    fail(staged ? "'Initial Conditions' needs the first stage " + quoted("Stages->" + cfg_.stages.front().name) +
+                      " to be dynamic (a static stage starts at rest)"
+                : std::string("'Initial Conditions' needs 'Problem->analysis' = dynamic (a static analysis has no velocity)"));
+  if (time_integration && !cfg_.any_dynamic())
+    fail(staged ? std::string("'Time Integration' needs a dynamic stage ('analysis' = dynamic in a stage or in 'Problem')")
+                : std::string("'Time Integration' needs 'Problem->analysis' = dynamic"));
+}
+
 void DeckReader::read_stages(const ParameterList& pl, const ParameterList* stepping) {
   const ListSpec& ls = deck_list_spec("Stages/*");
   check_list(pl, "Stages", {&deck_list_spec("Stages")});
@@ -1537,6 +1596,7 @@ void DeckReader::read_stages(const ParameterList& pl, const ParameterList* stepp
       fail("'Stepping->min dt' = " + num(cfg_.stepping.min_dt) + " exceeds the step " + num(st.step()) + " of stage " + quoted(path));
     st.load_active = read_active(sub, path, "loads", load_names, "load");
     st.contact_active = read_active(sub, path, "contact", pair_names, "contact pair");
+    read_stage_analysis(sub, path, st);
     cfg_.stages.push_back(st);
     const std::size_t k = cfg_.stages.size() - 1;
     // Default pieces: the deck's ramp in stage-local time where active, else held
@@ -1616,25 +1676,12 @@ Config DeckReader::read() {
   if (root.isSublist("Initial Conditions")) read_initial(root.sublist("Initial Conditions"));
   if (root.isSublist("Time Integration")) read_time(root.sublist("Time Integration"));
   if (root.isSublist("Stepping")) read_stepping(root.sublist("Stepping"));
-  if (cfg_.problem.dynamic()) {
-    for (const auto& m : cfg_.materials)
-      if (m.plastic() && cfg_.time.scheme == "midpoint")
-        fail("'Materials->" + m.name + "->model' = Ciarlet-Geymonat plasticity needs 'Time Integration->scheme' = gonzalez "
-             "(energy-dissipative), newmark or hht, not midpoint");
-    for (const auto& m : cfg_.materials)
-      if (!(m.density > 0.0))
-        fail("'Materials->" + m.name + "->density' must be > 0 in a dynamic analysis ('Problem->analysis' = dynamic)");
-  } else {
-    if (root.isSublist("Initial Conditions"))
-      fail("'Initial Conditions' needs 'Problem->analysis' = dynamic (a static analysis has no velocity)");
-    if (root.isSublist("Time Integration"))
-      fail("'Time Integration' needs 'Problem->analysis' = dynamic");
-  }
   if (root.isSublist("Newton")) read_newton(root.sublist("Newton"));
   if (root.isSublist("Linear Solver")) read_linear(root.sublist("Linear Solver"));
   if (root.isSublist("Output")) read_output(root.sublist("Output"));
   if (root.isSublist("Contact")) read_contact(root.sublist("Contact"));
   if (root.isSublist("Stages")) read_stages(root.sublist("Stages"), root.isSublist("Stepping") ? &root.sublist("Stepping") : nullptr);
+  check_analysis(root.isSublist("Initial Conditions"), root.isSublist("Time Integration"));
   resolve_output();
   // "{deck}" in Output->directory (the default results/{deck}): the deck's file name
   // without its extension, so that two decks never share a result folder by default.

@@ -210,9 +210,12 @@ struct StageConfig {
   std::string name;
   double start = 0.0, end = 1.0;     // "duration" or "end time" [s]
   int num_steps = 1;                 // "steps", or duration / "step" rounded up
+  std::string analysis = "static";   // "analysis" (default Problem->analysis): static | dynamic
+  std::string scheme = "gonzalez";   // "scheme" of a dynamic stage (default Time Integration->scheme)
   std::vector<bool> load_active;     // "loads", per Config::loads entry
   std::vector<bool> contact_active;  // "contact", per Config::contact entry
   double step() const { return (end - start) / num_steps; }
+  bool dynamic() const { return analysis == "dynamic"; }
 };
 
 // A vector parameter whose number of values depends on the mesh dimension, as given in
@@ -243,6 +246,18 @@ struct Config {
   std::vector<DimVector> dim_vectors;
 
   const MaterialConfig& material(const std::string& name) const;  // throws InputError
+
+  // The analysis of stage k (of the run without stages: Problem->analysis), and its scheme.
+  bool dynamic_in(int stage) const {
+    return stages.empty() ? problem.dynamic() : stages[static_cast<std::size_t>(stage)].dynamic();
+  }
+  const std::string& scheme_in(int stage) const {
+    return stages.empty() ? time.scheme : stages[static_cast<std::size_t>(stage)].scheme;
+  }
+  // Whether some stage (the run without stages) is dynamic / static: what is built once
+  // (mass matrix, time integrator, energy output; the supports check of static bodies).
+  bool any_dynamic() const;
+  bool any_static() const;
 };
 
 // Reads and validates a deck. Throws InputError naming the file, the parameter path

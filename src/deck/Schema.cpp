@@ -523,7 +523,8 @@ std::vector<ListSpec> build_schema() {
     auto l = list("Stages", "Stages",
                   "A procedure of consecutive stages (Abaqus steps), run in the order listed; state (displacement, "
                   "velocity, contact history) carries over. Each stage has a duration and steps, the loads and contact "
-                  "pairs active in it, and optional ramps in stage-local time. Without `Stages` the run is one "
+                  "pairs active in it, its analysis (static or dynamic) and time scheme, and optional ramps in "
+                  "stage-local time. Without `Stages` the run is one "
                   "interval [0, `Stepping->end time`]; with it, `Stepping->end time` and `steps` are not used (the other "
                   "`Stepping` parameters apply to every stage, `min dt` 0 meaning 1e-6 x each stage's step). "
                   "Stage names appear in the log and head no file: letters, digits, spaces and `_ . + -` only, at most 100 characters.");
@@ -538,13 +539,24 @@ std::vector<ListSpec> build_schema() {
         "`linear` meaning (t - start) / duration. A Dirichlet set that is not active holds its value from the end "
         "of the stage before (0 before its first stage); a traction, pressure or body force that is not active is "
         "0. An inactive contact pair enforces nothing (its nodes are free) and its obstacle holds its position and "
-        "radius; an active obstacle moves by its ramps in stage-local time. All stages share `Problem->analysis`.",
+        "radius; an active obstacle moves by its ramps in stage-local time. Each stage has its own `analysis` and "
+        "`scheme` (Abaqus: a static step after a dynamic one): a static stage starts at rest (the velocity of the "
+        "stage before is set to 0 and its kinetic energy is not carried), a dynamic stage after a static one starts "
+        "at rest from the static state; contact pairs with `formulation` = auto use persistence in dynamic stages "
+        "and the gap condition in static ones. The energy CSV holds the dynamic stages, with a row at the start of "
+        "each dynamic stage that follows a static one.",
         {dbl("duration", 1.0, "Length of the stage [s].").gt(0.0).dflt_doc("one of `duration`, `end time` is required"),
          dbl("end time", 1.0, "End of the stage on the procedure's clock [s].").gt(0.0)
              .dflt_doc("one of `duration`, `end time` is required"),
          integer("steps", 1, "Number of steps of the stage (initial step = duration / steps).").ge(1),
          dbl("step", 1.0, "Step size instead of `steps` [s]: steps = duration / step, rounded up.").gt(0.0)
              .dflt_doc("duration / `steps`"),
+         str("analysis", "static", "`static` or `dynamic` (see `Problem->analysis`).")
+             .one_of({"static", "dynamic"})
+             .dflt_doc("`Problem->analysis`"),
+         str("scheme", "gonzalez", "Time scheme of a dynamic stage (see `Time Integration`); not allowed in a static stage.")
+             .one_of({"gonzalez", "midpoint", "newmark", "hht"})
+             .dflt_doc("`Time Integration->scheme`"),
          str("loads", "all", "The `Boundary Conditions` active in the stage: `all`, `none`, or names separated by commas.")
              .allowed("`all`, `none`, or load names separated by commas"),
          str("contact", "all", "The `Contact` pairs active in the stage: `all`, `none`, or names separated by commas.")

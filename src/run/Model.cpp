@@ -74,11 +74,12 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
   block_mat = block_materials(cfg, mesh);
   loads = resolve_loads(cfg, mesh);
   dim = mesh.dim;
-  dynamic = cfg.problem.dynamic();
+  dynamic = cfg.dynamic_in(0);
+  any_dynamic = cfg.any_dynamic();
   probe_node = nearest_nodes(mesh, cfg.output.probes);
   check_contact_groups(cfg, mesh);
   warnings = unsupported_bodies(cfg, mesh, loads);
-  if (!dynamic) bodies = connected_bodies(cfg, mesh, loads);
+  if (cfg.any_static()) bodies = connected_bodies(cfg, mesh, loads);
   validate_linear_solver(cfg.linear);  // the pass-through lists, before anything runs (and under --check)
 }
 
@@ -91,7 +92,12 @@ void Model::discretise(Timers& timers) {
   linear = std::make_unique<LinearSolver>(cfg.linear, comm);
   linear->set_node_coordinates(dim, dist->owned_coordinates());
   contact = Contact::create(cfg, mesh, *dist, *assembler);
-  if (dynamic) integrator = std::make_unique<TimeIntegrator>(cfg, *assembler, *dist, mesh);
+  if (any_dynamic) integrator = std::make_unique<TimeIntegrator>(cfg, *assembler, *dist, mesh);
+}
+
+void Model::set_stage(int stage) {
+  dynamic = cfg.dynamic_in(stage);
+  if (contact) contact->set_analysis(dynamic);
 }
 
 // Three Frobenius norms, each of which overflows at entries of about 1e154 (where the
@@ -102,9 +108,9 @@ void Model::check_numeric_range(double dt) {
   la::Vector u0(dist->owned_map()), r(dist->owned_map());
   assembler->assemble(u0, 0.0, cfg.stepping.end_time, r, true);
   const double k = assembler->matrix()->getFrobeniusNorm();
-  const double m = dynamic ? assembler->mass()->getFrobeniusNorm() * 4.0 / (dt * dt) : 0.0;
+  const double m = any_dynamic ? assembler->mass()->getFrobeniusNorm() * 4.0 / (dt * dt) : 0.0;
   double v = 0.0;
-  if (dynamic && std::isfinite(k) && std::isfinite(m)) {
+  if (any_dynamic && std::isfinite(k) && std::isfinite(m)) {
     Assembler::StepInput in;
     in.end_time = cfg.stepping.end_time;
     in.u_old = in.u_tilde = &u0;

@@ -32,17 +32,23 @@ struct Model {
   void discretise(Timers& timers);
 
   // Collective, after discretise(), before the first step: throws InputError naming the
-  // material when the stiffness of the undeformed model (in dynamics also its mass over
-  // dt^2, dt = the first step) is not finite in double precision -- constants such as
+  // material when the stiffness of the undeformed model (with a dynamic stage also its mass
+  // over dt^2, dt = the smallest step of a dynamic stage) is not finite in double precision -- constants such as
   // C1 = 1e308, whose overflow would otherwise reach the linear solver first.
   void check_numeric_range(double dt);
+
+  // The stage about to run (0 without stages): its analysis in `dynamic` and the formulation
+  // of `auto` contact pairs. The time integrator changes scheme in its begin_stage() (which
+  // needs the scheme before) or, on a restart, set_scheme().
+  void set_stage(int stage);
 
   const Config& cfg;
   la::RCP<const la::Comm> comm;
   int rank = 0, nranks = 1;
   Mesh mesh;
   int dim = 0;
-  bool dynamic = false;
+  bool dynamic = false;            // the analysis of the current stage (set_stage)
+  bool any_dynamic = false;        // some stage is dynamic: mass, integrator, energy output
   std::vector<int> block_mat;     // material of each volume block
   Loads loads;
   std::vector<std::string> warnings;  // found reading the model (unsupported static bodies), printed with it
@@ -53,7 +59,7 @@ struct Model {
   std::unique_ptr<Assembler> assembler;
   std::unique_ptr<LinearSolver> linear;
   std::unique_ptr<Contact> contact;            // null without a Contact sublist
-  std::unique_ptr<TimeIntegrator> integrator;  // null in statics
+  std::unique_ptr<TimeIntegrator> integrator;  // null without a dynamic stage
 };
 
 }  // namespace stentor

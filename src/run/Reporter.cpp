@@ -160,9 +160,23 @@ void Reporter::print_model() {
   for (const std::string& w : m_.warnings) out_ << "  " << w << "\n";
 }
 
+// "static (load stepping)", "dynamic: <scheme>", or with stages of several analyses or
+// schemes the list "per stage: insertion static, inflation dynamic (gonzalez), ...".
+std::string Reporter::analysis_text() const {
+  const auto& stages = cfg_.stages;
+  const bool uniform = std::all_of(stages.begin(), stages.end(), [&](const StageConfig& st) {
+    return st.analysis == stages.front().analysis && (!st.dynamic() || st.scheme == stages.front().scheme);
+  });
+  if (uniform) return m_.dynamic ? "dynamic: " + m_.integrator->description() : std::string("static (load stepping)");
+  std::string text = "per stage:";
+  for (const StageConfig& st : stages)
+    text += (&st == &stages.front() ? " " : ", ") + st.name + " " + (st.dynamic() ? "dynamic (" + st.scheme + ")" : std::string("static"));
+  return text;
+}
+
 void Reporter::print_solvers() {
   out_ << "  dofs     " << m_.dist->owned_map()->getGlobalNumElements() << "\n"
-       << "  analysis " << (m_.dynamic ? "dynamic: " + m_.integrator->description() : std::string("static (load stepping)")) << "\n"
+       << "  analysis " << analysis_text() << "\n"
        << "  solver   " << m_.linear->description() << "\n";
   if (m_.contact) {
     const std::string d = m_.contact->description();  // collective
@@ -220,7 +234,7 @@ void Reporter::open() {
         obstacles_ = std::make_unique<ObstacleVtkWriter>(staging_->path(), cfg_.output.basename, m_.dim, box.diagonal(), c);
       }
       history_ = std::make_unique<CsvWriter>(stem + "_history.csv", history_columns());
-      if (m_.dynamic) energy_csv_ = std::make_unique<CsvWriter>(stem + "_energy.csv", energy_columns());
+      if (m_.any_dynamic) energy_csv_ = std::make_unique<CsvWriter>(stem + "_energy.csv", energy_columns());
     } catch (const WriteError& e) {
       // A failed write (a full disk, a file size limit) is a write failure like any later
       // one: exit 3, and no MPI_Finalize, whose HDF5 shut-down crashed (SIGSEGV) on the
@@ -421,7 +435,8 @@ void Reporter::history_row(const RunState& s, const StepRecord& rec, double ener
 void Reporter::begin_stage(std::size_t k) {
   const StageConfig& st = cfg_.stages[k];
   out_ << "stage " << k + 1 << "/" << cfg_.stages.size() << " '" << st.name << "': t " << fmt_time(st.start) << " -> "
-       << fmt_time(st.end) << ", " << st.num_steps << " step(s) of " << fmt_time(st.step()) << "\n";
+       << fmt_time(st.end) << ", " << st.num_steps << " step(s) of " << fmt_time(st.step()) << ", "
+       << (st.dynamic() ? "dynamic (" + st.scheme + ")" : std::string("static")) << "\n";
 }
 
 void Reporter::begin_interval(double t0, double t1) {
@@ -488,8 +503,8 @@ std::vector<double> Reporter::displacement(const la::Vector& u) {
 
 void Reporter::summary(const RunState& s) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  if (m_.dynamic)
-    out_ << "Energy balance: max |E_{n+1} - E_n - (W_ext + W_sup - D" << (m_.contact ? " + W_contact - D_friction" : "")
+  if (m_.any_dynamic)
+    out_ << "Energy balance" << (m_.cfg.any_static() ? " (dynamic stages)" : "") << ": max |E_{n+1} - E_n - (W_ext + W_sup - D" << (m_.contact ? " + W_contact - D_friction" : "")
          << ")| per step = " << fmt(s.energy.max_balance, 3) << "\n";
   out_ << (s.failed ? "FAILED: " + s.failure + "\n" : "") << "Summary: " << s.step << " steps, " << s.control.total_cuts()
        << " cut-backs, " << s.newton_iterations << " Newton iterations, " << s.linear_iterations << " linear iterations, "

@@ -77,6 +77,7 @@ class Reporter {
   CsvWriter* energy_csv() { return energy_csv_.get(); }
 
  private:
+  std::string analysis_text() const;
   std::vector<double> probe_values(const la::Vector& u) const;  // collective
   std::vector<std::string> history_columns() const;
   // reaction_<set>_<axis> for the components each Dirichlet set constrains (deck order).

@@ -34,7 +34,19 @@ std::string deck_hash(const std::string& deck_path) {
   return buf;
 }
 
-std::string scheme_name(const Model& m) { return m.dynamic ? m.cfg.time.scheme : std::string("static"); }
+// The analysis of the run: "static" or the scheme; with stages of several analyses or
+// schemes, one per stage ("static, gonzalez, newmark").
+std::string scheme_name(const Model& m) {
+  const Config& c = m.cfg;
+  auto one = [&c](int k) { return c.dynamic_in(k) ? c.scheme_in(k) : std::string("static"); };
+  std::string all = one(0), first = all;
+  bool uniform = true;
+  for (int k = 1; k < static_cast<int>(c.stages.size()); ++k) {
+    all += ", " + one(k);
+    uniform = uniform && one(k) == first;
+  }
+  return uniform ? first : all;
+}
 
 // Records of every rank gathered on rank 0 into one table sorted by id (ncols: the largest
 // over the ranks, so that ranks without such records may pass 0). Collective.
@@ -216,7 +228,7 @@ void validate(const Model& m, const CheckpointData& d, const std::string& path, 
                        " has " + mine.str());
     if (d.string("scheme") != scheme_name(m))
       throw InputError(path + ": checkpoint of a '" + d.string("scheme") + "' run; the deck asks for '" + scheme_name(m) +
-                       "' (Problem->analysis, Time Integration->scheme)");
+                       "' (Problem->analysis, Time Integration->scheme, the stages' analysis and scheme)");
     if (d.integer("num_stages") != static_cast<long long>(m.cfg.stages.size()))
       throw InputError(path + ": checkpoint of a run with " + std::to_string(d.integer("num_stages")) + " stages; the deck has " +
                        std::to_string(m.cfg.stages.size()) + " ('Stages')");
@@ -232,12 +244,21 @@ void validate(const Model& m, const CheckpointData& d, const std::string& path, 
 }
 
 // The header and the rows with step <= `step` of a CSV file next to the checkpoint.
-std::vector<std::string> csv_lines_until(const std::string& file, long long step) {
+// `rows_at_step`: how many rows with step == `step` to take (-1: all). The energy CSV's
+// row that opens a dynamic stage after a static one carries the static stage's last step
+// number and is written after that step's checkpoint: the restart writes it again when it
+// enters the stage, so it is not carried.
+std::vector<std::string> csv_lines_until(const std::string& file, long long step, int rows_at_step = -1) {
   std::vector<std::string> lines;
   std::ifstream in(file);
   std::string line;
+  int at_step = 0;
   while (std::getline(in, line)) {
-    if (!lines.empty() && std::strtoll(line.c_str(), nullptr, 10) > step) break;
+    if (!lines.empty()) {
+      const long long k = std::strtoll(line.c_str(), nullptr, 10);
+      if (k > step || (k == step && rows_at_step >= 0 && at_step >= rows_at_step)) break;
+      if (k == step) ++at_step;
+    }
     lines.push_back(line);
   }
   return lines;
@@ -295,7 +316,13 @@ Restart read_restart(const std::string& path, const Model& model, const RunOptio
     const fs::path dir = fs::path(path).parent_path();
     const std::string stem = (dir.empty() ? fs::path(".") : dir).string() + "/" + model.cfg.output.basename;
     r.history_lines = csv_lines_until(stem + "_history.csv", r.data.integer("step"));
-    if (model.dynamic) r.energy_lines = csv_lines_until(stem + "_energy.csv", r.data.integer("step"));
+    if (model.any_dynamic) {
+      // The checkpoint's step wrote an energy row if its stage is dynamic (and it is a step).
+      const long long step = r.data.integer("step"), stage = r.data.integer("stage");
+      const bool known = stage >= 0 && stage < std::max<long long>(1, static_cast<long long>(model.cfg.stages.size()));
+      const bool row = step > 0 && (!known || model.cfg.dynamic_in(static_cast<int>(stage)));
+      r.energy_lines = csv_lines_until(stem + "_energy.csv", step, row ? 1 : 0);
+    }
   }
   keep_interrupted_output(model, path, opts, log);
   return r;

@@ -163,11 +163,12 @@ void metrics_plots(const std::string& stem, const UnitLabels& u, const std::vect
 bool deck_at_rest_unloaded(const Model& m) {
   const Config& c = m.cfg;
   const double T = c.stepping.end_time;
-  if (m.dynamic)
+  const bool dynamic0 = c.dynamic_in(0);  // initial conditions belong to a dynamic first stage
+  if (dynamic0)
     for (int k = 0; k < 3; ++k)
       if (c.initial.displacement[k] != 0.0 || c.initial.velocity[k] != 0.0 || c.initial.angular_velocity[k] != 0.0) return false;
   for (const BodyConfig& b : c.bodies)
-    if (m.dynamic && b.has_velocity)
+    if (dynamic0 && b.has_velocity)
       for (double v : b.velocity)
         if (v != 0.0) return false;
   for (const LoadConfig& l : c.loads) {
@@ -194,7 +195,7 @@ std::vector<std::string> write_result_plots(const Model& m, const std::string& s
     reaction_plots(m, h, stem, u, made);
     history_plots(m, h, stem, u, made);
   }
-  if (m.dynamic) energy_plots(m, stem, u, made);
+  if (m.any_dynamic) energy_plots(m, stem, u, made);
   metrics_plots(stem, u, radius_columns, stress_columns, made);
   return made;
 }

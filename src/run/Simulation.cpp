@@ -95,9 +95,14 @@ void initialize(Run& r) {
   if (m.cfg.output.fields) r.reporter.write_fields(0.0, r.state.u);
 }
 
-// The size of the first step (of the first stage, with stages).
-double first_step(const Config& cfg) {
-  return cfg.stages.empty() ? cfg.stepping.end_time / cfg.stepping.num_steps : cfg.stages.front().step();
+// The step the numeric range is checked with: the run's, or the smallest of the dynamic
+// stages' (the mass term grows as 1/dt^2), else the first stage's.
+double check_step(const Config& cfg) {
+  if (cfg.stages.empty()) return cfg.stepping.end_time / cfg.stepping.num_steps;
+  double dt = 0.0;
+  for (const StageConfig& st : cfg.stages)
+    if (st.dynamic() && (dt == 0.0 || st.step() < dt)) dt = st.step();
+  return dt > 0.0 ? dt : cfg.stages.front().step();
 }
 
 // The state at t = 0 before the initial conditions: u = 0, the deck's step control (each
@@ -115,7 +120,7 @@ void check_before_first_step(Model& model, Reporter& reporter, Timers& timers) {
   const Config& cfg = model.cfg;
   if (cfg.output.metrics.enabled) StentMetrics groups(model);  // throws InputError
   model.discretise(timers);
-  model.check_numeric_range(first_step(cfg));
+  model.check_numeric_range(check_step(cfg));
   Stepper stepper(model, timers, nullptr, nullptr);
   RunState state = fresh_state(model);
   if (model.dynamic) {
@@ -233,17 +238,47 @@ bool run_interval(Run& r, double end) {
   return true;
 }
 
-// The stages in order, each with its own step and its contact pairs; the state carries
-// over. `resumed`: from the checkpoint's stage, whose step control the checkpoint holds.
-// False when a stage fails.
+// Stage k is about to run: its analysis (Model::set_stage: the scheme, `auto` contact pairs)
+// and what changes where the analysis does. A static stage after a dynamic one starts at
+// rest (v = 0; its first guess is lifted, not extrapolated from the last dynamic increment);
+// a dynamic stage after a static one starts at rest from the static state, with an energy
+// row at its start (the energy CSV holds the dynamic stages); newmark/hht after the midpoint
+// family read f_int and f_ext at t (TimeIntegrator::begin_stage).
+void change_analysis(Run& r, std::size_t k) {
+  Model& m = r.model;
+  RunState& s = r.state;
+  const bool was_dynamic = m.dynamic;
+  m.set_stage(static_cast<int>(k));
+  if (was_dynamic && !m.dynamic) {
+    const double kinetic = m.integrator->kinetic_energy();
+    m.integrator->stop();
+    s.dt_last = 0.0;
+    std::ostringstream os;
+    os.precision(4);
+    os << kinetic;
+    r.reporter.out() << "  static stage: starts at rest (kinetic energy " << os.str() << " of the stage before is not carried)\n";
+  } else if (m.dynamic && (!was_dynamic || m.cfg.scheme_in(static_cast<int>(k)) != m.integrator->scheme())) {
+    const EnergyAudit au = m.integrator->begin_stage(s.u, s.t, m.cfg.stepping.end_time, m.cfg.scheme_in(static_cast<int>(k)), !was_dynamic);
+    if (!was_dynamic) r.reporter.energy_row(s.step, s.t, au, s.energy);
+  }
+}
+
+// The stages in order, each with its own step, contact pairs and analysis; the state
+// carries over. `resumed`: from the checkpoint's stage, whose step control the checkpoint
+// holds. False when a stage fails.
 bool run_stages(Run& r, bool resumed) {
   const SteppingConfig& st = r.model.cfg.stepping;
   const auto& stages = r.model.cfg.stages;
   for (std::size_t k = resumed ? static_cast<std::size_t>(r.state.stage) : 0; k < stages.size(); ++k) {
     const StageConfig& stage = stages[k];
     RunState& s = r.state;
-    if (!resumed || static_cast<int>(k) != s.stage)
+    if (resumed && static_cast<int>(k) == s.stage) {
+      r.model.set_stage(s.stage);  // the checkpoint holds the stage's state
+      if (r.model.dynamic) r.model.integrator->set_scheme(r.model.cfg.scheme_in(s.stage));
+    } else {
       s.control.restart(stage.step(), st.min_dt > 0.0 ? st.min_dt : 1e-6 * stage.step());
+      change_analysis(r, k);
+    }
     s.stage = static_cast<int>(k);
     if (r.model.contact) r.model.contact->set_active_pairs(stage.contact_active);
     r.reporter.begin_stage(k);
@@ -282,7 +317,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   }
   model.discretise(timers);
   reporter.print_solvers();
-  model.check_numeric_range(first_step(cfg));
+  model.check_numeric_range(check_step(cfg));
   const bool restarting = !opts.restart_file.empty();
   Restart restart;
   if (restarting) restart = read_restart(opts.restart_file, model, opts, reporter.out());  // before open(): it may move <dir>.partial

@@ -78,7 +78,7 @@ ConnectedBodies connected_bodies(const Config& cfg, const Mesh& mesh, const Load
 
 std::vector<std::string> unsupported_bodies(const Config& cfg, const Mesh& mesh, const Loads& loads) {
   std::vector<std::string> lines;
-  if (cfg.problem.dynamic() || cfg.bodies.empty()) return lines;
+  if (!cfg.any_static() || cfg.bodies.empty()) return lines;
   const ConnectedBodies cb = connected_bodies(cfg, mesh, loads);
   const std::size_t nb = cb.names.size();
   std::vector<char> contact(nb, 0);

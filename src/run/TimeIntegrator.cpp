@@ -2,19 +2,71 @@
 
 #include <Teuchos_CommHelpers.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 namespace stentor {
 
 TimeIntegrator::TimeIntegrator(const Config& cfg, Assembler& assembler, const Distribution& dist, const Mesh& mesh)
-    : scheme_(cfg.time.scheme), cfg_(cfg), assembler_(assembler), dist_(dist), mesh_(mesh) {
-  if (scheme_ == "newmark") alpha_ = 0.0;
-  if (scheme_ == "hht") alpha_ = cfg.time.hht_alpha;
-  beta_ = 0.25 * (1.0 - alpha_) * (1.0 - alpha_);
-  gamma_ = 0.5 - alpha_;
+    : cfg_(cfg), assembler_(assembler), dist_(dist), mesh_(mesh) {
+  set_scheme(cfg.scheme_in(0));
+  bool midpoint = false, end_point = false;
+  for (int k = 0; k < std::max<int>(1, static_cast<int>(cfg.stages.size())); ++k)
+    if (cfg.dynamic_in(k)) (cfg.scheme_in(k) == "gonzalez" || cfg.scheme_in(k) == "midpoint" ? midpoint : end_point) = true;
+  keep_mean_acceleration_ = midpoint && end_point;
   const auto& map = dist.owned_map();
   for (auto* v : {&v_, &a_, &u_tilde_, &extra_, &r_static_n_, &f_ext_n_, &du_, &Mv_}) *v = Teuchos::rcp(new la::Vector(map));
+}
+
+void TimeIntegrator::set_scheme(const std::string& scheme) {
+  scheme_ = scheme;
+  alpha_ = scheme_ == "hht" ? cfg_.time.hht_alpha : 0.0;
+  beta_ = 0.25 * (1.0 - alpha_) * (1.0 - alpha_);
+  gamma_ = 0.5 - alpha_;
+}
+
+double TimeIntegrator::assemble_state(const la::Vector& u, double t, double end_time) {
+  la::Vector r(dist_.owned_map());
+  const Assembler::Stats st = assembler_.assemble(u, t, end_time, r, false);
+  r_static_n_->update(1.0, assembler_.static_residual(), 0.0);
+  f_ext_n_->update(1.0, assembler_.external_force(), 0.0);
+  return st.energy;
+}
+
+EnergyAudit TimeIntegrator::begin_stage(const la::Vector& u, double t, double end_time, const std::string& scheme, bool at_rest) {
+  const bool had_end_point_state = !midpoint_family();
+  set_scheme(scheme);
+  if (at_rest) {
+    // A converged static state: f_int - f_ext balances the supports and the contact forces,
+    // so a_n = 0 (to Newton's tolerance) is the acceleration, contact included, which a mass
+    // solve of f_ext - f_int would miss.
+    v_->putScalar(0.0);
+    a_->putScalar(0.0);
+  }
+  double strain = 0.0;
+  if (at_rest) {
+    strain = assemble_state(u, t, end_time);
+  } else if (!midpoint_family() && !had_end_point_state) {
+    // From the midpoint family: accept() left the last step's mean acceleration in a_ and
+    // its static residual (f_int,algo - f_ext)_{n+1/2} in r_static_n_. On rows without
+    // contact M a_mean = -(that residual); so a_n = a_mean + M^-1 (r_{n+1/2} - r_n) is the
+    // exact M a_n = f_ext(t_n) - f_int(u_n) there, and on contact rows it carries the
+    // contact force of the last step over (first order).
+    la::Vector r_mid(*r_static_n_, Teuchos::Copy), da(dist_.owned_map());
+    assemble_state(u, t, end_time);
+    r_mid.update(-1.0, *r_static_n_, 1.0);
+    solve_mass(r_mid, da);
+    a_->update(1.0, da, 1.0);
+  }
+  EnergyAudit au = audit(u);
+  if (at_rest) {
+    au.strain = strain;
+    energy_n_ = au.kinetic + au.strain;
+  } else {
+    au.strain = energy_n_ - au.kinetic;
+  }
+  return au;
 }
 
 std::string TimeIntegrator::description() const {
@@ -65,13 +117,10 @@ EnergyAudit TimeIntegrator::initialize(la::Vector& u0, double end_time) {
     }
   }
   a_->putScalar(0.0);
-  la::Vector r(dist_.owned_map());
-  const Assembler::Stats st0 = assembler_.assemble(u0, 0.0, end_time, r, false);
-  r_static_n_->update(1.0, assembler_.static_residual(), 0.0);
-  f_ext_n_->update(1.0, assembler_.external_force(), 0.0);
+  const double strain0 = assemble_state(u0, 0.0, end_time);
   if (!midpoint_family()) initial_acceleration();
   EnergyAudit au = audit(u0);
-  au.strain = st0.energy;
+  au.strain = strain0;
   energy_n_ = au.kinetic + au.strain;
   return au;
 }
@@ -80,7 +129,13 @@ EnergyAudit TimeIntegrator::initialize(la::Vector& u0, double end_time) {
 void TimeIntegrator::initial_acceleration() {
   la::Vector rhs(dist_.owned_map());
   rhs.update(-1.0, assembler_.static_residual(), 0.0);
-  if (!(rhs.normInf() > 0.0)) return;  // a_0 = 0
+  solve_mass(rhs, *a_);
+}
+
+// x = M^-1 rhs on free dofs, 0 on constrained ones (identity rows); x = 0 for rhs = 0.
+void TimeIntegrator::solve_mass(la::Vector& rhs, la::Vector& x) {
+  x.putScalar(0.0);
+  if (!(rhs.normInf() > 0.0)) return;
   auto Mc = Teuchos::rcp(new la::CrsMatrix(*assembler_.mass(), Teuchos::Copy));
   Mc->resumeFill();
   {
@@ -103,7 +158,7 @@ void TimeIntegrator::initial_acceleration() {
   LinearSolver lin(cfg_.linear, dist_.comm());
   lin.set_node_coordinates(dist_.dim(), dist_.owned_coordinates());
   lin.setup(Mc);
-  lin.solve(rhs, *a_);
+  lin.solve(rhs, x);
 }
 
 Assembler::StepInput TimeIntegrator::step_input(double t_n, double dt, double end_time, const la::Vector& u_n) {
@@ -140,6 +195,11 @@ void TimeIntegrator::predict(la::Vector& u, const la::Vector& u_n, double dt) co
   if (!midpoint_family()) u.update(0.5 * dt * dt, *a_, 1.0);
 }
 
+double TimeIntegrator::kinetic_energy() const {
+  assembler_.mass()->apply(*v_, *Mv_);
+  return 0.5 * v_->dot(*Mv_);
+}
+
 double TimeIntegrator::momentum_norm() const {
   assembler_.mass()->apply(*v_, *Mv_);
   return Mv_->norm2();
@@ -150,7 +210,15 @@ EnergyAudit TimeIntegrator::accept(const la::Vector& u_n, const la::Vector& u_np
   EnergyAudit au;
   if (midpoint_family()) {
     au.external_work = assembler_.external_force().dot(*du_);  // f_ext(t_{n+1/2}, x_{n+1/2}) . du
+    if (keep_mean_acceleration_) a_->update(-1.0 / dt, *v_, 0.0);
     v_->update(2.0 / dt, *du_, -1.0);                           // v_{n+1} = 2 du/dt - v_n
+    if (keep_mean_acceleration_) {
+      // The step's mean acceleration (v_{n+1} - v_n)/dt = M^-1 (f_ext - f_int - contact)_{n+1/2}
+      // and the static residual it balances: what newmark/hht start from when a later stage
+      // switches to them (begin_stage).
+      a_->update(1.0 / dt, *v_, 1.0);
+      r_static_n_->update(1.0, assembler_.static_residual(), 0.0);
+    }
   } else {
     // Trapezoidal work of the end-point loads.
     au.external_work = 0.5 * (assembler_.external_force().dot(*du_) + f_ext_n_->dot(*du_));

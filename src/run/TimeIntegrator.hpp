@@ -42,6 +42,22 @@ class TimeIntegrator {
   // of the state at t = 0.
   EnergyAudit initialize(la::Vector& u0, double end_time);
 
+  // Stages: the scheme from now on (gonzalez | midpoint | newmark | hht; alpha from the deck).
+  void set_scheme(const std::string& scheme);
+  // The first step of a dynamic stage is about to start from the state u at time t:
+  //   after a static stage (at_rest): v = 0 and a = 0 (a converged static state is at rest;
+  //     the kinetic energy of a dynamic stage before it is not carried), E_n = the stored
+  //     energy at u, f_int and f_ext at t;
+  //   newmark/hht after a midpoint-family stage: f_int and f_ext at t, and a_n from
+  //     M a_n = f_ext(t) - f_int(u) plus the last step's contact force (accept() keeps the
+  //     mean acceleration and static residual of each midpoint step for this, in decks
+  //     with such a switch).
+  // Otherwise nothing changes. Returns the audit of the state (the energy row that opens a
+  // dynamic stage after a static one).
+  EnergyAudit begin_stage(const la::Vector& u, double t, double end_time, const std::string& scheme, bool at_rest);
+  // A static stage starts: v = 0 (the velocity field of its output).
+  void stop() { v_->putScalar(0.0); }
+
   // Assembler input for the step t_n -> t_n + dt from u_n.
   Assembler::StepInput step_input(double t_n, double dt, double end_time, const la::Vector& u_n);
 
@@ -62,6 +78,9 @@ class TimeIntegrator {
   double energy_n() const { return energy_n_; }
   void set_energy_n(double e) { energy_n_ = e; }
   bool midpoint_family() const { return scheme_ == "gonzalez" || scheme_ == "midpoint"; }
+  const std::string& scheme() const { return scheme_; }
+  // 1/2 v_n . M v_n (collective).
+  double kinetic_energy() const;
   std::string description() const;
 
  private:
@@ -69,6 +88,10 @@ class TimeIntegrator {
   // a_0 of newmark/hht from the residual of the state just assembled at t = 0, solved with
   // the deck's linear solver (a second instance, with the node coordinates).
   void initial_acceleration();
+  // x = M^-1 rhs on free dofs, 0 on constrained ones (rhs is modified), with the deck's solver.
+  void solve_mass(la::Vector& rhs, la::Vector& x);
+  // f_int, f_ext and the stored energy at (u, t): the values of t_n the next step reads.
+  double assemble_state(const la::Vector& u, double t, double end_time);
 
   std::string scheme_;
   double alpha_ = 0.0, beta_ = 0.25, gamma_ = 0.5;
@@ -78,6 +101,9 @@ class TimeIntegrator {
   const Mesh& mesh_;
   la::RCP<la::Vector> v_, a_, u_tilde_, extra_, r_static_n_, f_ext_n_, du_, Mv_;
   double energy_n_ = 0.0;  // total mechanical energy at t_n
+  // Stages switch from the midpoint family to newmark/hht: the midpoint steps keep their
+  // mean acceleration and static residual for the switch (a deck pays only for what it asks).
+  bool keep_mean_acceleration_ = false;
   double dt_ = 0.0;
 };
 

@@ -996,3 +996,71 @@ TEST_F(Deck, OutputFieldListAndTimesErrors) {
                {"'Output->times' must lie in (0, end time = 1], got 1.5 at position 2"});
   expect_error(with_output(R"XML(<Parameter name="times" type="Array(double)" value="{0}"/>)XML"), {"'Output->times' must lie in (0"});
 }
+
+namespace {
+// kMinimalDeck with `more` (sublists) before Bodies and density 1 for dynamic stages.
+std::string with_lists(const std::string& more) {
+  return replace(replace(kMinimalDeck, "<Parameter name=\"D\" type=\"double\" value=\"2\"/>",
+                         "<Parameter name=\"D\" type=\"double\" value=\"2\"/><Parameter name=\"density\" type=\"double\" value=\"1\"/>"),
+                 "  <ParameterList name=\"Bodies\">", more + "  <ParameterList name=\"Bodies\">");
+}
+std::string stages_list(const std::string& a, const std::string& b) {
+  return "<ParameterList name=\"Stages\"><ParameterList name=\"one\"><Parameter name=\"duration\" type=\"double\" value=\"1\"/>" + a +
+         "</ParameterList><ParameterList name=\"two\"><Parameter name=\"duration\" type=\"double\" value=\"1\"/>" + b +
+         "</ParameterList></ParameterList>\n";
+}
+const std::string kDynamic = R"(<Parameter name="analysis" type="string" value="dynamic"/>)";
+}  // namespace
+
+// Each stage has its own analysis and scheme; the defaults are Problem->analysis and Time
+// Integration->scheme.
+TEST_F(Deck, StageAnalysisAndScheme) {
+  const Config c = read_deck(write(with_lists(
+      "<ParameterList name=\"Time Integration\"><Parameter name=\"scheme\" type=\"string\" value=\"hht\"/></ParameterList>\n" +
+      stages_list("", kDynamic + R"(<Parameter name="scheme" type="string" value="newmark"/>)"))));
+  ASSERT_EQ(c.stages.size(), 2u);
+  EXPECT_EQ(c.stages[0].analysis, "static");
+  EXPECT_EQ(c.stages[1].analysis, "dynamic");
+  EXPECT_EQ(c.stages[1].scheme, "newmark");
+  EXPECT_TRUE(c.any_dynamic());
+  EXPECT_TRUE(c.any_static());
+  EXPECT_FALSE(c.dynamic_in(0));
+  EXPECT_TRUE(c.dynamic_in(1));
+  const Config d = read_deck(write(with_lists(
+      "<ParameterList name=\"Problem\">" + kDynamic + "</ParameterList>\n" +
+      stages_list("", R"(<Parameter name="analysis" type="string" value="static"/>)"))));
+  EXPECT_TRUE(d.dynamic_in(0));
+  EXPECT_EQ(d.scheme_in(0), "gonzalez");
+  EXPECT_FALSE(d.dynamic_in(1));
+  // Velocity output needs some dynamic stage, not a dynamic Problem.
+  const Config v = read_deck(write(with_lists(
+      "<ParameterList name=\"Output\"><Parameter name=\"field list\" type=\"string\" value=\"velocity\"/></ParameterList>\n" +
+      stages_list("", kDynamic))));
+  EXPECT_TRUE(v.output.wants("velocity"));
+}
+
+TEST_F(Deck, StageAnalysisErrors) {
+  expect_error(with_lists(stages_list(R"(<Parameter name="scheme" type="string" value="newmark"/>)", "")),
+               {"'Stages->one->scheme' is the time scheme of a dynamic stage, and the stage is static",
+                "set 'Stages->one->analysis' = dynamic"});
+  expect_error(with_lists(stages_list(R"(<Parameter name="analysis" type="string" value="dynamc"/>)", "")),
+               {"'Stages->one->analysis'", "dynamic"});
+  expect_error(with_lists("<ParameterList name=\"Initial Conditions\"><Parameter name=\"velocity\" type=\"Array(double)\" value=\"{1, 0}\"/>"
+                          "</ParameterList>\n" + stages_list("", kDynamic)),
+               {"'Initial Conditions' needs the first stage 'Stages->one' to be dynamic"});
+  expect_error(with_lists("<ParameterList name=\"Time Integration\"></ParameterList>\n" + stages_list("", "")),
+               {"'Time Integration' needs a dynamic stage"});
+  expect_error(replace(with_lists(stages_list("", kDynamic)), "<Parameter name=\"density\" type=\"double\" value=\"1\"/>", ""),
+               {"'Materials->steel->density' must be > 0 in a dynamic analysis (a stage has 'analysis' = dynamic)"});
+  const std::string pair =
+      "<ParameterList name=\"Contact\"><ParameterList name=\"floor\"><Parameter name=\"slave\" type=\"string\" value=\"outer\"/>"
+      "<Parameter name=\"obstacle\" type=\"string\" value=\"plane\"/><Parameter name=\"point\" type=\"Array(double)\" value=\"{0, 0}\"/>"
+      "<Parameter name=\"normal\" type=\"Array(double)\" value=\"{0, 1}\"/>"
+      "<Parameter name=\"formulation\" type=\"string\" value=\"persistence\"/></ParameterList></ParameterList>\n";
+  expect_error(with_lists(pair + stages_list(kDynamic, "")),
+               {"'Contact->floor->formulation' = persistence needs a dynamic analysis, and the pair is active in the static stage "
+                "'Stages->two'"});
+  // Left out of the static stage, the pair is fine.
+  const Config ok = read_deck(write(with_lists(pair + stages_list(kDynamic, R"(<Parameter name="contact" type="string" value="none"/>)"))));
+  EXPECT_EQ(ok.stages.size(), 2u);
+}
