@@ -8,7 +8,6 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include "assembly/HyperelasticElement.hpp"
-#include "material/ElasticConstants.hpp"
 #include "material/SymEigen.hpp"
 
 namespace stentor {
@@ -50,32 +49,38 @@ KOKKOS_INLINE_FUNCTION void scatter(int nd, const int* dofs, const double* re, c
   }
 }
 
-// The law of a material (deck/Config.cpp resolved its constants; material/ElasticConstants.hpp).
-ElasticLaw elastic_law(const MaterialConfig& m) {
-  if (m.model == "neo-Hookean") return ElasticLaw::neo_hookean(NeoHookean{m.mu, m.lambda});
-  if (m.model == "Mooney-Rivlin") {
-    const MooneyRivlinCoefficients c = mooney_rivlin_from_lame(Lame{m.mu, m.lambda}, m.C2);
-    return ElasticLaw::mooney_rivlin(MooneyRivlin{c.C1, c.C2, c.lam});
-  }
-  if (m.model == "Holzapfel-Gasser-Ogden") {
-    const HolzapfelGasserOgden h{NeoHookean{m.mu, m.lambda}, m.k1, m.k2, {1.0, 0.0, 0.0}, {1.0, 0.0, 0.0}};
-    const FibreFrame f{{m.axis_point[0], m.axis_point[1], m.axis_point[2]}, {m.axis[0], m.axis[1], m.axis[2]},
-                       m.fibre_angle * 3.14159265358979323846 / 180.0};
-    return ElasticLaw::holzapfel_gasser_ogden(h, f);
-  }
-  return ElasticLaw::ciarlet_geymonat(CiarletGeymonat{m.C1, m.C2, m.D});
+// The law of every deck material (material/MaterialRegistry.hpp).
+std::vector<Material> deck_laws(const Config& cfg) {
+  std::vector<Material> laws;
+  for (const MaterialConfig& m : cfg.materials) laws.push_back(make_material(m));
+  return laws;
+}
+
+// Committed history rows of a block of law Law, at the law's initial values.
+template <class Law>
+Assembler::HistoryView initial_history(std::size_t rows) {
+  Assembler::HistoryView h("history_committed", rows, Law::kNumHist);
+  Kokkos::parallel_for(
+      "stentor::init_history", Kokkos::RangePolicy<la::ExecSpace>(0, rows),
+      KOKKOS_LAMBDA(const int i) { stentor::init_history<Law>(&h(i, 0)); });
+  return h;
 }
 
 }  // namespace
 
 Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& cfg, const Loads& loads,
                      const std::vector<int>& block_material)
+    : Assembler(mesh, dist, cfg, loads, block_material, deck_laws(cfg)) {}
+
+Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& cfg, const Loads& loads,
+                     const std::vector<int>& block_material, const std::vector<Material>& laws)
     : dist_(dist), loads_(loads), dim_(dist.dim()) {
+  if (laws.size() != cfg.materials.size())
+    throw std::logic_error("Assembler: " + std::to_string(laws.size()) + " laws for " + std::to_string(cfg.materials.size()) +
+                           " materials");
   for (std::size_t b = 0; b < mesh.volumes.size(); ++b) {
     const MaterialConfig& m = cfg.materials[static_cast<std::size_t>(block_material[b])];
-    block_mat_.push_back(elastic_law(m));
-    block_plastic_.push_back(m.plastic() ? 1 : 0);
-    block_plastic_law_.push_back(CiarletGeymonatPlasticity{CiarletGeymonat{m.C1, m.C2, m.D}, m.yield_stress, m.hardening});
+    block_law_.push_back(laws[static_cast<std::size_t>(block_material[b])]);
     block_density_.push_back(m.density);
     // Viscosity acts only in dynamics (it needs a time step); statics pays nothing for it.
     block_eta_.push_back(cfg.any_dynamic() ? m.viscosity : 0.0);
@@ -138,23 +143,23 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
 
 void Assembler::init_history() {
   // Views only for blocks whose law has history, and none at all without such a block.
-  using Law = CiarletGeymonatPlasticity;
   bool any = false;
-  for (const auto& lb : dist_.blocks()) any = any || block_plastic_[static_cast<std::size_t>(lb.volume_block)];
+  for (const auto& lb : dist_.blocks()) any = any || history_layout(block_law_[static_cast<std::size_t>(lb.volume_block)]).size > 0;
   if (!any) return;
   for (const auto& lb : dist_.blocks()) {
     BlockHistory bh;
     bh.ngp = make_rule(lb.type, stiffness_quadrature_degree(lb.type)).n;
-    if (block_plastic_[static_cast<std::size_t>(lb.volume_block)]) {
-      const std::size_t rows = lb.cell_ids.size() * static_cast<std::size_t>(bh.ngp);
-      bh.committed = HistoryView("history_committed", rows, Law::kNumHist);
-      bh.trial = HistoryView("history_trial", rows, Law::kNumHist);
-      auto h = bh.committed;
-      Kokkos::parallel_for(
-          "stentor::init_history", Kokkos::RangePolicy<la::ExecSpace>(0, rows),
-          KOKKOS_LAMBDA(const int i) { stentor::init_history<Law>(&h(i, 0)); });
-      Kokkos::deep_copy(bh.trial, bh.committed);
-    }
+    const std::size_t rows = lb.cell_ids.size() * static_cast<std::size_t>(bh.ngp);
+    std::visit(
+        [&](const auto& law) {
+          using Law = std::decay_t<decltype(law)>;
+          if constexpr (kHasHistory<Law>) {
+            bh.committed = initial_history<Law>(rows);
+            bh.trial = HistoryView("history_trial", rows, Law::kNumHist);
+            Kokkos::deep_copy(bh.trial, bh.committed);
+          }
+        },
+        block_law_[static_cast<std::size_t>(lb.volume_block)]);
     history_.push_back(bh);
   }
 }
@@ -488,7 +493,6 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
       const auto& lb = dist_.blocks()[bi];
       const std::size_t nc = lb.cell_ids.size();
       if (nc == 0) continue;
-      const ElasticLaw mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
       const QuadRule q = make_rule(lb.type, stiffness_quadrature_degree(lb.type));
       ElementTime et;
       et.eval = in.eval;
@@ -501,10 +505,11 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
       auto conn = lb.conn;
       double e_block = 0.0;
       Kokkos::View<double*, la::ExecSpace> dsum("dissipation", 2);  // viscous, plastic
-      // One launch per block; a block whose law has Gauss-point history reads its committed
-      // rows and writes its trial rows (cell c: rows c * ngp ...).
-      auto launch = [&](const auto& law, auto history_tag) {
-        constexpr bool H = decltype(history_tag)::value;
+      // One launch per block, compiled for the block's law type; a block whose law has
+      // Gauss-point history reads its committed rows and writes its trial rows (cell c:
+      // rows c * ngp ...).
+      auto launch = [&](const auto& law) {
+        constexpr bool H = kHasHistory<std::decay_t<decltype(law)>>;
         HistoryView hn, h1;
         int ngp = 0, nh = 0;
         if (H) {
@@ -568,10 +573,7 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
           }
         }
       };
-      if (!history_.empty() && history_[bi].committed.extent(0) > 0)
-        launch(block_plastic_law_[static_cast<std::size_t>(lb.volume_block)], std::true_type{});
-      else
-        launch(mat, std::false_type{});
+      std::visit(launch, block_law_[static_cast<std::size_t>(lb.volume_block)]);
       auto dh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dsum);
       energy += e_block;
       dissipation += dh(0);
@@ -797,86 +799,117 @@ void append_cell_rows(const Rows& h, std::size_t nc, const CellColumns& col, int
 
 }  // namespace
 
+namespace {
+
+// What the cell_fields kernel of one block reads besides the law.
+template <class UView>
+struct CellFieldBlock {
+  int dim, nn, ngp, nx;
+  CellType type;
+  QuadRule q;
+  Kokkos::View<int**, Kokkos::LayoutRight, la::ExecSpace> conn;
+  Kokkos::View<double* [3], Kokkos::LayoutRight, la::ExecSpace> X;
+  UView uv;
+  Assembler::HistoryView hist;                  // committed rows (laws with history)
+  Kokkos::View<int*, la::ExecSpace> xcol;       // per output column: the law's history index, -1 if it has none
+  CellColumns col;
+};
+
+// Cell fields of one block, compiled for its law: the stress of the committed state (the
+// law's frozen_potential at the committed row when it has history), strains, J, volume
+// and the Gauss-point average of the law's output history variables.
+template <class Law, class UView>
+Kokkos::View<double**, Kokkos::LayoutRight, la::ExecSpace> cell_fields_of_block(const Law& law, const CellFieldBlock<UView>& a,
+                                                                                std::size_t nc) {
+  constexpr bool H = kHasHistory<Law>;
+  Kokkos::View<double**, Kokkos::LayoutRight, la::ExecSpace> res("cell_fields", nc, a.col.total);
+  Kokkos::parallel_for(
+      "stentor::cell_fields", Kokkos::RangePolicy<la::ExecSpace>(0, nc), KOKKOS_LAMBDA(const int c) {
+        double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], N[kMaxCellNodes], dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
+        int dofs[kMaxCellDofs];
+        gather_cell(c, a.nn, a.dim, a.conn, a.X, a.uv, Xe, Ue, dofs);
+        Mat3 sig = Mat3::zero(), E = Mat3::zero(), L = Mat3::zero();
+        double Jm = 0.0, vol = 0.0, acc[kMaxHistoryColumns > 0 ? kMaxHistoryColumns : 1] = {};
+        for (int g = 0; g < a.q.n; ++g) {
+          shape_functions(a.type, a.q.xi[g], N, dN);
+          const double w = a.q.w[g] * reference_gradients(a.dim, a.nn, Xe, dN, dNdX);
+          const Mat3 F = deformation_gradient(a.dim, a.nn, Ue, dNdX);
+          const double J = det(F);
+          vol += w;
+          Jm += w * J;
+          if constexpr (H)
+            for (int k = 0; k < a.nx; ++k)
+              if (a.xcol(k) >= 0) acc[k] += w * a.hist(c * a.ngp + g, a.xcol(k));
+          if (J > 0.0) {
+            Mat3 S;
+            if constexpr (H)
+              S = law.frozen_potential(&a.hist(c * a.ngp + g, 0)).stress(tmul(F, F));
+            else
+              S = law_at_point(law, a.nn, N, Xe).stress(tmul(F, F));
+            sig = sig + w * cauchy_stress(F, matmul(F, S));
+          }
+          if (J > 0.0 && a.col.green_lagrange >= 0) E = E + (0.5 * w) * (tmul(F, F) - Mat3::identity());
+          if (J > 0.0 && a.col.log_strain >= 0) L = L + w * half_log_spd(matmul(F, transpose(F)));
+        }
+        sig = (1.0 / vol) * sig;
+        for (int k = 0; k < a.nx; ++k) res(c, a.col.extra + k) = acc[k] / vol;
+        put_sym(res, c, 0, sig);
+        res(c, 6) = von_mises(sig);
+        res(c, 7) = Jm / vol;
+        res(c, 8) = vol;
+        if (a.col.green_lagrange >= 0) put_sym(res, c, a.col.green_lagrange, (1.0 / vol) * E);
+        if (a.col.log_strain >= 0) put_sym(res, c, a.col.log_strain, (1.0 / vol) * L);
+        if (a.col.principal >= 0) {
+          double lam[3];
+          principal_values(sig, lam);
+          for (int k = 0; k < 3; ++k) res(c, a.col.principal + k) = lam[k];
+        }
+      });
+  return res;
+}
+
+// Per output column (names), the index of that history variable in `layout` or -1.
+Kokkos::View<int*, la::ExecSpace> history_columns(const std::vector<std::string>& names, const HistoryLayout& layout) {
+  Kokkos::View<int*, la::ExecSpace> xcol("extra_columns", names.size());
+  auto xh = Kokkos::create_mirror_view(xcol);
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    xh(k) = -1;
+    for (int i = 0; i < layout.size; ++i)
+      if (layout.vars[i].output && names[k] == layout.vars[i].name) xh(k) = i;
+  }
+  Kokkos::deep_copy(xcol, xh);
+  return xcol;
+}
+
+}  // namespace
+
 Assembler::CellFields Assembler::cell_fields(const la::Vector& u, const CellFieldRequest& req) {
   u_overlap_->doImport(u, *dist_.importer(), Tpetra::INSERT);
-  using Law = CiarletGeymonatPlasticity;
   CellFields out;
-  std::vector<int> extra_index;  // history columns written out
-  if (has_history())
-    for (int i = 0; i < Law::kNumHist; ++i)
-      if (Law::kHistory[i].output) {
-        out.extra_names.push_back(Law::kHistory[i].name);
-        extra_index.push_back(i);
-      }
-  const int nx = static_cast<int>(extra_index.size());
+  if (has_history())  // every rank lists every block: the same names on every rank
+    for (const auto& lb : dist_.blocks()) {
+      const HistoryLayout h = history_layout(block_law_[static_cast<std::size_t>(lb.volume_block)]);
+      for (int i = 0; i < h.size; ++i)
+        if (h.vars[i].output && std::find(out.extra_names.begin(), out.extra_names.end(), h.vars[i].name) == out.extra_names.end())
+          out.extra_names.push_back(h.vars[i].name);
+    }
+  const int nx = static_cast<int>(out.extra_names.size());
   const CellColumns col(nx, req);
-  Kokkos::View<int*, la::ExecSpace> xcol("extra_columns", extra_index.size());
-  {
-    auto xh = Kokkos::create_mirror_view(xcol);
-    for (int k = 0; k < nx; ++k) xh(k) = extra_index[static_cast<std::size_t>(k)];
-    Kokkos::deep_copy(xcol, xh);
-  }
-  const int dim = dim_;
-  auto X = dist_.coords();
   auto uv = u_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
   for (std::size_t bi = 0; bi < dist_.blocks().size(); ++bi) {
     const auto& lb = dist_.blocks()[bi];
     const std::size_t nc = lb.cell_ids.size();
     out.cell_ids.insert(out.cell_ids.end(), lb.cell_ids.begin(), lb.cell_ids.end());
     if (nc == 0) continue;
-    const ElasticLaw mat = block_mat_[static_cast<std::size_t>(lb.volume_block)];
-    const CiarletGeymonat cg = block_plastic_law_[static_cast<std::size_t>(lb.volume_block)].elastic;  // with history
-    // With history: the stress of the committed state at the kernels' Gauss points,
-    // S = G Sbar(G^T C G) G^T, G = Ftr^-1 (FrozenPlasticPotential).
-    const HistoryView hist = bi < history_.size() ? history_[bi].committed : HistoryView();
-    const bool has_hist = hist.extent(0) > 0;
-    const int ngp = has_hist ? history_[bi].ngp : 0;
-    const QuadRule q = make_rule(lb.type, has_hist ? stiffness_quadrature_degree(lb.type)
-                                                   : quad_degree_[static_cast<std::size_t>(lb.volume_block)]);
-    const CellType type = lb.type;
-    const int nn = lb.nodes_per_cell;
-    auto conn = lb.conn;
-    Kokkos::View<double**, Kokkos::LayoutRight, la::ExecSpace> res("cell_fields", nc, col.total);
-    Kokkos::parallel_for(
-        "stentor::cell_fields", Kokkos::RangePolicy<la::ExecSpace>(0, nc), KOKKOS_LAMBDA(const int c) {
-          double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], N[kMaxCellNodes], dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
-          int dofs[kMaxCellDofs];
-          gather_cell(c, nn, dim, conn, X, uv, Xe, Ue, dofs);
-          Mat3 sig = Mat3::zero(), E = Mat3::zero(), L = Mat3::zero();
-          double Jm = 0.0, vol = 0.0, acc[CiarletGeymonatPlasticity::kNumHist] = {};
-          for (int g = 0; g < q.n; ++g) {
-            shape_functions(type, q.xi[g], N, dN);
-            const double w = q.w[g] * reference_gradients(dim, nn, Xe, dN, dNdX);
-            const Mat3 F = deformation_gradient(dim, nn, Ue, dNdX);
-            const double J = det(F);
-            vol += w;
-            Jm += w * J;
-            for (int k = 0; has_hist && k < nx; ++k) acc[k] += w * hist(c * ngp + g, xcol(k));
-            if (J > 0.0 && has_hist) {
-              Mat3 Ftr;
-              for (int i = 0; i < 9; ++i) Ftr(i / 3, i % 3) = hist(c * ngp + g, CiarletGeymonatPlasticity::kFtr + i);
-              const FrozenPlasticPotential frozen{cg, inverse(Ftr)};
-              sig = sig + w * cauchy_stress(F, matmul(F, frozen.stress(tmul(F, F))));
-            } else if (J > 0.0) {
-              sig = sig + w * cauchy_stress(F, matmul(F, law_at_point(mat, nn, N, Xe).stress(tmul(F, F))));
-            }
-            if (J > 0.0 && col.green_lagrange >= 0) E = E + (0.5 * w) * (tmul(F, F) - Mat3::identity());
-            if (J > 0.0 && col.log_strain >= 0) L = L + w * half_log_spd(matmul(F, transpose(F)));
-          }
-          sig = (1.0 / vol) * sig;
-          for (int k = 0; k < nx; ++k) res(c, col.extra + k) = acc[k] / vol;
-          put_sym(res, c, 0, sig);
-          res(c, 6) = von_mises(sig);
-          res(c, 7) = Jm / vol;
-          res(c, 8) = vol;
-          if (col.green_lagrange >= 0) put_sym(res, c, col.green_lagrange, (1.0 / vol) * E);
-          if (col.log_strain >= 0) put_sym(res, c, col.log_strain, (1.0 / vol) * L);
-          if (col.principal >= 0) {
-            double lam[3];
-            principal_values(sig, lam);
-            for (int k = 0; k < 3; ++k) res(c, col.principal + k) = lam[k];
-          }
-        });
+    const Material& law = block_law_[static_cast<std::size_t>(lb.volume_block)];
+    // With history: the kernels' Gauss points (the stiffness rule), where the rows live.
+    const bool has_hist = history_layout(law).size > 0;
+    CellFieldBlock<decltype(uv)> a{dim_, lb.nodes_per_cell, has_hist ? history_[bi].ngp : 0, nx, lb.type,
+                                   make_rule(lb.type, has_hist ? stiffness_quadrature_degree(lb.type)
+                                                               : quad_degree_[static_cast<std::size_t>(lb.volume_block)]),
+                                   lb.conn, dist_.coords(), uv, has_hist ? history_[bi].committed : HistoryView(),
+                                   history_columns(out.extra_names, history_layout(law)), col};
+    const auto res = std::visit([&](const auto& l) { return cell_fields_of_block(l, a, nc); }, law);
     append_cell_rows(Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), res), nc, col, nx, out);
   }
   return out;

@@ -22,16 +22,20 @@
 #include "bc/Loads.hpp"
 #include "deck/Config.hpp"
 #include "assembly/HyperelasticElement.hpp"
-#include "material/ElasticLaw.hpp"
-#include "material/Plasticity.hpp"
+#include "material/MaterialRegistry.hpp"
 #include "parallel/Distribution.hpp"
 
 namespace stentor {
 
 class Assembler {
  public:
+  // The law of each material from the deck (make_material, material/MaterialRegistry.hpp).
   Assembler(const Mesh& mesh, const Distribution& dist, const Config& cfg, const Loads& loads,
             const std::vector<int>& block_material);
+  // laws[i] is the law of cfg.materials[i] (any registered law, also one no deck names);
+  // the rest of cfg.materials[i] (density, viscosity) is used as above.
+  Assembler(const Mesh& mesh, const Distribution& dist, const Config& cfg, const Loads& loads,
+            const std::vector<int>& block_material, const std::vector<Material>& laws);
 
   struct Stats {
     double energy = 0.0;       // stored elastic energy int W(C_{n+1}) (global)
@@ -89,8 +93,8 @@ class Assembler {
   // Colour of each cell of local block b (Distribution::blocks() order); empty with atomics.
   std::vector<int> cell_colors(std::size_t b) const;
 
-  // Gauss-point history (laws with internal state, e.g. Ciarlet-Geymonat plasticity), per
-  // local block in Kokkos views: `committed` (h_n, read by the kernels) and `trial`
+  // Gauss-point history (laws with internal state, material/MaterialState.hpp: e.g.
+  // Ciarlet-Geymonat plasticity), per local block in Kokkos views: `committed` (h_n, read by the kernels) and `trial`
   // (h_{n+1}, written by every assemble() at the state it assembles). A deck without such
   // a law allocates nothing and these are no-ops.
   bool has_history() const { return !history_.empty(); }
@@ -100,8 +104,8 @@ class Assembler {
   // The step is cut back: the trial copy is reset to the committed state (which no
   // assemble() ever writes).
   void rollback_history();
-  // Per local block b (Distribution::blocks() order): rows cell * ngp + g, kNumHist columns;
-  // empty views for blocks without history.
+  // Per local block b (Distribution::blocks() order): rows cell * ngp + g, the kNumHist
+  // columns of the block's law; empty views for blocks without history.
   using HistoryView = Kokkos::View<double**, Kokkos::LayoutRight, la::ExecSpace>;
   HistoryView committed_history(std::size_t b) const;
   HistoryView trial_history(std::size_t b) const;
@@ -119,8 +123,11 @@ class Assembler {
   // Per local cell: Cauchy stress (xx, yy, zz, xy, yz, xz) averaged over Gauss points,
   // von Mises of that average, mean J. Order: Distribution::blocks() order.
   // With Gauss-point history (has_history()): per cell the average over its Gauss points
-  // of each history variable marked for output (kHistory), named in extra_names
-  // (0 in blocks without history); `extra` holds extra_names.size() values per cell.
+  // of each history variable marked for output (the laws' kHistory), named in extra_names
+  // (the output names of the deck's laws with history, in block order, a name shared by
+  // two laws once; 0 in blocks whose law lacks it); `extra` holds extra_names.size()
+  // values per cell. The stress of a block with history is that of the committed state
+  // (the law's frozen_potential at the committed row).
   // `volume`: reference volume of each cell (the Gauss weights' sum; 2D: per unit thickness).
   // On request (a deck pays only for what it asks): per Gauss point, averaged as the stress,
   //   green_lagrange: E = (C - I)/2, 6 per cell in the stress order (xx, yy, zz, xy, yz, xz);
@@ -157,9 +164,7 @@ class Assembler {
   const Distribution& dist_;
   const Loads& loads_;
   int dim_;
-  std::vector<ElasticLaw> block_mat_;        // per mesh volume block (the one law dispatch)
-  std::vector<char> block_plastic_;         // per mesh volume block: Ciarlet-Geymonat plasticity
-  std::vector<CiarletGeymonatPlasticity> block_plastic_law_;
+  std::vector<Material> block_law_;         // per mesh volume block (material/MaterialRegistry.hpp)
   std::vector<double> block_density_, block_eta_;
   std::vector<int> quad_degree_;            // per mesh volume block: mass, body force, output
                                             // (the stiffness uses stiffness_quadrature_degree)

@@ -111,11 +111,13 @@ KOKKOS_INLINE_FUNCTION void gonzalez_dPdF(const Mat3& Fv, const Mat3& F1, const 
         }
 }
 
-// Energy-dissipative midpoint step of a law with history (docs/plasticity.md): the return
-// map at C_{n+1} gives the state h_{n+1}, Psi_{n+1} and D_p; the stress is Gonzalez's
-// discrete gradient Sigma(C_n, C_{n+1}) of the frozen-state potential C -> W(G^T C G),
-// G = Ftr_n^-1, so that Psi_{n+1} - Psi_n = 1/2 Sigma : (C_{n+1} - C_n) - D_p exactly.
-// P = F_{n+1/2} Sigma; Sigma does not depend on the return map, so A is the plain Gonzalez one.
+// Energy-dissipative midpoint step of a law with history (docs/plasticity.md): the update
+// at C_{n+1} gives the state h_{n+1}, Psi_{n+1} and D; the stress is Gonzalez's discrete
+// gradient Sigma(C_n, C_{n+1}) of the law's frozen-state potential C -> Psi(C, h_n)
+// (for the plasticity law W(G^T C G), G = Ftr_n^-1), so that
+// Psi_{n+1} - Psi_n = 1/2 Sigma : (C_{n+1} - C_n) - D exactly for a law whose update
+// satisfies the identity of MaterialState.hpp. P = F_{n+1/2} Sigma; Sigma does not depend
+// on the update, so A is the plain Gonzalez one.
 template <bool WithTangent, class Law>
 KOKKOS_INLINE_FUNCTION bool history_gonzalez(const Law& law, const Mat3& Fv, const Mat3& F1, const Mat3& C0, const Mat3& C1,
                                              const double* hn, double* h1, double wq, Mat3& P, Ten4& A, double& energy,
@@ -141,9 +143,9 @@ KOKKOS_INLINE_FUNCTION bool history_gonzalez(const Law& law, const Mat3& Fv, con
 // `energy` = int W(C_{n+1}) (with history: int Psi_{n+1}); `dissipation` = int S^v : (C_{n+1} - C_n)/2
 // = int eta |dC|^2/dt; `plastic` += int D_p of the step (laws with history only).
 // Mat is a hyperelastic law (ElasticLaw: the dispatch over every law, or one law such as
-// CiarletGeymonat) with Hist = NoHistory, or a law with history (MaterialState.hpp,
-// e.g. CiarletGeymonatPlasticity) with Hist = CellHistory; with history the stress is
-// evaluated at the end point, or by history_gonzalez for the Gonzalez scheme.
+// CiarletGeymonat) with Hist = NoHistory, or any law with history (MaterialState.hpp,
+// e.g. CiarletGeymonatPlasticity, NeoHookeanDamage) with Hist = CellHistory; with history
+// the stress is evaluated at the end point, or by history_gonzalez for the Gonzalez scheme.
 template <bool WithTangent, class Mat = CiarletGeymonat, class Hist = NoHistory>
 KOKKOS_INLINE_FUNCTION int solid_element(int dim, CellType type, int nn, const double (*X)[3], const double (*U)[3],
                                          const double (*U0)[3], const Mat& mat, const ElementTime& et,

@@ -6,11 +6,26 @@
 // It is the same idea as ExaCMech's getHistInfo / getResponseSngl, in Stentor's
 // conventions (total Lagrangian, S and CC = 2 dS/dC, dP/dF by spatial_tangent_dPdF):
 //
-//   static constexpr int kNumHist;                        // doubles per Gauss point
+//   static constexpr int kNumHist;                        // doubles per Gauss point, > 0
 //   static constexpr HistoryVar kHistory[kNumHist];       // name, initial value, output?
-//   template <class HIn, class HOut>
+//   template <bool WithTangent = true, class HIn, class HOut>
 //   KOKKOS_INLINE_FUNCTION PointResponse update(const Mat3& C, const HIn& h_n,
 //                                               const HOut& h_np1) const;
+//   template <class HIn>
+//   KOKKOS_INLINE_FUNCTION Potential frozen_potential(const HIn& h_n) const;
+//
+// update<false> may leave PointResponse::CC unset (the residual-only kernels call it);
+// S, h_np1, energy and dissipation must be those of update<true>. frozen_potential(h_n)
+// is the elastic potential C -> Psi(C, h_n) at the state h_n held fixed, a value type
+// with energy(C), stress(C) and stress_and_tangent(C, S, CC) like a hyperelastic law:
+// the Gonzalez step of dynamics takes its discrete gradient (docs/plasticity.md,
+// "Dynamics"), and the output takes its stress at the committed state. The update is
+// then energy-consistent when Psi_{n+1} - Psi_n = [Psi(C_{n+1}, h_n) - Psi(C_n, h_n)] - D
+// holds with the returned energy and dissipation D >= 0.
+//
+// The element kernels, the history views (commit / roll back), the checkpoint tables
+// and the cell output are generic over such a law; MaterialRegistry.hpp lists the laws
+// a block can have (docs/plasticity.md, "Adding a material").
 //
 // h_n and h_np1 are anything with operator[](int) giving a double (resp. double&):
 // a double*, or a rank-1 Kokkos::View / subview of a per-block View(ngp, kNumHist).
@@ -22,6 +37,8 @@
 // Units: energy and dissipation are densities per unit reference volume (Pa = J/m^3
 // when the moduli are in Pa).
 #pragma once
+#include <type_traits>
+
 #include "stentor/tensor.hpp"
 
 namespace stentor {
@@ -42,6 +59,15 @@ struct PointResponse {
   int iterations;      // local Newton iterations (0: elastic point)
   bool converged;      // false: the local solve failed; the caller must cut back
 };
+
+// Doubles of Gauss-point history a law declares: Law::kNumHist, 0 for a law without one
+// (the stateless hyperelastic laws and ElasticLaw).
+template <class Law, class = void>
+struct LawHistorySize : std::integral_constant<int, 0> {};
+template <class Law>
+struct LawHistorySize<Law, std::void_t<decltype(Law::kNumHist)>> : std::integral_constant<int, Law::kNumHist> {};
+template <class Law>
+inline constexpr bool kHasHistory = LawHistorySize<Law>::value > 0;
 
 // Fills a history row with the declared initial values.
 template <class Material, class Row>

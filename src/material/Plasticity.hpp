@@ -1,6 +1,12 @@
-// Finite-strain multiplicative plasticity on the Ciarlet–Geymonat law (mission.md,
-// model item 6; issue 11; docs/plasticity.md). A stateless value type with a Gauss-point
+// Finite-strain multiplicative plasticity on an isotropic hyperelastic law: the
+// Ciarlet–Geymonat law of the talk (mission.md, model item 6; issue 11;
+// docs/plasticity.md) and the neo-Hookean law. A stateless value type with a Gauss-point
 // history (MaterialState.hpp): update(C_{n+1}, h_n, h_{n+1}) -> S, CC = 2 dS/dC, Psi, D.
+// MultiplicativePlasticity<Elastic> needs of Elastic the tensor functions of a
+// hyperelastic law and, in principal values, the three functions principal_moduli,
+// principal_energy and principal_energy_jump below (written for CiarletGeymonat and
+// NeoHookean); the formulas below are those of Ciarlet–Geymonat, and the neo-Hookean ones
+// are next to its functions.
 //
 // Model. F = Fe Ftr, det Ftr = 1, Ce = Fe^T Fe = Ftr^-T C Ftr^-1, stored energy
 //   Psi = W(Ce) + 1/2 H alpha^2       (W: CiarletGeymonat.hpp; H >= 0 linear hardening),
@@ -75,6 +81,7 @@
 
 #include "material/CiarletGeymonat.hpp"
 #include "material/MaterialState.hpp"
+#include "material/NeoHookean.hpp"
 #include "material/SymEigen.hpp"
 #include "stentor/tensor.hpp"
 
@@ -86,8 +93,8 @@ using stentor::sym_eig3;
 
 // Principal Mandel stresses tau_A = dW/de_A (split as shape part s_A + common p) and
 // the Hessian Ge_AB = dtau_A/de_B, for principal values c_A of Ce.
-KOKKOS_INLINE_FUNCTION void cg_principal(const CiarletGeymonat& m, const double c[3], double s[3],
-                                         double& p, double Ge[3][3]) {
+KOKKOS_INLINE_FUNCTION void principal_moduli(const CiarletGeymonat& m, const double c[3], double s[3],
+                                             double& p, double Ge[3][3]) {
   const double I3 = c[0] * c[1] * c[2];
   p = 2.0 * (m.D * I3 - m.K());
   for (int A = 0; A < 3; ++A) {
@@ -110,21 +117,49 @@ KOKKOS_INLINE_FUNCTION double hill(const double s[3], double n[3]) {
 }
 
 // W(c) from principal values of Ce.
-KOKKOS_INLINE_FUNCTION double cg_energy_principal(const CiarletGeymonat& m, const double c[3]) {
+KOKKOS_INLINE_FUNCTION double principal_energy(const CiarletGeymonat& m, const double c[3]) {
   const double I1 = c[0] + c[1] + c[2], I2 = c[0] * c[1] + c[1] * c[2] + c[2] * c[0];
   const double I3 = c[0] * c[1] * c[2];
   return m.C1 * (I1 - 3.0) + m.C2 * (I2 - 3.0) + m.D * (I3 - 1.0) - m.K() * std::log(I3);
 }
 
 // W(c exp(2 d)) - W(c) without cancellation (d: log-strain differences).
-KOKKOS_INLINE_FUNCTION double cg_energy_jump(const CiarletGeymonat& m, const double c[3],
-                                             const double d[3]) {
+KOKKOS_INLINE_FUNCTION double principal_energy_jump(const CiarletGeymonat& m, const double c[3],
+                                                    const double d[3]) {
   const double sd = d[0] + d[1] + d[2];
   double r = m.D * c[0] * c[1] * c[2] * std::expm1(2.0 * sd) - 2.0 * m.K() * sd;
   for (int A = 0; A < 3; ++A) {
     const int B = (A + 1) % 3;
     r += m.C1 * c[A] * std::expm1(2.0 * d[A]) + m.C2 * c[A] * c[B] * std::expm1(2.0 * (d[A] + d[B]));
   }
+  return r;
+}
+
+// The same three for the neo-Hookean law, W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2
+// with ln J = 1/2 ln(c_1 c_2 c_3) = e_1 + e_2 + e_3:
+//   tau_A = mu c_A + lambda ln J - mu   (s_A = mu c_A, p = lambda ln J - mu),
+//   Ge_AB = 2 mu c_A delta_AB + lambda,
+//   W(c exp(2 d)) - W(c) = mu/2 sum c_A expm1(2 d_A) - mu sum d + lambda/2 sd (2 ln J + sd),
+// sd = sum d. W is convex in the e_A (exponentials, a linear and a square of a linear form),
+// so the dissipation bound of the header holds as for Ciarlet–Geymonat.
+KOKKOS_INLINE_FUNCTION void principal_moduli(const NeoHookean& m, const double c[3], double s[3], double& p,
+                                             double Ge[3][3]) {
+  p = m.lambda * 0.5 * std::log(c[0] * c[1] * c[2]) - m.mu;
+  for (int A = 0; A < 3; ++A) {
+    s[A] = m.mu * c[A];
+    for (int B = 0; B < 3; ++B) Ge[A][B] = (A == B ? 2.0 * m.mu * c[A] : 0.0) + m.lambda;
+  }
+}
+
+KOKKOS_INLINE_FUNCTION double principal_energy(const NeoHookean& m, const double c[3]) {
+  const double lnJ = 0.5 * std::log(c[0] * c[1] * c[2]);
+  return 0.5 * m.mu * (c[0] + c[1] + c[2] - 3.0) - m.mu * lnJ + 0.5 * m.lambda * lnJ * lnJ;
+}
+
+KOKKOS_INLINE_FUNCTION double principal_energy_jump(const NeoHookean& m, const double c[3], const double d[3]) {
+  const double sd = d[0] + d[1] + d[2], lnJ = 0.5 * std::log(c[0] * c[1] * c[2]);
+  double r = -m.mu * sd + 0.5 * m.lambda * sd * (2.0 * lnJ + sd);
+  for (int A = 0; A < 3; ++A) r += 0.5 * m.mu * c[A] * std::expm1(2.0 * d[A]);
   return r;
 }
 
@@ -204,9 +239,10 @@ struct PlasticState {
 
 // Elastic potential at a frozen plastic state, C -> W(G^T C G), G = Ftr_n^-1: the
 // elastic predictor of a step, with the energy/stress/stress_and_tangent interface of
-// CiarletGeymonat so DiscreteGradient.hpp (Gonzalez) applies to it directly.
-struct FrozenPlasticPotential {
-  CiarletGeymonat law;
+// a hyperelastic law so DiscreteGradient.hpp (Gonzalez) applies to it directly.
+template <class Elastic>
+struct FrozenPotential {
+  Elastic law;
   Mat3 G;
   KOKKOS_INLINE_FUNCTION Mat3 elastic_C(const Mat3& C) const { return tmul(G, matmul(C, G)); }
   KOKKOS_INLINE_FUNCTION double energy(const Mat3& C) const { return law.energy(elastic_C(C)); }
@@ -222,10 +258,14 @@ struct FrozenPlasticPotential {
   }
 };
 
-// Ciarlet–Geymonat elasticity with von Mises (Hill-norm) multiplicative plasticity and
-// linear isotropic hardening. Y, H and the moduli in the same stress unit (Pa).
-struct CiarletGeymonatPlasticity {
-  CiarletGeymonat elastic;
+using FrozenPlasticPotential = FrozenPotential<CiarletGeymonat>;
+
+// Isotropic elasticity (Elastic: CiarletGeymonat or NeoHookean) with von Mises (Hill-norm)
+// multiplicative plasticity and linear isotropic hardening. Y, H and the moduli in the
+// same stress unit (Pa).
+template <class Elastic>
+struct MultiplicativePlasticity {
+  Elastic elastic;
   double Y;        // initial yield stress, > 0 [Pa]
   double H = 0.0;  // linear isotropic hardening modulus, >= 0 [Pa]; 0: perfect plasticity
 
@@ -274,11 +314,11 @@ struct CiarletGeymonatPlasticity {
   // The elastic potential at the frozen state of history row hn: C -> W(G^T C G),
   // G = Ftr_n^-1 (for the Gonzalez stress of the energy-dissipative dynamic step).
   template <class HIn>
-  KOKKOS_INLINE_FUNCTION FrozenPlasticPotential frozen_potential(const HIn& hn) const {
+  KOKKOS_INLINE_FUNCTION FrozenPotential<Elastic> frozen_potential(const HIn& hn) const {
     Mat3 Ftr;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) Ftr(i, j) = hn[kFtr + 3 * i + j];
-    return FrozenPlasticPotential{elastic, inverse(Ftr)};
+    return FrozenPotential<Elastic>{elastic, inverse(Ftr)};
   }
 
   // Same on structured state (C = F^T F at t_{n+1}; s0 at t_n is not modified).
@@ -301,7 +341,7 @@ struct CiarletGeymonatPlasticity {
   }
 
  private:
-  // (CiarletGeymonat's stress() and stress_and_tangent() compute S by the same code.)
+  // (The law's stress() and stress_and_tangent() compute S by the same code.)
   template <bool WithTangent>
   KOKKOS_INLINE_FUNCTION PointResponse elastic_branch(const Mat3& Ct, const Mat3& G,
                                                       const PlasticState& s0, double q,
@@ -357,8 +397,8 @@ struct CiarletGeymonatPlasticity {
     out.mandel_hill = rm.q;
     double c[3], d[3];
     for (int A = 0; A < 3; ++A) c[A] = std::exp(2.0 * rm.e[A]), d[A] = et[A] - rm.e[A];
-    r.energy = cg_energy_principal(elastic, c) + 0.5 * H * out.state.alpha * out.state.alpha;
-    r.dissipation = cg_energy_jump(elastic, c, d) - H * dg * (s0.alpha + 0.5 * dg);
+    r.energy = principal_energy(elastic, c) + 0.5 * H * out.state.alpha * out.state.alpha;
+    r.dissipation = principal_energy_jump(elastic, c, d) - H * dg * (s0.alpha + 0.5 * dg);
     return r;
   }
 
@@ -369,7 +409,7 @@ struct CiarletGeymonatPlasticity {
                                              plasticity_detail::ReturnMap& rm) const {
     double c[3], s[3], p;
     for (int A = 0; A < 3; ++A) c[A] = std::exp(2.0 * x[A]);
-    plasticity_detail::cg_principal(elastic, c, s, p, Ge);
+    plasticity_detail::principal_moduli(elastic, c, s, p, Ge);
     const double q = plasticity_detail::hill(s, rm.n);
     rm.q = q;
     const double dg = x[3];
@@ -483,5 +523,8 @@ struct CiarletGeymonatPlasticity {
           }
   }
 };
+
+using CiarletGeymonatPlasticity = MultiplicativePlasticity<CiarletGeymonat>;
+using NeoHookeanPlasticity = MultiplicativePlasticity<NeoHookean>;
 
 }  // namespace stentor
