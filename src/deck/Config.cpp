@@ -1311,6 +1311,7 @@ void DeckReader::read_newton(const ParameterList& pl) {
   auto& n = cfg_.newton;
   n.max_iterations = get_int(pl, ls, "max iterations");
   n.residual_tolerance = get_double(pl, ls, "relative residual tolerance");
+  n.residual_tolerance_given = pl.isParameter("relative residual tolerance");
   n.absolute_tolerance = get_double(pl, ls, "absolute residual tolerance");
   n.increment_tolerance = get_double(pl, ls, "increment tolerance");
   n.line_search = get_bool(pl, ls, "line search");

@@ -326,16 +326,22 @@ std::vector<ListSpec> build_schema() {
       "converged when the contact active sets did not change in the last evaluation and either norm(r) <= "
       "max(`relative residual tolerance` x ref, `absolute residual tolerance`) (the residual test), or the "
       "last increment satisfies norm(alpha du) <= `increment tolerance` x norm(u) while norm(r) <= "
-      "sqrt(`relative residual tolerance`) x ref (the increment test). The force scale and the exact rule: "
-      "docs/deck.md, \"Newton convergence\".",
+      "sqrt(`relative residual tolerance`) x ref (the increment test), or Newton's correction norm(du) is below "
+      "the round-off of the coordinates, 8 eps (norm(X) + norm(u)) (machine precision reached; off, like the increment "
+      "test, with `increment tolerance` = 0). The force scale "
+      "and the exact rule: docs/deck.md, \"Newton convergence\".",
       {integer("max iterations", 25, "Iterations per step before a cutback.").ge(1),
        dbl("relative residual tolerance", 1e-10,
            "rtol: the residual test norm(r) <= max(rtol x ref, atol), ref = max(norm(r_0), force scale); "
-           "sqrt(rtol) x ref bounds the residual of the increment test.")
+           "sqrt(rtol) x ref bounds the residual of the increment test. The dynamic default keeps the energy "
+           "identity to about 1e-12 of the energy per run (docs/deck.md, \"Newton convergence\").")
            .ge(0.0)
-           .lt(1.0),
-       dbl("absolute residual tolerance", 1e-12,
-           "atol [force unit]: the floor of the residual test's target (an absolute residual, not relative).")
+           .lt(1.0)
+           .dflt_doc("1e-12 in a dynamic analysis or stage, 1e-10 in a static one"),
+       dbl("absolute residual tolerance", 0.0,
+           "atol [force unit]: a floor of the residual test's target (an absolute residual, not relative); 0: "
+           "none, the test is relative to ref only (a fixed floor in force units stopped Newton after one "
+           "iteration on small loads).")
            .ge(0.0),
        dbl("increment tolerance", 1e-10,
            "The increment test, an alternative to the residual test: norm(alpha du) <= tol x norm(u) and "

@@ -1,5 +1,7 @@
 #include "run/Stepper.hpp"
 
+#include <Teuchos_CommHelpers.hpp>
+
 #include "run/Supports.hpp"
 
 #include <algorithm>
@@ -23,6 +25,11 @@ Stepper::Stepper(Model& model, Timers& timers, std::ostream* newton_log, std::os
     : m_(model), timers_(timers), system_(*model.assembler, timers), newton_log_(newton_log) {
   system_.input.end_time = m_.cfg.stepping.end_time;
   system_.contact_log = contact_log;
+  const std::vector<double> X = m_.dist->owned_coordinates();
+  double loc = 0.0, glob = 0.0;
+  for (double x : X) loc += x * x;
+  Teuchos::reduceAll(*m_.comm, Teuchos::REDUCE_SUM, 1, &loc, &glob);
+  system_.coordinate_scale_ = std::sqrt(glob);
 }
 
 EnergyAudit Stepper::initialize_dynamics(RunState& s) { return m_.integrator->initialize(s.u, m_.cfg.stepping.end_time); }
@@ -39,7 +46,9 @@ void Stepper::attach_contact(const RunState& s) {
 
 NewtonResult Stepper::newton(la::Vector& u) {
   Timers::Scope s{timers_, "newton"};
-  return newton_solve(system_, u, *m_.linear, m_.cfg.newton, newton_log_);
+  NewtonConfig nc = m_.cfg.newton;
+  nc.residual_tolerance = nc.tolerance_for(m_.dynamic);
+  return newton_solve(system_, u, *m_.linear, nc, newton_log_);
 }
 
 // The initial guess (Stepping->predictor). auto, statics: extrapolate the last converged

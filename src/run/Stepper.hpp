@@ -28,6 +28,8 @@ class StepSystem : public NewtonSystem {
   bool settled() const override { return contact == nullptr || !contact->active_set_changed(); }
   // Contact rows are scaled by the tangent's diagonal (Contact::read_scales).
   bool residual_needs_tangent() const override { return contact != nullptr; }
+  double coordinate_scale() const override { return coordinate_scale_; }
+  double coordinate_scale_ = 0.0;  // |X| over the dofs (Stepper's constructor)
   // |f_ext| and |f_int - f_ext| over all rows (reactions included): the forces in play.
   // After unloading (a deflated balloon, a body at rest) both are round-off, and so would
   // be the target: the mean force scale of the accepted steps so far is kept as a floor

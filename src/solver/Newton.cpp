@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <iomanip>
 #include <sstream>
 
@@ -167,6 +168,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
       res.failure = "linear solve produced a non-finite increment";
       return res;
     }
+    const double du_full = du.norm2();  // Newton's correction, before damping
     const double scaled = limit_increment(du, cfg.max_increment);
     Trial t = line_search(sys, u, du, rn, damped_unsettled, cfg, u_trial, r_trial);
     if (t.accepted && t.alpha < 1.0 && t.full_unsettled) ++damped_unsettled;
@@ -199,7 +201,12 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
       res.failure = "residual is not finite";
       return res;
     }
-    const bool small = rn <= target || (step <= cfg.increment_tolerance * std::max(un, 1e-300) && rn <= std::sqrt(cfg.residual_tolerance) * ref);
+    // The correction below the round-off of the coordinates: machine precision reached.
+    // (An increment test too: off with `increment tolerance` = 0, as the other one.)
+    const bool roundoff =
+        cfg.increment_tolerance > 0.0 && du_full <= 8.0 * std::numeric_limits<double>::epsilon() * (sys.coordinate_scale() + un);
+    const bool small = rn <= target || roundoff ||
+                       (step <= cfg.increment_tolerance * std::max(un, 1e-300) && rn <= std::sqrt(cfg.residual_tolerance) * ref);
     if (small && t.settled) {
       res.converged = true;
       return res;

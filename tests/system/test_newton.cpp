@@ -369,3 +369,54 @@ TEST(Newton, EisenstatWalkerAndReuseSameSolution) {
   EXPECT_NEAR(reuse.energy, fixed.energy, 1e-8 * fixed.energy);
   EXPECT_LT(ew.linear_iterations, fixed.linear_iterations);
 }
+
+// Tiny loads: at strains of 1e-9 and below, C - I keeps few digits and the residual's
+// round-off floor (4e-10 N here) lies above every relative target, so Newton iterated
+// without progress and the step failed after 6 cut-backs (a 1e-3 Pa traction on a 0.5 MPa
+// block; the former 1e-12 N absolute floor did not help). Newton now stops once its
+// correction is below the round-off of the coordinates (NewtonSystem::coordinate_scale):
+// the same block converges in 2 iterations for 1e-3 and 1e-6 Pa, and the displacement is
+// the 1 Pa solution scaled (linear elasticity at these strains) to the precision left.
+TEST(Newton, TinyLoadsConvergeToMachinePrecision) {
+  fs::create_directories(kDir);
+  auto run = [](const std::string& load) {
+    const fs::path deck = kDir / ("tiny_" + load + ".xml");
+    std::ofstream(deck) << R"X(<ParameterList name="stentor">
+  <ParameterList name="Mesh"><Parameter name="file" type="string" value=")X"
+                        << STENTOR_SOURCE_DIR << R"X(/inputs/block2d.geo"/><Parameter name="size" type="double" value="0.25"/></ParameterList>
+  <ParameterList name="Materials"><ParameterList name="rubber"><Parameter name="C1" type="double" value="0.5e6"/><Parameter name="D" type="double" value="0.35e6"/></ParameterList></ParameterList>
+  <ParameterList name="Bodies"><ParameterList name="block"><Parameter name="material" type="string" value="rubber"/></ParameterList></ParameterList>
+  <ParameterList name="Boundary Conditions">
+    <ParameterList name="clamp"><Parameter name="type" type="string" value="Dirichlet"/><Parameter name="boundary" type="string" value="bottom"/></ParameterList>
+    <ParameterList name="push"><Parameter name="type" type="string" value="traction"/><Parameter name="boundary" type="string" value="right"/>
+      <Parameter name="traction" type="Array(double)" value="{)X" << load << R"X(, 0}"/></ParameterList>
+  </ParameterList>
+  <ParameterList name="Linear Solver"><Parameter name="method" type="string" value="direct"/></ParameterList>
+  <ParameterList name="Output"><Parameter name="fields" type="bool" value="false"/></ParameterList>
+</ParameterList>
+)X";
+    RunOptions opts;
+    opts.output_dir = (kDir / ("out_tiny_" + load)).string();
+    RunResult res;
+    EXPECT_EQ(run_simulation(read_deck(deck.string()), opts, &res), 0) << load;
+    return res;
+  };
+  const RunResult unit = run("1");
+  for (const char* load : {"1e-3", "1e-6"}) {
+    const double f = std::stod(load);
+    const RunResult r = run(load);
+    EXPECT_EQ(r.cutbacks, 0) << load;
+    EXPECT_LE(r.newton_iterations, 3) << load;
+    ASSERT_EQ(r.displacement.size(), unit.displacement.size());
+    double diff = 0.0, scale = 0.0;
+    for (std::size_t i = 0; i < r.displacement.size(); ++i) {
+      diff = std::max(diff, std::abs(r.displacement[i] / f - unit.displacement[i]));
+      scale = std::max(scale, std::abs(unit.displacement[i]));
+    }
+    std::printf("[newton] traction %s Pa: %d iterations, max |u/f - u(1 Pa)| = %.2e of %.2e\n", load, r.newton_iterations, diff, scale);
+    // Measured: 7.0e-7 (1e-3 Pa: the 1 Pa solution's own nonlinearity, strain 2e-6) and
+    // 1.2e-5 (1e-6 Pa: round-off at strain 2e-12) of |u(1 Pa)|.
+    EXPECT_LT(diff, (f > 1e-4 ? 3e-6 : 1e-4) * scale) << load;
+    EXPECT_NEAR(r.reactions.front()[0], -f, (f > 1e-4 ? 1e-6 : 1e-3) * f) << load;
+  }
+}
