@@ -45,7 +45,11 @@ void prepend_initial_row(PlotTable& h, const Model& m, const InitialState& init)
 // Reactions vs time, and vs the prescribed displacement of each set that moves.
 void reaction_plots(const Model& m, PlotTable& h, const std::string& stem, const UnitLabels& u, std::vector<std::string>& made) {
   PlotSpec vs_time{"Reaction forces of the Dirichlet sets", with_unit("time", u.time), with_unit("reaction force", u.force), "time", {}, true};
-  const std::vector<double>& t = h.columns[static_cast<std::size_t>(h.find("time"))];
+  // A copy: h.add() below grows h.columns, which would leave a reference dangling (it did:
+  // with two moving Dirichlet sets the second set's loop read a freed vector, and the run
+  // ended with "cannot create std::vector larger than max_size()" or garbage plots,
+  // depending on the heap; found on inputs/ironing.xml when launched from another python).
+  const std::vector<double> t = h.columns[static_cast<std::size_t>(h.find("time"))];
   const double T = m.cfg.stepping.end_time;
   for (const DirichletSet& d : m.assembler->dirichlet_sets()) {
     PlotSpec vs_u{"Reaction of '" + d.name + "' versus its prescribed displacement", with_unit("prescribed displacement", u.length),
@@ -110,7 +114,11 @@ void energy_plots(const Model& m, const std::string& stem, const UnitLabels& u, 
   e.add("balance_error", std::move(error));
   const bool c = wc != nullptr;
   const std::string balance = std::string("E - E_0 - (W_ext + W_sup") + (c ? " + W_contact" : "") + " - D" + (c ? " - D_friction" : "") + ")";
-  PlotSpec s{"Energy balance (" + m.cfg.time.scheme + "): E = kinetic + strain, D = viscous + plastic dissipation",
+  std::string schemes;  // of the dynamic stages (the run's without stages)
+  for (int k = 0; k < std::max<int>(1, static_cast<int>(m.cfg.stages.size())); ++k)
+    if (m.cfg.dynamic_in(k) && schemes.find(m.cfg.scheme_in(k)) == std::string::npos)
+      schemes += (schemes.empty() ? "" : ", ") + m.cfg.scheme_in(k);
+  PlotSpec s{"Energy balance (" + schemes + "): E = kinetic + strain, D = viscous + plastic dissipation",
              with_unit("time", u.time), with_unit("energy", u.energy), "time", {}, true};
   s.curves = {{"kinetic", "kinetic energy", ""},
               {"strain", "strain energy", ""},

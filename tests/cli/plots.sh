@@ -47,6 +47,15 @@ first_row s/static_reactions.gp | awk '{ for (i = 1; i <= NF; ++i) if ($i != 0) 
 awk '/^\$data/ { on = 1; next } /^EOD/ { on = 0 } on { n++; x = $1 } END { exit !(n == 5 && x > 0.2 - 1e-12 && x < 0.2 + 1e-12) }' \
   s/static_reaction_pull.gp || fail "static_reaction_pull.gp: not 5 rows ending at the prescribed 0.2"
 
+# Two moving Dirichlet sets: a reaction-vs-displacement plot each. MALLOC_PERTURB_ makes
+# glibc fill freed memory (with its per-thread cache off, which would skip that), so reading
+# a freed vector fails every time instead of by chance.
+GLIBC_TUNABLES=glibc.malloc.tcache_count=0 MALLOC_PERTURB_=165 "$stentor" --output two "$decks/plots_two_sets.xml" > two.log 2>&1 || { cat two.log; fail "two-set run failed"; }
+for p in reactions reaction_pull reaction_lift; do is_png "two/two_$p.png"; done
+has two/two_reaction_lift.gp "title 'lift: reaction y vs prescribed u_y'"
+awk '/^\$data/ { on = 1; next } /^EOD/ { on = 0 } on { n++; x = $1 } END { exit !(n == 5 && x > 0.1 - 1e-12 && x < 0.1 + 1e-12) }' \
+  two/two_reaction_lift.gp || fail "two_reaction_lift.gp: not 5 rows ending at the prescribed 0.1"
+
 "$stentor" --output d "$decks/plots_dynamic.xml" > d.log 2>&1 || { cat d.log; fail "dynamic run failed"; }
 for p in energy balance contact probes; do is_png "d/dynamic_$p.png"; done
 ls d/dynamic_reaction*.png > /dev/null 2>&1 && fail "dynamic run wrote a reaction plot without Dirichlet sets"
