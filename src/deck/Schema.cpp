@@ -131,7 +131,8 @@ std::vector<ListSpec> build_schema() {
   }
   s.push_back(list(
       "Materials/*", "Materials-><material>",
-      "A hyperelastic material. Ciarlet-Geymonat: W = C1 (I1 - 3) + C2 (I2 - 3) + D (I3 - 1) "
+      "A material law (hyperelastic, or with Gauss-point history: plasticity, damage). "
+      "Ciarlet-Geymonat: W = C1 (I1 - 3) + C2 (I2 - 3) + D (I3 - 1) "
       "- (C1 + 2 C2 + D) ln I3; small-strain mu = 2 (C1 + C2), lambda = 4 (C2 + D). The elastic constants "
       "are exactly one of three sets: `C1` + `D` (+ `C2`), `E` + `nu`, or `mu` + `lambda`; with E/nu or "
       "mu/lambda, C1 = mu/2 - C2 and D = lambda/4 - C2 with `C2` as given (default 0), both must be > 0 "
