@@ -94,7 +94,7 @@ class Assembler {
   std::vector<int> cell_colors(std::size_t b) const;
 
   // Gauss-point history (laws with internal state, material/MaterialState.hpp: e.g.
-  // Ciarlet-Geymonat plasticity), per local block in Kokkos views: `committed` (h_n, read by the kernels) and `trial`
+  // the plasticity and damage models), per local block in Kokkos views: `committed` (h_n, read by the kernels) and `trial`
   // (h_{n+1}, written by every assemble() at the state it assembles). A deck without such
   // a law allocates nothing and these are no-ops.
   bool has_history() const { return !history_.empty(); }

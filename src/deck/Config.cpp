@@ -299,6 +299,7 @@ class DeckReader {
   void read_materials(const ParameterList& pl);
   void read_elastic_constants(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
   void read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m);
+  void read_inelastic(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
   void read_bodies(const ParameterList& pl);
   void read_loads(const ParameterList& pl);
   void read_stepping(const ParameterList& pl);
@@ -822,7 +823,7 @@ void DeckReader::read_elastic_constants(const ParameterList& sub, const ListSpec
   if (!cg && given == &sets[0])
     fail(quoted(path + "->" + (sub.isParameter("C1") ? "C1" : "D")) + " is a Ciarlet-Geymonat parameter; 'model' = " +
          m.model + " takes E + nu or mu + lambda");
-  if ((m.model == "neo-Hookean" || m.model == "Holzapfel-Gasser-Ogden") && sub.isParameter("C2"))
+  if ((m.neo_hookean() || m.model == "Holzapfel-Gasser-Ogden") && sub.isParameter("C2"))
     fail(quoted(path + "->C2") + " needs 'model' = Ciarlet-Geymonat or Mooney-Rivlin (" + m.model + " has no I2 term)");
   m.C2 = get_double(sub, ls, "C2");
   if (given == &sets[0]) {
@@ -887,6 +888,36 @@ void DeckReader::read_fibres(const ParameterList& sub, const ListSpec& ls, const
   }
 }
 
+// The parameters of the laws with Gauss-point history: `yield stress` (required, > 0) and
+// `hardening` of the plasticity models, `saturation damage` and `damage energy scale`
+// (both required) of neo-Hookean damage; none of them with another model.
+void DeckReader::read_inelastic(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const {
+  const auto needs = [&](const char* key, bool ok, const char* models) {
+    if (!ok && sub.isParameter(key)) fail(quoted(path + "->" + key) + " needs 'model' = " + models);
+  };
+  const auto require_for_model = [&](const char* key) {
+    if (sub.isParameter(key)) return;
+    const ParamSpec& p = spec(ls, key);
+    fail("missing required parameter " + quoted(path + "->" + key) + " (double, " + p.allowed_text() + ") for model = " +
+         m.model);
+  };
+  needs("yield stress", m.plastic(), "Ciarlet-Geymonat plasticity or neo-Hookean plasticity");
+  needs("hardening", m.plastic(), "Ciarlet-Geymonat plasticity or neo-Hookean plasticity");
+  needs("saturation damage", m.damage(), "neo-Hookean damage");
+  needs("damage energy scale", m.damage(), "neo-Hookean damage");
+  if (m.plastic()) {
+    require_for_model("yield stress");
+    m.yield_stress = get_double(sub, ls, "yield stress");
+    m.hardening = get_double(sub, ls, "hardening");
+  }
+  if (m.damage()) {
+    require_for_model("saturation damage");
+    require_for_model("damage energy scale");
+    m.saturation_damage = get_double(sub, ls, "saturation damage");
+    m.damage_energy_scale = get_double(sub, ls, "damage energy scale");
+  }
+}
+
 void DeckReader::read_materials(const ParameterList& pl) {
   const ListSpec& top = deck_list_spec("Materials");
   const ListSpec& ls = deck_list_spec("Materials/*");
@@ -909,16 +940,7 @@ void DeckReader::read_materials(const ParameterList& pl) {
     read_fibres(sub, ls, path, m);
     m.density = get_double(sub, ls, "density");
     m.viscosity = get_double(sub, ls, "viscosity");
-    m.yield_stress = get_double(sub, ls, "yield stress");
-    m.hardening = get_double(sub, ls, "hardening");
-    const bool has_plastic_param = sub.isParameter("yield stress") || sub.isParameter("hardening");
-    if (m.plastic() && !sub.isParameter("yield stress"))
-      fail("missing required parameter " + quoted(path + "->yield stress") + " (double, > 0) for model = Ciarlet-Geymonat plasticity");
-    if (m.plastic() && !(m.yield_stress > 0.0))
-      fail(quoted(path + "->yield stress") + " must be > 0, got " + num(m.yield_stress));
-    if (!m.plastic() && has_plastic_param)
-      fail(quoted(path + (sub.isParameter("yield stress") ? "->yield stress" : "->hardening")) +
-           " needs 'model' = Ciarlet-Geymonat plasticity");
+    read_inelastic(sub, ls, path, m);
     cfg_.materials.push_back(m);
   }
   if (cfg_.materials.empty()) fail("'Materials' defines no material; add one sublist per material");
@@ -1408,7 +1430,10 @@ void DeckReader::resolve_output() {
   for (const auto& c : cfg_.contact) traits.master_surface |= !c.master.empty();
   for (const auto& b : cfg_.bodies)
     for (const auto& m : cfg_.materials)
-      if (m.name == b.material && m.plastic()) traits.plastic = true;
+      if (m.name == b.material) {
+        traits.plastic |= m.plastic();
+        traits.damage |= m.damage();
+      }
   try {
     o.field_names = o.fields ? resolve_output_fields(o.field_list, traits) : std::vector<std::string>{};
   } catch (const std::invalid_argument& e) {
@@ -1571,8 +1596,8 @@ void DeckReader::check_analysis(bool initial_conditions, bool time_integration) 
   for (int k = 0; k < n; ++k) {
     if (!cfg_.dynamic_in(k) || cfg_.scheme_in(k) != "midpoint") continue;
     for (const auto& m : cfg_.materials)
-      if (m.plastic())
-        fail("'Materials->" + m.name + "->model' = Ciarlet-Geymonat plasticity needs " +
+      if (m.has_history())  // the element kernels have no midpoint evaluation of a law with history
+        fail("'Materials->" + m.name + "->model' = " + m.model + " needs " +
              (staged ? quoted("Stages->" + cfg_.stages[static_cast<std::size_t>(k)].name + "->scheme") : std::string("'Time Integration->scheme'")) +
              " = gonzalez (energy-dissipative), newmark or hht, not midpoint");
   }

@@ -69,8 +69,17 @@ struct MaterialConfig {
   double viscosity = 0;                   // "viscosity" eta (Curnier), >= 0; unused in statics
   double yield_stress = 0;                // "yield stress" Y [Pa], > 0 (plasticity only)
   double hardening = 0;                   // "hardening" H [Pa], >= 0 (plasticity only)
-  bool plastic() const { return model == "Ciarlet-Geymonat plasticity"; }
-  bool ciarlet_geymonat() const { return model == "Ciarlet-Geymonat" || plastic(); }
+  // neo-Hookean damage (material/Damage.hpp): "saturation damage" d_inf in [0, 1) and
+  // "damage energy scale" beta [Pa] > 0 of d = d_inf (1 - exp(-alpha / beta)).
+  double saturation_damage = 0, damage_energy_scale = 0;
+  // The multiplicative plasticity models (yield stress, hardening; plastic output fields).
+  bool plastic() const { return model == "Ciarlet-Geymonat plasticity" || model == "neo-Hookean plasticity"; }
+  bool damage() const { return model == "neo-Hookean damage"; }
+  // A law with Gauss-point history (plasticity or damage): refused with the midpoint scheme.
+  bool has_history() const { return plastic() || damage(); }
+  bool ciarlet_geymonat() const { return model == "Ciarlet-Geymonat" || model == "Ciarlet-Geymonat plasticity"; }
+  // The models whose elasticity is the compressible neo-Hookean law (E + nu or mu + lambda only).
+  bool neo_hookean() const { return model == "neo-Hookean" || model == "neo-Hookean plasticity" || damage(); }
 };
 
 struct BodyConfig {

@@ -37,6 +37,10 @@ const std::vector<OutputField>& output_fields() {
       {"mandel_hill_norm", W::Cell, 1, "stress", N::Plasticity, true, "Norm of the Mandel stress in the yield function."},
       {"yielding", W::Cell, 1, "", N::Plasticity, true, "1 where the last step yielded, else 0."},
       {"plastic_dissipation", W::Cell, 1, "stress", N::Plasticity, true, "Accumulated plastic dissipation per volume [J/m^3 = Pa]."},
+      {"damage", W::Cell, 1, "-", N::Damage, true, "Damage d in [0, saturation damage) (neo-Hookean damage bodies)."},
+      {"max_virgin_energy", W::Cell, 1, "stress", N::Damage, true,
+       "Largest virgin strain-energy density alpha reached, which sets d [J/m^3 = Pa]."},
+      {"damage_dissipation", W::Cell, 1, "stress", N::Damage, true, "Accumulated damage dissipation per volume [J/m^3 = Pa]."},
       {"contact_status", W::Node, 1, "", N::Contact, true, "-1 not a slave node, 0 free (not checked), 1 inactive (checked, apart), 2 stick, 3 slip."},
       {"contact_gap", W::Node, 1, "length", N::Contact, true, "Normal gap of slave nodes (NaN on other nodes)."},
       {"contact_lambda_normal", W::Node, 1, "force", N::Contact, true, "Normal contact force of slave nodes."},
@@ -56,6 +60,7 @@ bool output_field_available(const OutputField& f, const OutputDeckTraits& d) {
     case N::Contact: return d.contact;
     case N::MasterSurface: return d.master_surface;
     case N::Plasticity: return d.plastic;
+    case N::Damage: return d.damage;
   }
   return false;
 }
@@ -66,7 +71,8 @@ std::string output_field_needs_text(OutputField::Needs n) {
     case N::Dynamics: return "needs 'Problem->analysis' = dynamic";
     case N::Contact: return "needs a 'Contact' sublist";
     case N::MasterSurface: return "needs a contact pair with a 'master' surface";
-    case N::Plasticity: return "needs a body of model 'Ciarlet-Geymonat plasticity'";
+    case N::Plasticity: return "needs a body of model 'Ciarlet-Geymonat plasticity' or 'neo-Hookean plasticity'";
+    case N::Damage: return "needs a body of model 'neo-Hookean damage'";
   }
   return "";
 }

@@ -131,7 +131,8 @@ std::vector<ListSpec> build_schema() {
   }
   s.push_back(list(
       "Materials/*", "Materials-><material>",
-      "A hyperelastic material. Ciarlet-Geymonat: W = C1 (I1 - 3) + C2 (I2 - 3) + D (I3 - 1) "
+      "A material law (hyperelastic, or with Gauss-point history: plasticity, damage). "
+      "Ciarlet-Geymonat: W = C1 (I1 - 3) + C2 (I2 - 3) + D (I3 - 1) "
       "- (C1 + 2 C2 + D) ln I3; small-strain mu = 2 (C1 + C2), lambda = 4 (C2 + D). The elastic constants "
       "are exactly one of three sets: `C1` + `D` (+ `C2`), `E` + `nu`, or `mu` + `lambda`; with E/nu or "
       "mu/lambda, C1 = mu/2 - C2 and D = lambda/4 - C2 with `C2` as given (default 0), both must be > 0 "
@@ -142,12 +143,16 @@ std::vector<ListSpec> build_schema() {
       "sum k1/(2 k2) [exp(k2 (I4 - 1)^2) - 1] over I4 = a0.C a0 > 1 (tension only; unmodified invariants), a0 at "
       "+-`fibre angle` to the circumferential direction of the cylindrical frame of `axis point` and `axis`. "
       "Plane strain in 2D. "
-      "`Ciarlet-Geymonat plasticity` adds multiplicative von Mises plasticity F = Fe Ftr with the Mandel "
-      "stress, yield |M|_H <= Y + H alpha and linear isotropic hardening (docs/plasticity.md); in dynamics "
-      "with the gonzalez (energy-dissipative), newmark or hht scheme.",
+      "`Ciarlet-Geymonat plasticity` and `neo-Hookean plasticity` add multiplicative von Mises plasticity "
+      "F = Fe Ftr with the Mandel stress, yield |M|_H <= Y + H alpha and linear isotropic hardening to the "
+      "Ciarlet-Geymonat resp. neo-Hookean law (docs/plasticity.md). `neo-Hookean damage`: Miehe's "
+      "discontinuous (Mullins-type) damage, W = (1 - d) W0 with W0 the neo-Hookean law, alpha the largest W0 "
+      "reached and d = d_inf (1 - exp(-alpha / beta)): unloading and reloading below alpha are elastic with the "
+      "softened stiffness. The laws with Gauss-point history (plasticity, damage) run in dynamics with the "
+      "gonzalez (energy-dissipative), newmark or hht scheme, not midpoint.",
       {str("model", "Ciarlet-Geymonat", "Constitutive law (docs/deck.md, Materials).")
-           .one_of({"Ciarlet-Geymonat", "Ciarlet-Geymonat plasticity", "neo-Hookean", "Mooney-Rivlin",
-                    "Holzapfel-Gasser-Ogden"}),
+           .one_of({"Ciarlet-Geymonat", "Ciarlet-Geymonat plasticity", "neo-Hookean", "neo-Hookean plasticity",
+                    "neo-Hookean damage", "Mooney-Rivlin", "Holzapfel-Gasser-Ogden"}),
        dbl("C1", 0.0, "First invariant coefficient [Pa] (with `D`; not with E/nu or mu/lambda).").gt(0.0)
            .dflt_doc("from E/nu or mu/lambda"),
        dbl("C2", 0.0, "Second invariant coefficient [Pa]; with E/nu or mu/lambda it sets the split of mu.").ge(0.0),
@@ -179,15 +184,28 @@ std::vector<ListSpec> build_schema() {
        dbl("density", 0.0, "Mass density [kg/m^3] (dynamics).").ge(0.0),
        dbl("viscosity", 0.0, "Viscosity eta [Pa s] (Curnier); unused in statics.").ge(0.0),
        dbl("yield stress", 0.0,
-           "Initial yield stress Y [Pa, the unit of C1, C2, D] of `Ciarlet-Geymonat plasticity`, where it is "
-           "required and must be > 0 (not allowed with other models): the bound on the Hill (von Mises) norm "
-           "of the Mandel stress.")
-           .ge(0.0),
+           "Initial yield stress Y [Pa, the unit of the moduli] of `Ciarlet-Geymonat plasticity` and "
+           "`neo-Hookean plasticity` (required there, not allowed with other models): the bound on the Hill "
+           "(von Mises) norm of the Mandel stress.")
+           .gt(0.0)
+           .dflt_doc("none"),
        dbl("hardening", 0.0,
-           "Linear isotropic hardening modulus H [Pa, the unit of C1, C2, D] of `Ciarlet-Geymonat "
-           "plasticity`: the yield stress is Y + H alpha (alpha the equivalent plastic strain); 0 is "
-           "perfect plasticity.")
-           .ge(0.0)}));
+           "Linear isotropic hardening modulus H [Pa, the unit of the moduli] of `Ciarlet-Geymonat plasticity` "
+           "and `neo-Hookean plasticity`: the yield stress is Y + H alpha (alpha the equivalent plastic strain); "
+           "0 is perfect plasticity.")
+           .ge(0.0),
+       dbl("saturation damage", 0.0,
+           "d_inf [-] of `neo-Hookean damage` (required there, not allowed with other models): the damage d = "
+           "d_inf (1 - exp(-alpha / beta)) tends to it as the largest virgin energy alpha grows; 0 is the "
+           "neo-Hookean law.")
+           .ge(0.0)
+           .lt(1.0)
+           .dflt_doc("none"),
+       dbl("damage energy scale", 0.0,
+           "beta [Pa = J/m^3, the unit of the moduli] of `neo-Hookean damage` (required there): the virgin "
+           "strain-energy density at which d reaches 63% of d_inf.")
+           .gt(0.0)
+           .dflt_doc("none")}));
 
   {
     auto l = list("Bodies", "Bodies", "The bodies to simulate (at least one): each is a mesh physical group made of one material.");

@@ -10,9 +10,9 @@
 // written once for all laws (src/assembly never names a law).
 //
 // make_material maps the deck's model name and constants (deck/Config.cpp validates them)
-// to the law. NeoHookeanDamage has no deck model name (it has parameters the deck does
-// not read); a caller builds it and hands it to the Assembler's constructor that takes
-// the laws (tests/system/test_material_dispatch.cpp).
+// to the law: `Ciarlet-Geymonat plasticity`, `neo-Hookean plasticity`, `neo-Hookean damage`
+// and the stateless laws of elastic_law. A caller may also build any law itself and hand
+// it to the Assembler's constructor that takes the laws (tests/system/test_material_dispatch.cpp).
 #pragma once
 #include <type_traits>
 #include <variant>
@@ -54,6 +54,10 @@ inline ElasticLaw elastic_law(const MaterialConfig& m) {
 inline Material make_material(const MaterialConfig& m) {
   if (m.model == "Ciarlet-Geymonat plasticity")
     return CiarletGeymonatPlasticity{CiarletGeymonat{m.C1, m.C2, m.D}, m.yield_stress, m.hardening};
+  if (m.model == "neo-Hookean plasticity")
+    return NeoHookeanPlasticity{NeoHookean{m.mu, m.lambda}, m.yield_stress, m.hardening};
+  if (m.model == "neo-Hookean damage")
+    return NeoHookeanDamage{NeoHookean{m.mu, m.lambda}, m.saturation_damage, m.damage_energy_scale};
   return elastic_law(m);
 }
 

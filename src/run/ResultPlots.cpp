@@ -92,6 +92,14 @@ void history_plots(const Model& m, const PlotTable& h, const std::string& stem, 
   if (m.contact && !contact.curves.empty() && plot_png(h, stem + "_contact.png", contact)) made.push_back(stem + "_contact.png");
 }
 
+// What the `plastic_dissipation` column holds: the dissipation of the deck's laws with
+// Gauss-point history (plasticity, damage).
+std::string history_dissipation_label(const Config& cfg) {
+  bool plastic = false, damage = false;
+  for (const auto& mat : cfg.materials) plastic |= mat.plastic(), damage |= mat.damage();
+  return plastic && damage ? "plastic + damage dissipation" : damage ? "damage dissipation" : "plastic dissipation";
+}
+
 // Dynamics: every term of the energy balance, and the balance per step.
 void energy_plots(const Model& m, const std::string& stem, const UnitLabels& u, std::vector<std::string>& made) {
   PlotTable e;
@@ -118,7 +126,9 @@ void energy_plots(const Model& m, const std::string& stem, const UnitLabels& u, 
   for (int k = 0; k < std::max<int>(1, static_cast<int>(m.cfg.stages.size())); ++k)
     if (m.cfg.dynamic_in(k) && schemes.find(m.cfg.scheme_in(k)) == std::string::npos)
       schemes += (schemes.empty() ? "" : ", ") + m.cfg.scheme_in(k);
-  PlotSpec s{"Energy balance (" + schemes + "): E = kinetic + strain, D = viscous + plastic dissipation",
+  const std::string law_dissipation = history_dissipation_label(m.cfg);
+  PlotSpec s{"Energy balance (" + schemes + "): E = kinetic + strain, D = viscous + " +
+                 (plastic ? law_dissipation : std::string("plastic dissipation")),
              with_unit("time", u.time), with_unit("energy", u.energy), "time", {}, true};
   s.curves = {{"kinetic", "kinetic energy", ""},
               {"strain", "strain energy", ""},
@@ -126,7 +136,7 @@ void energy_plots(const Model& m, const std::string& stem, const UnitLabels& u, 
               {"external_work", "external work W_ext", ""},
               {"support_work", "support work W_sup (Dirichlet reactions)", ""},
               {"viscous_dissipation", "viscous dissipation", ""}};
-  if (plastic) s.curves.push_back({"plastic_dissipation", "plastic dissipation", ""});
+  if (plastic) s.curves.push_back({"plastic_dissipation", law_dissipation, ""});
   if (wc) s.curves.push_back({"contact_work", "contact work W_contact", ""});
   if (fric) s.curves.push_back({"friction_dissipation", "frictional dissipation D_friction", ""});
   s.curves.push_back({"balance_error", "balance error " + balance, ""});

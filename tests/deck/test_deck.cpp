@@ -542,8 +542,9 @@ TEST_F(Deck, MaterialRanges) {
                {"'Materials->steel->density' must be >= 0, got -1"});
   expect_error(replace(kMinimalDeck, "<Parameter name=\"D\"",
                        "<Parameter name=\"model\" type=\"string\" value=\"neo-hooke\"/><Parameter name=\"D\""),
-               {"'Materials->steel->model' must be one of Ciarlet-Geymonat, Ciarlet-Geymonat plasticity, neo-Hookean, Mooney-Rivlin, "
-                "Holzapfel-Gasser-Ogden; got 'neo-hooke'; did you mean 'neo-Hookean'?"});
+               {"'Materials->steel->model' must be one of Ciarlet-Geymonat, Ciarlet-Geymonat plasticity, neo-Hookean, "
+                "neo-Hookean plasticity, neo-Hookean damage, Mooney-Rivlin, Holzapfel-Gasser-Ogden; got 'neo-hooke'; did you "
+                "mean 'neo-Hookean'?"});
 }
 
 // Elastic constants: exactly one of C1 + D (+ C2), E + nu, mu + lambda (material/ElasticConstants.hpp).
@@ -646,6 +647,131 @@ TEST_F(Deck, PlasticityParameters) {
   const std::string rho = "<Parameter name=\"density\" type=\"double\" value=\"1\"/>";
   expect_error(replace(replace(kMinimalDeck, d, plastic + Y + rho + d), "<ParameterList name=\"Mesh\">", dyn),
                {"plasticity needs 'Time Integration->scheme' = gonzalez"});
+}
+
+namespace {
+// kMinimalDeck with the material's C1/D replaced by `params` and, when `dynamic`, a
+// dynamic analysis with `scheme` (density 1).
+std::string material_deck(const std::string& params, bool dynamic = false, const std::string& scheme = "gonzalez") {
+  const std::string cg = "<Parameter name=\"C1\" type=\"double\" value=\"1\"/>\n      <Parameter name=\"D\" type=\"double\" value=\"2\"/>";
+  std::string deck = replace(kMinimalDeck, cg, params + (dynamic ? "<Parameter name=\"density\" type=\"double\" value=\"1\"/>" : ""));
+  if (dynamic)
+    deck = replace(deck, "<ParameterList name=\"Mesh\">",
+                   "<ParameterList name=\"Problem\"><Parameter name=\"analysis\" type=\"string\" value=\"dynamic\"/></ParameterList>"
+                   "<ParameterList name=\"Time Integration\"><Parameter name=\"scheme\" type=\"string\" value=\"" + scheme +
+                       "\"/></ParameterList><ParameterList name=\"Mesh\">");
+  return deck;
+}
+std::string dparam(const char* n, const char* v) { return std::string("<Parameter name=\"") + n + "\" type=\"double\" value=\"" + v + "\"/>"; }
+std::string model_param(const char* m) { return std::string("<Parameter name=\"model\" type=\"string\" value=\"") + m + "\"/>"; }
+}  // namespace
+
+// neo-Hookean plasticity: the neo-Hookean constants (E + nu or mu + lambda) and the
+// plasticity's yield stress and hardening, with the rules of Ciarlet-Geymonat plasticity.
+TEST_F(Deck, NeoHookeanPlasticityParameters) {
+  const std::string nh = model_param("neo-hookean Plasticity") + dparam("E", "2.6") + dparam("nu", "0.3");
+  const Config c = read_deck(write(material_deck(nh + dparam("yield stress", "0.01") + dparam("hardening", "0.1"))));
+  const MaterialConfig& m = c.materials[0];
+  EXPECT_EQ(m.model, "neo-Hookean plasticity");
+  EXPECT_TRUE(m.plastic());
+  EXPECT_TRUE(m.has_history());
+  EXPECT_FALSE(m.damage());
+  EXPECT_FALSE(m.ciarlet_geymonat());
+  EXPECT_NEAR(m.mu, 1.0, 1e-15);
+  EXPECT_NEAR(m.lambda, 1.5, 1e-15);
+  EXPECT_EQ(m.yield_stress, 0.01);
+  EXPECT_EQ(m.hardening, 0.1);
+  // The plastic fields are in the default output set, the damage ones are not there.
+  EXPECT_TRUE(c.output.wants("equivalent_plastic_strain"));
+  EXPECT_FALSE(c.output.wants("damage"));
+  const Config g = read_deck(write(material_deck(nh + dparam("yield stress", "1"), true)));
+  EXPECT_EQ(g.materials[0].hardening, 0.0);
+  expect_error(material_deck(nh), {"missing required parameter 'Materials->steel->yield stress' (double, > 0) for model = "
+                                   "neo-Hookean plasticity"});
+  expect_error(material_deck(nh + dparam("yield stress", "0")), {"'Materials->steel->yield stress' must be > 0, got 0"});
+  expect_error(material_deck(nh + dparam("yield stress", "1") + dparam("hardening", "-1")),
+               {"'Materials->steel->hardening' must be >= 0, got -1"});
+  expect_error(material_deck(model_param("neo-Hookean plasticity") + dparam("C1", "1") + dparam("D", "2") + dparam("yield stress", "1")),
+               {"'Materials->steel->C1' is a Ciarlet-Geymonat parameter", "neo-Hookean plasticity takes E + nu or mu + lambda"});
+  expect_error(material_deck(nh + dparam("C2", "0.1") + dparam("yield stress", "1")),
+               {"'Materials->steel->C2' needs 'model' = Ciarlet-Geymonat or Mooney-Rivlin"});
+  expect_error(material_deck(nh + dparam("yield stress", "1") + dparam("saturation damage", "0.5")),
+               {"'Materials->steel->saturation damage' needs 'model' = neo-Hookean damage"});
+  expect_error(material_deck(nh + dparam("yield stress", "1"), true, "midpoint"),
+               {"'Materials->steel->model' = neo-Hookean plasticity needs 'Time Integration->scheme' = gonzalez", "not midpoint"});
+  expect_error(material_deck(model_param("neo-Hookean") + dparam("E", "1") + dparam("nu", "0.3") + dparam("hardening", "1")),
+               {"'Materials->steel->hardening' needs 'model' = Ciarlet-Geymonat plasticity or neo-Hookean plasticity"});
+}
+
+// neo-Hookean damage (material/Damage.hpp): saturation damage d_inf in [0, 1) and damage
+// energy scale beta > 0, both required; refused with the midpoint scheme (as plasticity).
+TEST_F(Deck, NeoHookeanDamageParameters) {
+  const std::string nh = model_param("neo-Hookean damage") + dparam("mu", "1") + dparam("lambda", "2");
+  const std::string both = nh + dparam("saturation damage", "0.6") + dparam("damage energy scale", "0.05");
+  const Config c = read_deck(write(material_deck(both)));
+  const MaterialConfig& m = c.materials[0];
+  EXPECT_EQ(m.model, "neo-Hookean damage");
+  EXPECT_TRUE(m.damage());
+  EXPECT_TRUE(m.has_history());
+  EXPECT_FALSE(m.plastic());
+  EXPECT_EQ(m.mu, 1.0);
+  EXPECT_EQ(m.lambda, 2.0);
+  EXPECT_EQ(m.saturation_damage, 0.6);
+  EXPECT_EQ(m.damage_energy_scale, 0.05);
+  EXPECT_TRUE(c.output.wants("damage"));
+  EXPECT_TRUE(c.output.wants("max_virgin_energy"));
+  EXPECT_TRUE(c.output.wants("damage_dissipation"));
+  EXPECT_FALSE(c.output.wants("equivalent_plastic_strain"));
+  EXPECT_EQ(read_deck(write(material_deck(nh + dparam("saturation damage", "0") + dparam("damage energy scale", "1"))))
+                .materials[0].saturation_damage, 0.0);
+  EXPECT_EQ(read_deck(write(material_deck(both, true, "newmark"))).time.scheme, "newmark");
+  expect_error(material_deck(nh + dparam("damage energy scale", "1")),
+               {"missing required parameter 'Materials->steel->saturation damage' (double, in [0, 1)) for model = neo-Hookean damage"});
+  expect_error(material_deck(nh + dparam("saturation damage", "0.5")),
+               {"missing required parameter 'Materials->steel->damage energy scale' (double, > 0) for model = neo-Hookean damage"});
+  expect_error(material_deck(nh + dparam("saturation damage", "1") + dparam("damage energy scale", "1")),
+               {"'Materials->steel->saturation damage' must be in [0, 1), got 1"});
+  expect_error(material_deck(nh + dparam("saturation damage", "-0.1") + dparam("damage energy scale", "1")),
+               {"'Materials->steel->saturation damage' must be in [0, 1), got -0.1"});
+  expect_error(material_deck(nh + dparam("saturation damage", "0.5") + dparam("damage energy scale", "0")),
+               {"'Materials->steel->damage energy scale' must be > 0, got 0"});
+  expect_error(material_deck(both + dparam("yield stress", "1")),
+               {"'Materials->steel->yield stress' needs 'model' = Ciarlet-Geymonat plasticity or neo-Hookean plasticity"});
+  expect_error(material_deck(model_param("neo-Hookean damage") + dparam("C1", "1") + dparam("D", "2")),
+               {"'Materials->steel->C1' is a Ciarlet-Geymonat parameter", "neo-Hookean damage takes E + nu or mu + lambda"});
+  expect_error(material_deck(model_param("neo-Hookean") + dparam("mu", "1") + dparam("lambda", "2") + dparam("damage energy scale", "1")),
+               {"'Materials->steel->damage energy scale' needs 'model' = neo-Hookean damage"});
+  expect_error(material_deck(both, true, "midpoint"),
+               {"'Materials->steel->model' = neo-Hookean damage needs 'Time Integration->scheme' = gonzalez", "not midpoint"});
+  // The history fields of a law the deck does not have are refused by name.
+  expect_error(replace(material_deck(model_param("neo-Hookean") + dparam("mu", "1") + dparam("lambda", "2")),
+                       "  <ParameterList name=\"Bodies\">",
+                       "  <ParameterList name=\"Output\"><Parameter name=\"field list\" type=\"string\" value=\"damage\"/>"
+                       "</ParameterList>\n  <ParameterList name=\"Bodies\">"),
+               {"'Output->field list'", "'damage' needs a body of model 'neo-Hookean damage'"});
+  expect_error(replace(material_deck(both), "  <ParameterList name=\"Bodies\">",
+                       "  <ParameterList name=\"Output\"><Parameter name=\"field list\" type=\"string\" value=\"yielding\"/>"
+                       "</ParameterList>\n  <ParameterList name=\"Bodies\">"),
+               {"'Output->field list'", "'yielding' needs a body of model 'Ciarlet-Geymonat plasticity' or 'neo-Hookean plasticity'"});
+}
+
+// docs/deck.md's example of the two models (a plastic strut, a damaging intima) reads.
+TEST_F(Deck, DocsInelasticMaterialExampleParses) {
+  std::ifstream f(std::string(STENTOR_SOURCE_DIR) + "/docs/deck.md");
+  std::stringstream ss;
+  ss << f.rdbuf();
+  const std::string md = ss.str();
+  const auto b = md.find("<ParameterList name=\"strut\">");
+  ASSERT_NE(b, std::string::npos);
+  const std::string example = md.substr(b, md.find("```", b) - b);
+  const std::string steel = kMinimalDeck;
+  const auto m0 = steel.find("    <ParameterList name=\"steel\">"), m1 = steel.find("  </ParameterList>\n  <ParameterList name=\"Bodies\">");
+  const Config c = read_deck(write(replace(steel.substr(0, m0) + example + steel.substr(m1), "value=\"steel\"", "value=\"strut\"")));
+  ASSERT_EQ(c.materials.size(), 2u);
+  EXPECT_EQ(c.materials[0].model, "neo-Hookean plasticity");
+  EXPECT_EQ(c.materials[0].yield_stress, 300.0);
+  EXPECT_EQ(c.materials[1].model, "neo-Hookean damage");
+  EXPECT_EQ(c.materials[1].damage_energy_scale, 0.02);
 }
 
 TEST_F(Deck, OtherRangesAndChoices) {

@@ -26,7 +26,7 @@
 #include "deck/Config.hpp"
 #include "deck/OutputFields.hpp"
 #include "io/Units.hpp"
-#include "material/Plasticity.hpp"
+#include "material/MaterialRegistry.hpp"
 #include "run/Simulation.hpp"
 
 using namespace stentor;
@@ -214,17 +214,24 @@ TEST(OutputFields, EndOfEveryStage) {
   for (int k = 0; k < 4; ++k) EXPECT_NEAR(t[k], expect_t[k], 1e-14) << "step " << k;
 }
 
-// The catalogue knows every history variable a plastic body writes (Assembler::cell_fields
-// names them from the law), as a plasticity field; docs/deck.md's "Outputs" table names
-// every field.
-TEST(OutputFields, CatalogueMatchesLawAndDocs) {
-  for (const auto& h : CiarletGeymonatPlasticity::kHistory) {
+// The catalogue knows every history variable a law of the deck writes (Assembler::cell_fields
+// names them from the law), as a plasticity resp. damage field; docs/deck.md's "Outputs"
+// table names every field.
+template <class Law>
+void expect_catalogued(OutputField::Needs needs) {
+  for (const auto& h : Law::kHistory) {
     if (!h.output) continue;
     const auto& all = output_fields();
     const auto it = std::find_if(all.begin(), all.end(), [&](const OutputField& f) { return h.name == std::string(f.name); });
     ASSERT_NE(it, all.end()) << h.name;
-    EXPECT_EQ(it->needs, OutputField::Needs::Plasticity) << h.name;
+    EXPECT_EQ(it->needs, needs) << h.name;
   }
+}
+
+TEST(OutputFields, CatalogueMatchesLawAndDocs) {
+  expect_catalogued<CiarletGeymonatPlasticity>(OutputField::Needs::Plasticity);
+  expect_catalogued<NeoHookeanPlasticity>(OutputField::Needs::Plasticity);
+  expect_catalogued<NeoHookeanDamage>(OutputField::Needs::Damage);
   std::ifstream in(std::string(STENTOR_SOURCE_DIR) + "/docs/deck.md");
   std::stringstream ss;
   ss << in.rdbuf();
