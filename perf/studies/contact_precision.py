@@ -22,7 +22,8 @@ the reference's own error):
 Cost: wall time and CPU time (user + system) of the run.
 
   perf/studies/contact_precision.py [stentor]        (default build-dev/stentor)
-Environment: SCENES="s1a s1b s1c s1d s2 s3", SCHEMES="gonzalez midpoint newmark hht",
+Environment: SCENES="s1a s1b s1b100 s1b5000 s1c s1d s1d2 s2 s3" (s1b: eta = 1000; s1d2:
+  eta = 5000 with mu = 0.1), SCHEMES="gonzalez midpoint newmark hht",
   FORMS="persistence gap", NS="50 100 200 400", NREF=3200, T (default per scene: 0.2 s;
   S2 0.1 s, the first impact and the free flight after it), SIZE (mesh size, default per
   scene: 0.05 for the ring, 0.12 for the torus as in its deck), CUTBACKS=0 (Stepping->max cutbacks; empty: the deck's default, then dt is the
@@ -43,7 +44,7 @@ import studylib as sl  # noqa: E402
 
 env = os.environ.get
 STENTOR = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else os.path.join(sl.ROOT, "build-dev", "stentor"))
-SCENES = env("SCENES", "s1a s1b s1c s1d s2 s3").split()
+SCENES = env("SCENES", "s1a s1b s1b100 s1b5000 s1c s1d s1d2 s2 s3").split()
 SCHEMES = env("SCHEMES", "gonzalez midpoint newmark hht").split()
 FORMS = env("FORMS", "persistence gap").split()
 NS = [int(n) for n in env("NS", "50 100 200 400").split()]
@@ -65,9 +66,15 @@ SCENE = {  # deck, contact pair, friction, viscosity [Pa s], probe point, T [s],
     "s1a": ("s1_ring.xml", "floor", 0.0, 0.0, RING_TOP, 0.2, 0.05, "S1(a): ring on a rigid plane, frictionless"),
     "s1b": ("s1_ring.xml", "floor", 0.0, 1000.0, RING_TOP, 0.2, 0.05,
             "S1(b): ring on a rigid plane, eta = 1000 Pa s, frictionless"),
+    "s1b100": ("s1_ring.xml", "floor", 0.0, 100.0, RING_TOP, 0.2, 0.05,
+               "S1(b): ring on a rigid plane, eta = 100 Pa s, frictionless"),
+    "s1b5000": ("s1_ring.xml", "floor", 0.0, 5000.0, RING_TOP, 0.2, 0.05,
+                "S1(b): ring on a rigid plane, eta = 5000 Pa s, frictionless"),
     "s1c": ("s1_ring.xml", "floor", 0.3, 0.0, RING_TOP, 0.2, 0.05, "S1(c): ring on a rigid plane, mu = 0.3"),
     "s1d": ("s1_ring.xml", "floor", 0.3, 1000.0, RING_TOP, 0.2, 0.05,
             "S1(d): ring on a rigid plane, eta = 1000 Pa s, mu = 0.3"),
+    "s1d2": ("s1_ring.xml", "floor", 0.1, 5000.0, RING_TOP, 0.2, 0.05,
+             "S1(d): ring on a rigid plane, eta = 5000 Pa s, mu = 0.1"),
     "s2": ("s2_torus.xml", "floor", 0.0, 0.0, TORUS_TOP, 0.1, 0.12, "S2: 3D torus on a rigid plane, frictionless"),
     "s3": ("s3_ring_foundation.xml", "impact", 0.0, 0.0, RING_TOP, 0.2, 0.05,
            "S3: ring on a deformable foundation, frictionless"),
