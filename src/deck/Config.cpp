@@ -84,6 +84,12 @@ bool Config::any_dynamic() const {
   return std::any_of(stages.begin(), stages.end(), [](const StageConfig& s) { return s.dynamic(); });
 }
 
+bool Config::one_analysis() const {
+  for (int k = 1; k < interval_count(); ++k)
+    if (analysis_in(k) != analysis_in(0)) return false;
+  return true;
+}
+
 bool Config::any_static() const {
   if (stages.empty()) return !problem.dynamic();
   return std::any_of(stages.begin(), stages.end(), [](const StageConfig& s) { return !s.dynamic(); });
@@ -1592,9 +1598,8 @@ void DeckReader::read_stage_analysis(const ParameterList& sub, const std::string
 // analysis and scheme) are known.
 void DeckReader::check_analysis(bool initial_conditions, bool time_integration) {
   const bool staged = !cfg_.stages.empty();
-  const int n = staged ? static_cast<int>(cfg_.stages.size()) : 1;
-  for (int k = 0; k < n; ++k) {
-    if (!cfg_.dynamic_in(k) || cfg_.scheme_in(k) != "midpoint") continue;
+  for (int k = 0; k < cfg_.interval_count(); ++k) {
+    if (cfg_.analysis_in(k) != "midpoint") continue;
     for (const auto& m : cfg_.materials)
       if (m.has_history())  // the element kernels have no midpoint evaluation of a law with history
         fail("'Materials->" + m.name + "->model' = " + m.model + " needs " +

@@ -277,6 +277,12 @@ struct Config {
   const std::string& scheme_in(int stage) const {
     return stages.empty() ? time.scheme : stages[static_cast<std::size_t>(stage)].scheme;
   }
+  // "static", or the time scheme of a dynamic stage.
+  std::string analysis_in(int stage) const { return dynamic_in(stage) ? scheme_in(stage) : std::string("static"); }
+  // The number of intervals the run steps through: its stages, or the one without stages.
+  int interval_count() const { return stages.empty() ? 1 : static_cast<int>(stages.size()); }
+  // Every interval has the same analysis and scheme.
+  bool one_analysis() const;
   // Whether some stage (the run without stages) is dynamic / static: what is built once
   // (mass matrix, time integrator, energy output; the supports check of static bodies).
   bool any_dynamic() const;

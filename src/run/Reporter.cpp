@@ -169,15 +169,15 @@ void Reporter::print_model() {
 
 // "static (load stepping)", "dynamic: <scheme>", or with stages of several analyses or
 // schemes the list "per stage: insertion static, inflation dynamic (gonzalez), ...".
+namespace {
+// "static" or "dynamic (<scheme>)" of a stage.
+std::string stage_analysis(const StageConfig& st) { return st.dynamic() ? "dynamic (" + st.scheme + ")" : std::string("static"); }
+}  // namespace
+
 std::string Reporter::analysis_text() const {
-  const auto& stages = cfg_.stages;
-  const bool uniform = std::all_of(stages.begin(), stages.end(), [&](const StageConfig& st) {
-    return st.analysis == stages.front().analysis && (!st.dynamic() || st.scheme == stages.front().scheme);
-  });
-  if (uniform) return m_.dynamic ? "dynamic: " + m_.integrator->description() : std::string("static (load stepping)");
+  if (cfg_.one_analysis()) return m_.dynamic ? "dynamic: " + m_.integrator->description() : std::string("static (load stepping)");
   std::string text = "per stage:";
-  for (const StageConfig& st : stages)
-    text += (&st == &stages.front() ? " " : ", ") + st.name + " " + (st.dynamic() ? "dynamic (" + st.scheme + ")" : std::string("static"));
+  for (const StageConfig& st : cfg_.stages) text += (&st == &cfg_.stages.front() ? " " : ", ") + st.name + " " + stage_analysis(st);
   return text;
 }
 
@@ -449,8 +449,7 @@ void Reporter::history_row(const RunState& s, const StepRecord& rec, double ener
 void Reporter::begin_stage(std::size_t k) {
   const StageConfig& st = cfg_.stages[k];
   out_ << "stage " << k + 1 << "/" << cfg_.stages.size() << " '" << st.name << "': t " << fmt_time(st.start) << " -> "
-       << fmt_time(st.end) << ", " << st.num_steps << " step(s) of " << fmt_time(st.step()) << ", "
-       << (st.dynamic() ? "dynamic (" + st.scheme + ")" : std::string("static")) << "\n";
+       << fmt_time(st.end) << ", " << st.num_steps << " step(s) of " << fmt_time(st.step()) << ", " << stage_analysis(st) << "\n";
 }
 
 void Reporter::begin_interval(double t0, double t1) {

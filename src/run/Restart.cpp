@@ -38,14 +38,10 @@ std::string deck_hash(const std::string& deck_path) {
 // schemes, one per stage ("static, gonzalez, newmark").
 std::string scheme_name(const Model& m) {
   const Config& c = m.cfg;
-  auto one = [&c](int k) { return c.dynamic_in(k) ? c.scheme_in(k) : std::string("static"); };
-  std::string all = one(0), first = all;
-  bool uniform = true;
-  for (int k = 1; k < static_cast<int>(c.stages.size()); ++k) {
-    all += ", " + one(k);
-    uniform = uniform && one(k) == first;
-  }
-  return uniform ? first : all;
+  std::string all = c.analysis_in(0);
+  if (c.one_analysis()) return all;
+  for (int k = 1; k < c.interval_count(); ++k) all += ", " + c.analysis_in(k);
+  return all;
 }
 
 // Records of every rank gathered on rank 0 into one table sorted by id (ncols: the largest
@@ -319,7 +315,7 @@ Restart read_restart(const std::string& path, const Model& model, const RunOptio
     if (model.any_dynamic) {
       // The checkpoint's step wrote an energy row if its stage is dynamic (and it is a step).
       const long long step = r.data.integer("step"), stage = r.data.integer("stage");
-      const bool known = stage >= 0 && stage < std::max<long long>(1, static_cast<long long>(model.cfg.stages.size()));
+      const bool known = stage >= 0 && stage < model.cfg.interval_count();
       const bool row = step > 0 && (!known || model.cfg.dynamic_in(static_cast<int>(stage)));
       r.energy_lines = csv_lines_until(stem + "_energy.csv", step, row ? 1 : 0);
     }

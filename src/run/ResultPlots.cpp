@@ -123,7 +123,7 @@ void energy_plots(const Model& m, const std::string& stem, const UnitLabels& u, 
   const bool c = wc != nullptr;
   const std::string balance = std::string("E - E_0 - (W_ext + W_sup") + (c ? " + W_contact" : "") + " - D" + (c ? " - D_friction" : "") + ")";
   std::string schemes;  // of the dynamic stages (the run's without stages)
-  for (int k = 0; k < std::max<int>(1, static_cast<int>(m.cfg.stages.size())); ++k)
+  for (int k = 0; k < m.cfg.interval_count(); ++k)
     if (m.cfg.dynamic_in(k) && schemes.find(m.cfg.scheme_in(k)) == std::string::npos)
       schemes += (schemes.empty() ? "" : ", ") + m.cfg.scheme_in(k);
   const std::string law_dissipation = history_dissipation_label(m.cfg);

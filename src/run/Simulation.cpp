@@ -238,8 +238,8 @@ bool run_interval(Run& r, double end) {
   return true;
 }
 
-// Stage k is about to run: its analysis (Model::set_stage: the scheme, `auto` contact pairs)
-// and what changes where the analysis does. A static stage after a dynamic one starts at
+// Stage k is about to run: its analysis (Model::set_stage: `auto` contact pairs follow it)
+// and what changes where the analysis or the scheme does. A static stage after a dynamic one starts at
 // rest (v = 0; its first guess is lifted, not extrapolated from the last dynamic increment);
 // a dynamic stage after a static one starts at rest from the static state, with an energy
 // row at its start (the energy CSV holds the dynamic stages); newmark/hht after the midpoint

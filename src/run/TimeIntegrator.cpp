@@ -12,7 +12,7 @@ TimeIntegrator::TimeIntegrator(const Config& cfg, Assembler& assembler, const Di
     : cfg_(cfg), assembler_(assembler), dist_(dist), mesh_(mesh) {
   set_scheme(cfg.scheme_in(0));
   bool midpoint = false, end_point = false;
-  for (int k = 0; k < std::max<int>(1, static_cast<int>(cfg.stages.size())); ++k)
+  for (int k = 0; k < cfg.interval_count(); ++k)
     if (cfg.dynamic_in(k)) (cfg.scheme_in(k) == "gonzalez" || cfg.scheme_in(k) == "midpoint" ? midpoint : end_point) = true;
   keep_mean_acceleration_ = midpoint && end_point;
   const auto& map = dist.owned_map();
@@ -37,15 +37,13 @@ double TimeIntegrator::assemble_state(const la::Vector& u, double t, double end_
 EnergyAudit TimeIntegrator::begin_stage(const la::Vector& u, double t, double end_time, const std::string& scheme, bool at_rest) {
   const bool had_end_point_state = !midpoint_family();
   set_scheme(scheme);
+  double strain = 0.0;
   if (at_rest) {
     // A converged static state: f_int - f_ext balances the supports and the contact forces,
     // so a_n = 0 (to Newton's tolerance) is the acceleration, contact included, which a mass
     // solve of f_ext - f_int would miss.
     v_->putScalar(0.0);
     a_->putScalar(0.0);
-  }
-  double strain = 0.0;
-  if (at_rest) {
     strain = assemble_state(u, t, end_time);
   } else if (!midpoint_family() && !had_end_point_state) {
     // From the midpoint family: accept() left the last step's mean acceleration in a_ and
@@ -263,8 +261,7 @@ EnergyAudit TimeIntegrator::accept(const la::Vector& u_n, const la::Vector& u_np
 // x = X + u (consistent mass: these are the discrete momenta the midpoint schemes conserve).
 EnergyAudit TimeIntegrator::audit(const la::Vector& u) const {
   EnergyAudit au;
-  assembler_.mass()->apply(*v_, *Mv_);
-  au.kinetic = 0.5 * v_->dot(*Mv_);
+  au.kinetic = kinetic_energy();  // leaves M v in Mv_
   const int dim = dist_.dim();
   auto mv = Mv_->getLocalViewHost(Tpetra::Access::ReadOnly);
   auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);

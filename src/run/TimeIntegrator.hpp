@@ -79,7 +79,7 @@ class TimeIntegrator {
   void set_energy_n(double e) { energy_n_ = e; }
   bool midpoint_family() const { return scheme_ == "gonzalez" || scheme_ == "midpoint"; }
   const std::string& scheme() const { return scheme_; }
-  // 1/2 v_n . M v_n (collective).
+  // 1/2 v_n . M v_n, with M v_n left in Mv_ (collective).
   double kinetic_energy() const;
   std::string description() const;
 

@@ -191,7 +191,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     }
     u.update(1.0, u_trial, 0.0);
     r.update(1.0, r_trial, 0.0);
-    const double step = t.alpha * du.norm2();
+    const double step = t.alpha * scaled * du_full;  // |alpha du| of the (limited) update
     const double un = u.norm2();
     rn = t.rn;
     res.iterations = it;
