@@ -91,9 +91,20 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
     }
     pairs_.push_back(std::move(p));
   }
+  // The replicated surface: master nodes, and the slave nodes of mortar pairs (a mortar
+  // node's conditions read its neighbours' positions).
+  std::vector<char> is_surface = is_master;
+  for (auto& p : pairs_)
+    if (p.master && p.cfg.discretization == "mortar") {
+      p.mortar = true;
+      p.slave_faces = std::make_unique<MasterSurface>(mesh, p.cfg.slave, "'Contact->" + p.cfg.name + "->slave'");
+      for (GId g : p.slave_faces->nodes()) is_surface[static_cast<std::size_t>(g)] = 1;
+    }
   std::vector<int> slave_of(mesh.num_nodes(), -1);
   for (std::size_t ip = 0; ip < pairs_.size(); ++ip) setup_slaves(ip, cfg, mesh, assembler, is_master, slave_of);
-  if (has_master_) setup_master_maps(mesh, is_master, assembler);
+  if (has_master_) setup_master_maps(mesh, is_surface, assembler);
+  for (auto& p : pairs_)
+    if (p.mortar) setup_mortar(p);
 }
 
 // Pair ip's slave nodes owned here (checks: the mesh dimension of an obstacle, a node in
@@ -165,12 +176,12 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
 
 // Replicated master dofs: import of displacements, export (ADD) of reactions, prescribed
 // master dofs, tributary areas.
-void Contact::setup_master_maps(const Mesh& mesh, const std::vector<char>& is_master, const Assembler& assembler) {
+void Contact::setup_master_maps(const Mesh& mesh, const std::vector<char>& is_surface, const Assembler& assembler) {
   const Distribution& dist = dist_;
 
   master_pos_.assign(mesh.num_nodes(), -1);
   for (std::size_t g = 0; g < mesh.num_nodes(); ++g)
-    if (is_master[g]) {
+    if (is_surface[g]) {
       master_pos_[g] = static_cast<int>(master_nodes_.size());
       master_nodes_.push_back(static_cast<GId>(g));
       for (int c = 0; c < 3; ++c) master_X_.push_back(mesh.x[3 * g + static_cast<std::size_t>(c)]);
@@ -215,7 +226,8 @@ std::string Contact::description() const {
     Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &loc, &glob);
     os << (i ? "\n           " : "") << p.cfg.name << ": " << glob << " nodes of '" << p.cfg.slave << "' vs ";
     if (p.master)
-      os << "master surface '" << p.cfg.master << "' (" << p.master->facets().size() << " facets)";
+      os << "master surface '" << p.cfg.master << "' (" << p.master->facets().size() << " facets, "
+         << (p.mortar ? "dual mortar" : "node-to-segment") << ")";
     else
       os << p.cfg.obstacle;
     if (mixed_analysis_ && p.cfg.formulation == "auto")
@@ -276,6 +288,11 @@ void Contact::initialize(const la::Vector& u0, double end_time) {
   }
   auto uh = u0.getLocalViewHost(Tpetra::Access::ReadOnly);
   for (auto& p : pairs_) {
+    if (p.mortar) {
+      mortar_geometry(p);
+      for (auto& nd : p.nodes) nd.d_n = nd.d_prev = nd.gap;
+      continue;
+    }
     if (p.master) p.master->build(master_x_);
     const contact::Obstacle ob = obstacle(p, 0.0);
     for (auto& nd : p.nodes) {
@@ -438,6 +455,18 @@ void Contact::node_input(const Pair& p, const Slave& nd, const double* x, contac
     }
 }
 
+contact::LawParams Contact::node_params(const Pair& p, const Slave& nd, const contact::LawParams& lp) const {
+  contact::LawParams q = lp;
+  q.sp = nd.scale;
+  if (nd.prev_state < contact::Stick) q.release = 0.0;
+  // Deck values are per unit area (the multipliers then compare as pressures, so one
+  // c has one meaning on every mesh); automatic: the node's stiffness scale.
+  const double area = nd.area > 0.0 ? nd.area : 1.0;
+  q.cn = p.cfg.c_normal > 0.0 ? p.cfg.c_normal * area : nd.scale * (p.persistence ? lp.dt : 1.0);
+  q.ct = p.cfg.c_tangent > 0.0 ? p.cfg.c_tangent * area : nd.scale * lp.dt;
+  return q;
+}
+
 // s_p: the largest tangent diagonal entry of the node's dofs (a force/length scale).
 void Contact::read_scales(const la::CrsMatrix& K) {
   auto Kl = K.getLocalMatrixHost();
@@ -490,6 +519,11 @@ void Contact::evaluate_nodes(const la::Vector& u, la::Vector& r) {
       lp.release = 1e-8 * glob;
     }
     const double lf = dt_last_ > 0.0 ? 0.5 * dt_ / dt_last_ : 0.5;
+    if (p.mortar) {
+      evaluate_mortar(p, lp, lf, uh.data(), rh.data());
+      continue;
+    }
+    const Contact* self = this;
     Slave* nodes = p.nodes.data();
     contact::NodeOutput* outs = p.out.data();
     const Pair* pp = &p;
@@ -514,15 +548,7 @@ void Contact::evaluate_nodes(const la::Vector& u, la::Vector& r) {
           }
           contact::NodeInput in;
           node_input(*pp, nd, x, in);
-          contact::LawParams q = lp;
-          q.sp = nd.scale;
-          if (nd.prev_state < contact::Stick) q.release = 0.0;
-          // Deck values are per unit area (the multipliers then compare as pressures, so one
-          // c has one meaning on every mesh); automatic: the node's stiffness scale.
-          const double area = nd.area > 0.0 ? nd.area : 1.0;
-          q.cn = pp->cfg.c_normal > 0.0 ? pp->cfg.c_normal * area : nd.scale * (pp->persistence ? lp.dt : 1.0);
-          q.ct = pp->cfg.c_tangent > 0.0 ? pp->cfg.c_tangent * area : nd.scale * lp.dt;
-          contact::evaluate(in, q, obp, o);
+          contact::evaluate(in, self->node_params(*pp, nd, lp), obp, o);
           nd.state = o.state;
           nd.gap = o.gap;
           for (int c = 0; c < 3; ++c) nd.normal[c] = o.normal[c], nd.rel[c] = o.rel[c];
@@ -546,6 +572,15 @@ void Contact::send_reactions(la::Vector& r) {
       for (std::size_t i = 0; i < p.nodes.size(); ++i) {
         const Slave& nd = p.nodes[i];
         if (nd.state < contact::Stick) continue;
+        if (p.mortar) {
+          const MortarNode& mo = p.mortar_out[i];
+          for (std::size_t k = 0; k < mo.masters.size(); ++k)
+            for (int c = 0; c < dim_; ++c) {
+              const auto kk = static_cast<std::size_t>(mo.masters[k] * dim_ + c);
+              if (!master_fixed_[kk]) mh(kk, 0) += mo.add[k * static_cast<std::size_t>(dim_) + static_cast<std::size_t>(c)];
+            }
+          continue;
+        }
         const auto& fc = p.master->facets()[static_cast<std::size_t>(nd.facet)];
         for (int a = 0; a < fc.nn; ++a)
           for (int c = 0; c < dim_; ++c) {
@@ -619,7 +654,6 @@ void Contact::rewrite_rigid_rows(la::CrsMatrix& K) {
 // product touches only those rows of K. Entries of rows owned elsewhere (master nodes)
 // are sent at fillComplete.
 la::RCP<la::CrsMatrix> Contact::coupled_tangent(const la::RCP<la::CrsMatrix>& K) {
-  using Row = std::vector<std::pair<la::GO, double>>;
   const auto& map = dist_.owned_map();
   const std::size_t nown = map->getNodeNumElements();
   std::vector<Row> q(nown), g(nown);
@@ -635,6 +669,10 @@ la::RCP<la::CrsMatrix> Contact::coupled_tangent(const la::RCP<la::CrsMatrix>& K)
       const Slave& nd = p.nodes[i];
       if (nd.state < contact::Stick) continue;
       ++active;
+      if (p.mortar) {
+        mortar_rows(p, i, q, g, q_far, g_far);
+        continue;
+      }
       const contact::NodeOutput& o = p.out[i];
       const auto& fc = p.master->facets()[static_cast<std::size_t>(nd.facet)];
       const int off_r = dim_ * (1 + fc.nn);
@@ -701,7 +739,11 @@ std::array<long, 2> Contact::pattern_signature() const {
     if (!p.master) continue;
     for (const auto& nd : p.nodes) {
       if (nd.state < contact::Stick) continue;
-      const auto h = static_cast<unsigned long>(nd.gid) * 2654435761ul + static_cast<unsigned long>(nd.facet) * 40503ul + 12345ul;
+      auto h = static_cast<unsigned long>(nd.gid) * 2654435761ul + static_cast<unsigned long>(nd.facet) * 40503ul + 12345ul;
+      if (p.mortar) {
+        const MortarNode& mo = p.mortar_out[static_cast<std::size_t>(&nd - p.nodes.data())];
+        for (int v : mo.vars) h += (static_cast<unsigned long>(v) + 1ul) * 40503ul;
+      }
       loc[0] += 1;
       loc[1] += static_cast<long>(h & 0xffffffffffful);  // 44 bits: no overflow over 2^19 nodes
     }
@@ -805,12 +847,16 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
   for (std::size_t i = 0; i < np; ++i) {
     auto& p = pairs_[i];
     if (p.master) p.master->build(master_x_);
+    if (p.mortar) mortar_geometry(p);
     const contact::Obstacle ob = obstacle(p, t1_);
     for (auto& nd : p.nodes) {
       double x[3] = {nd.X[0], nd.X[1], nd.X[2]}, n[3] = {0, 0, 0};
       for (int c = 0; c < dim_; ++c) x[c] += uh(nd.lid * dim_ + c, 0);
       double d = 0.0, rel[3] = {0, 0, 0};
-      if (p.master) {
+      if (p.mortar) {
+        d = nd.gap;
+        for (int c = 0; c < 3; ++c) n[c] = nd.normal[c], rel[c] = nd.rel[c];
+      } else if (p.master) {
         // Active nodes keep the facet of their last evaluation; others look again.
         if (nd.state < contact::Stick) locate(p, nd, x);
         d = facet_gap(p, nd, x, n, rel);
@@ -907,6 +953,14 @@ Contact::NodalFields Contact::master_fields() const {
     if (!p.master) continue;
     for (const Slave& nd : p.nodes) {
       if (nd.state < contact::Stick || nd.facet < 0) continue;
+      if (p.mortar) {
+        const MortarNode& mo = p.mortar_out[static_cast<std::size_t>(&nd - p.nodes.data())];
+        for (std::size_t k = 0; k < mo.masters.size(); ++k) {
+          auto& f = force[mo.masters[k]];
+          for (int c = 0; c < 3; ++c) f[static_cast<std::size_t>(c)] -= mo.w[k] * nd.f[c];
+        }
+        continue;
+      }
       const auto& fc = p.master->facets()[static_cast<std::size_t>(nd.facet)];
       double xa[facet::kMaxNodes][3];
       for (int a = 0; a < fc.nn; ++a)

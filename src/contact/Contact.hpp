@@ -8,18 +8,22 @@
 //   contact/NodeLaw.hpp        the conditions of one slave node (gap or persistence,
 //                              Coulomb stick/slip) as a function of its local unknowns;
 //   contact/MasterSurface.*    master facets of a boundary group and their search bins;
-//   contact/Contact.*          pairs, slave nodes, the active set, and the enforcement.
+//   contact/Mortar.hpp         dual mortar integrals of a slave facet against a master facet;
+//   contact/Contact.*          pairs, slave nodes, the active set, and the enforcement
+//                              (ContactMortar.cpp: the mortar discretization's nodes).
 //
 // Multipliers are condensed: the contact force on a slave node is its bulk residual
 // F = r_p (talk's signs: lambda_nu = -n . r_p <= 0 in compression). An active node's
 // rows are replaced by its conditions, and (master surfaces) the master facet's nodes
-// receive the reaction r_a += N_a(xi) r_p. The modified residual is R = Q r + c(u), so
+// receive the reaction r_a += N_a(xi) r_p (mortar: r_k += w_pk r_p, the master nodes' mortar
+// weights, and the normal is the slave surface's nodal normal). The modified residual is R = Q r + c(u), so
 // its tangent is K' = Q K + G with G = (dR/du at fixed r): for rigid obstacles Q and G
 // only touch a node's own rows and columns and K is rewritten in place; with master
 // surfaces K' = Q K + G is formed with Tpetra's sparse matrix product (the graph follows
 // the contact couplings, across ranks). Without active nodes K is used as it is.
 #pragma once
 #include <array>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -148,12 +152,30 @@ class Contact {
     double gap = 0.0, normal[3] = {0, 0, 0}, rel[3] = {0, 0, 0};
   };
 
+  // A mortar slave node's conditions at the last evaluation (ContactMortar.cpp). Its local
+  // unknowns: the positions of the nodes `vars` (dim each; surface positions, vars[0] the
+  // slave node itself), then its bulk residual (dim).
+  struct MortarNode {
+    std::vector<int> vars;      // surface positions (master_nodes_ order)
+    std::vector<int> masters;   // surface positions of the master nodes that receive the reaction
+    std::vector<double> w;      // their weights w_pk = M_pk / S_p
+    int nvar = 0;
+    double res[3] = {0, 0, 0};
+    std::vector<double> dres;   // dim x nvar
+    std::vector<double> add;    // masters x dim: w_pk r_p
+    std::vector<double> dadd;   // masters x dim x nvar
+  };
+
  private:
   struct Pair {
     ContactPairConfig cfg;
     bool persistence = true;
     std::unique_ptr<MasterSurface> master;  // null: rigid obstacle
     std::unique_ptr<SurfaceProjection> surface;  // the slave group's facets (every rank: the whole group)
+    bool mortar = false;                         // cfg.discretization == "mortar"
+    std::unique_ptr<MasterSurface> slave_faces;  // mortar: the slave group's oriented facets (surface positions)
+    std::vector<std::vector<int>> node_faces;    // mortar: per slave node (nodes order), its slave facets
+    std::vector<MortarNode> mortar_out;          // mortar: per slave node, the last evaluation
     std::vector<Slave> nodes;
     std::vector<contact::NodeOutput> out;   // per slave node, last apply()
     long excluded = 0;                      // slave nodes with every component prescribed (left out), global
@@ -162,7 +184,7 @@ class Contact {
   };
   void setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, const Assembler& assembler, const std::vector<char>& is_master,
                     std::vector<int>& slave_of);
-  void setup_master_maps(const Mesh& mesh, const std::vector<char>& is_master, const Assembler& assembler);
+  void setup_master_maps(const Mesh& mesh, const std::vector<char>& is_surface, const Assembler& assembler);
   contact::Obstacle obstacle(const Pair& p, double t) const;
   std::array<double, 3> translation(const Pair& p, double t) const;
   // Positions of the master nodes at u (3 per master node; imports u's master dofs).
@@ -172,6 +194,8 @@ class Contact {
   bool keep_facet(const Pair& p, Slave& nd, const double* x) const;
   double facet_gap(const Pair& p, const Slave& nd, const double* x, double* n, double* rel) const;
   void node_input(const Pair& p, const Slave& nd, const double* x, contact::NodeInput& in) const;
+  // The law's parameters of one slave node: its stiffness scale, release threshold and c_nu, c_tau.
+  contact::LawParams node_params(const Pair& p, const Slave& nd, const contact::LawParams& lp) const;
   void read_scales(const la::CrsMatrix& K);
   void evaluate_nodes(const la::Vector& u, la::Vector& r);
   void send_reactions(la::Vector& r);
@@ -181,6 +205,21 @@ class Contact {
   bool refill(const la::CrsMatrix& K, const la::CrsMatrix& D);
   void update_changed();
   std::vector<double> slave_pressures(const Pair& p) const;
+  // Mortar (ContactMortar.cpp).
+  struct FaceCoupling;
+  void setup_mortar(Pair& p);
+  std::vector<std::vector<FaceCoupling>> couple_faces(const Pair& p, const std::vector<char>& needed) const;
+  // Slave node i's mortar geometry at the current surface positions: gap d (the search
+  // radius without a master), normal, relative displacement; with `law`, also its
+  // conditions into p.mortar_out[i] (returns the state; Free without a master).
+  int mortar_node(Pair& p, std::size_t i, const std::vector<std::vector<FaceCoupling>>& cpl, const contact::LawParams* law, double* d,
+                  double* n, double* rel);
+  void evaluate_mortar(Pair& p, const contact::LawParams& lp, double lf, const double* u, double* r);
+  void mortar_geometry(Pair& p);  // gap, normal, rel of every slave node (initialize, accept)
+  // Rows of Q - I and G (coupled_tangent) of active mortar node i: its own rows, its master nodes'.
+  using Row = std::vector<std::pair<la::GO, double>>;
+  void mortar_rows(const Pair& p, std::size_t i, std::vector<Row>& q, std::vector<Row>& g, std::map<la::GO, Row>& q_far,
+                   std::map<la::GO, Row>& g_far) const;
 
   int dim_;
   double end_time_ = 1.0, t0_ = 0.0, t1_ = 0.0, dt_ = 1.0, dt_last_ = 0.0, gap_tol_ = 0.0, model_size_ = 0.0;

@@ -93,6 +93,22 @@ MasterSurface::Hit MasterSurface::on_facet(int f, int dim, const double xs[3], c
   return hit;
 }
 
+void MasterSurface::near(const double lo[3], const double hi[3], std::vector<int>& out) const {
+  out.clear();
+  double l[3], u[3];
+  for (int c = 0; c < 3; ++c) l[c] = lo[c] - cell_, u[c] = hi[c] + cell_;
+  long long a[3], b[3];
+  cell_of(l, a);
+  cell_of(u, b);
+  for (long long i = a[0]; i <= b[0]; ++i)
+    for (long long j = a[1]; j <= b[1]; ++j)
+      for (long long k = a[2]; k <= b[2]; ++k) {
+        const long long c[3] = {i, j, k};
+        auto it = bins_.find(key(c));
+        if (it != bins_.end()) out.insert(out.end(), it->second.begin(), it->second.end());
+      }
+}
+
 MasterSurface::Hit MasterSurface::closest(int dim, const double xs[3], const std::vector<double>& x) const {
   Hit best;
   best.dist = 1e300;

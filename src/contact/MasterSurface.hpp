@@ -53,6 +53,9 @@ class MasterSurface {
   // The projection of xs on facet f, extended by `band` (parametric) past its edges; facet
   // -1 when it falls outside that, or xs is beyond the search radius or more than h behind.
   Hit on_facet(int f, int dim, const double xs[3], const std::vector<double>& x, double band) const;
+  // Facets whose centre lies within one bin spacing (3h) of the box [lo, hi] (after build()):
+  // every facet that can overlap a slave facet with that box, or lie within 2h of it.
+  void near(const double lo[3], const double hi[3], std::vector<int>& out) const;
 
  private:
   void cell_of(const double* p, long long* i) const;

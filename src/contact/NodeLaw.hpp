@@ -221,30 +221,23 @@ KOKKOS_INLINE_FUNCTION T geometry(const NodeInput& in, const Obstacle* ob, const
 template <class T>
 KOKKOS_INLINE_FUNCTION T dot3(const T* a, const T* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-// The conditions of one node in scalar T. res: the slave's rows; add: master rows' additions.
-// Returns the state. Branches use the values only.
+// The law of one active or candidate slave node in scalar T, from its geometry: the
+// normal measure d (gap) and, with persistence, g = n . rel (master surfaces) or d - d_n
+// (rigid), the normal n, the relative displacement rel, the tangent direction a1 (null:
+// from the least aligned axis) and the bulk residual r. res: the slave's rows. Returns the
+// state. Branches use the values only. Shared by node-to-segment and mortar (Mortar.hpp).
 template <class T>
-KOKKOS_INLINE_FUNCTION int conditions(const NodeInput& in, const LawParams& p, const Obstacle* ob, const T xs[3], const T (*xa)[3],
-                                      const T r[3], T res[3], T (*add)[3], double* gap, double* normal, double* relv) {
+KOKKOS_INLINE_FUNCTION int law(int dim, const bool fixed[3], const LawParams& p, const T& g, const T n[3], const T rel[3], const T* a1,
+                               const T r[3], T res[3], const double normal[3]) {
   using std::sqrt;
-  const int dim = in.dim;
-  T n[3], rel[3], N[facet::kMaxNodes], a1[3];
-  const T d = geometry(in, ob, xs, xa, n, rel, N, a1);
-  *gap = value(d);
-  for (int c = 0; c < 3; ++c) normal[c] = value(n[c]), relv[c] = value(rel[c]);
-  T g = d;
-  if (p.persistence) g = in.nm == 0 ? d - in.d_n : dot3(n, rel);
   const T rn = dot3(n, r);
   const T lam_n = -rn;
   if (value(lam_n) + p.cn * value(g) / (p.persistence ? p.dt : 1.0) > p.release) return Inactive;
   T t[2][3];
-  tangents(dim, n, in.nm ? a1 : static_cast<const T*>(nullptr), t);
+  tangents(dim, n, a1, t);
   const T reln = dot3(n, rel);
-  T lam_t[3], q[3];
-  for (int c = 0; c < 3; ++c) {
-    lam_t[c] = -(r[c] - rn * n[c]);
-    q[c] = lam_t[c] + p.ct * (rel[c] - reln * n[c]) / p.dt;
-  }
+  T q[3];
+  for (int c = 0; c < 3; ++c) q[c] = -(r[c] - rn * n[c]) + p.ct * (rel[c] - reln * n[c]) / p.dt;
   bool stick = false;
   T s[3] = {T(0.0), T(0.0), T(0.0)};
   if (p.mu > 0.0) {
@@ -257,7 +250,7 @@ KOKKOS_INLINE_FUNCTION int conditions(const NodeInput& in, const LawParams& p, c
   }
   int slot_n = -1, nfixed = 0, fixed_axis = 0;
   for (int c = 0; c < dim; ++c) {
-    if (in.fixed[c]) {
+    if (fixed[c]) {
       ++nfixed, fixed_axis = c;
       continue;
     }
@@ -265,7 +258,7 @@ KOKKOS_INLINE_FUNCTION int conditions(const NodeInput& in, const LawParams& p, c
   }
   int slot_t[2] = {0, 0}, nt = 0;
   for (int c = 0; c < dim; ++c)
-    if (c != slot_n && !in.fixed[c]) slot_t[nt++] = c;
+    if (c != slot_n && !fixed[c]) slot_t[nt++] = c;
   if (dim == 3 && nfixed == 1) {
     // The one free tangential direction: e x n (orthogonal to the prescribed axis e and n).
     T e[3] = {T(0.0), T(0.0), T(0.0)};
@@ -285,9 +278,25 @@ KOKKOS_INLINE_FUNCTION int conditions(const NodeInput& in, const LawParams& p, c
       res[slot_t[k]] = dot3(comb, r);
     }
   }
-  for (int a = 0; a < in.nm; ++a)
-    for (int c = 0; c < dim; ++c) add[a][c] = N[a] * r[c];
   return stick ? Stick : Slip;
+}
+
+// The conditions of one node in scalar T. res: the slave's rows; add: master rows' additions.
+// Returns the state. Branches use the values only.
+template <class T>
+KOKKOS_INLINE_FUNCTION int conditions(const NodeInput& in, const LawParams& p, const Obstacle* ob, const T xs[3], const T (*xa)[3],
+                                      const T r[3], T res[3], T (*add)[3], double* gap, double* normal, double* relv) {
+  T n[3], rel[3], N[facet::kMaxNodes], a1[3];
+  const T d = geometry(in, ob, xs, xa, n, rel, N, a1);
+  *gap = value(d);
+  for (int c = 0; c < 3; ++c) normal[c] = value(n[c]), relv[c] = value(rel[c]);
+  T g = d;
+  if (p.persistence) g = in.nm == 0 ? d - in.d_n : dot3(n, rel);
+  const int state = law(in.dim, in.fixed, p, g, n, rel, in.nm ? a1 : static_cast<const T*>(nullptr), r, res, normal);
+  if (state == Inactive) return state;
+  for (int a = 0; a < in.nm; ++a)
+    for (int c = 0; c < in.dim; ++c) add[a][c] = N[a] * r[c];
+  return state;
 }
 
 // Evaluates the conditions with Dual numbers seeded on y and unpacks values and

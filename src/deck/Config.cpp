@@ -1153,6 +1153,10 @@ void DeckReader::read_contact(const ParameterList& pl) {
     c.c_normal = get_double(sub, ls, "c normal");
     c.c_tangent = get_double(sub, ls, "c tangent");
     c.formulation = get_string(sub, ls, "formulation");
+    c.discretization = get_string(sub, ls, "discretization");
+    if (c.discretization == "mortar" && !has_master)
+      fail(quoted(path + "->discretization") + " = mortar couples two meshed surfaces; it needs 'master' (a rigid obstacle is "
+           "exact at every slave node already)");
     for (const auto& o : cfg_.contact)
       if (o.slave == c.slave)
         fail("'Contact->" + o.name + "' and " + quoted(path) + " both use slave group '" + c.slave +

@@ -224,6 +224,7 @@ struct ContactPairConfig {
   double c_normal = 0.0, c_tangent = 0.0; // "c normal", "c tangent": PDAS parameters (0: automatic, scale-aware)
   double friction = 0.0;                  // "friction": Coulomb coefficient mu >= 0 (0: frictionless)
   std::string formulation = "auto";       // "formulation": auto | persistence | gap (auto: persistence in dynamics, gap in statics)
+  std::string discretization = "node-to-segment";  // "discretization" (master pairs): node-to-segment | mortar
 };
 
 // One entry of "Stages" (sublist name = name), in deck order: the interval (start, end]

@@ -549,6 +549,14 @@ std::vector<ListSpec> build_schema() {
            "(energy-conserving); `gap`: standard KKT conditions on the end-of-step gap; `auto`: persistence in "
            "dynamics, gap in statics.")
            .one_of({"auto", "persistence", "gap"}),
+       str("discretization", "node-to-segment",
+           "Pairs with `master`: `node-to-segment` (each slave node against the closest point of one master facet; "
+           "the reaction goes to that facet's nodes by its shape functions; any facet type) or `mortar` (dual mortar, "
+           "segment-based integration: each slave node's weighted gap against the master facets that overlap its "
+           "facets, the normal averaged over the slave facets at the node, the reaction spread over the master nodes "
+           "by the mortar weights; transmits a uniform pressure exactly across non-matching meshes, the patch test; "
+           "line2, tri3, quad4 facets on both sides). See docs/contact.md, Mortar.")
+           .one_of({"node-to-segment", "mortar"}),
        dbl("c normal", 0.0,
            "Active-set parameter c_nu (> 0) of the normal complementarity function, per unit area of the slave "
            "surface: [Pa s/m] with persistence (it multiplies the normal velocity), [Pa/m] with gap; each node uses "

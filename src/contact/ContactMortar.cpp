@@ -1,0 +1,388 @@
+// The mortar discretization of a master-surface pair (`discretization = mortar`,
+// docs/contact.md "Mortar"): per slave facet, the dual mortar integrals against the master
+// facets that overlap it (contact/Mortar.hpp, exact derivatives by Dual numbers); per slave
+// node p, from those of its facets:
+//   S_p = sum_k M_pk, w_pk = M_pk / S_p, xbar_p = sum_k w_pk x_k,
+//   n_p = -(sum over its facets of their outward unit normals at p), normalized,
+//   d = n_p . (x_p - xbar_p),   rel = (x_p - x_p,n) - sum_k w_pk (x_k - x_k,n),
+// and then the same law as node-to-segment (contact/NodeLaw.hpp, law()) with the reaction
+// r_k += w_pk r_p on the master nodes. The derivatives of M, S, the dual basis and the
+// nodal normal are carried to the node's rows by the chain rule through (x_p, n_p, xbar_p,
+// the relative master motion, r_p). A node whose facets are covered by less than half
+// (S_p < A_p / 2, A_p its tributary area) has no master: it is free.
+#include <Teuchos_CommHelpers.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "contact/Contact.hpp"
+#include "contact/MasterSurface.hpp"
+#include "contact/Mortar.hpp"
+
+namespace stentor {
+
+struct Contact::FaceCoupling {
+  int master = -1;                          // master facet
+  double M[4][4] = {};                      // int Phi_a N_b (slave corner a, master node b)
+  double dM[4][4][mortar::kPairVars] = {};  // d/d(slave facet positions, 3 per node; then the master facet's)
+};
+
+namespace {
+
+constexpr double kMinCover = 0.5;  // S_p / A_p below which a slave node has no master
+
+mortar::Face face_of(const MasterSurface::Facet& f) { return mortar::Face{f.type, f.nn, f.orient}; }
+
+int corner_of(const MasterSurface::Facet& f, int pos) {
+  for (int a = 0; a < f.nn; ++a)
+    if (f.node[a] == pos) return a;
+  return -1;
+}
+
+}  // namespace
+
+void Contact::setup_mortar(Pair& p) {
+  const std::string where = "'Contact->" + p.cfg.name + "->discretization' = mortar: ";
+  auto check = [&](const MasterSurface& s, const std::string& group) {
+    for (const auto& f : s.facets())
+      if (!mortar::supported(f.type))
+        throw InputError(where + "group '" + group + "' has " + cell_name(f.type) +
+                         " facets; mortar supports line2, tri3 and quad4 facets (use node-to-segment for quadratic ones)");
+  };
+  check(*p.master, p.cfg.master);
+  check(*p.slave_faces, p.cfg.slave);
+  p.slave_faces->index(master_pos_);
+  std::map<int, std::vector<int>> faces_of;  // surface position -> slave facets
+  const auto& sf = p.slave_faces->facets();
+  for (std::size_t e = 0; e < sf.size(); ++e)
+    for (int a = 0; a < sf[e].nn; ++a) faces_of[sf[e].node[a]].push_back(static_cast<int>(e));
+  p.node_faces.assign(p.nodes.size(), {});
+  for (std::size_t i = 0; i < p.nodes.size(); ++i) p.node_faces[i] = faces_of[master_pos_[static_cast<std::size_t>(p.nodes[i].gid)]];
+  p.mortar_out.assign(p.nodes.size(), MortarNode{});
+}
+
+// The integrals of every needed slave facet against the master facets near it: those with
+// their centre within the bins around the slave facet's box, in front of its plane by at
+// most 2h or behind it by at most h (h: the largest master facet extent), facing it.
+std::vector<std::vector<Contact::FaceCoupling>> Contact::couple_faces(const Pair& p, const std::vector<char>& needed) const {
+  const auto& sf = p.slave_faces->facets();
+  const auto& mf = p.master->facets();
+  const double h = 0.5 * p.master->search_radius();
+  std::vector<std::vector<FaceCoupling>> out(sf.size());
+  std::vector<int> near;
+  for (std::size_t e = 0; e < sf.size(); ++e) {
+    if (!needed[e]) continue;
+    const auto& f = sf[e];
+    double xs[mortar::kMaxFacetNodes][3], lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (int a = 0; a < f.nn; ++a)
+      for (int c = 0; c < 3; ++c) {
+        xs[a][c] = master_x_[3 * static_cast<std::size_t>(f.node[a]) + static_cast<std::size_t>(c)];
+        lo[c] = std::min(lo[c], xs[a][c]);
+        hi[c] = std::max(hi[c], xs[a][c]);
+      }
+    double cen[2];
+    facet::centre(f.type, cen);
+    facet::Frame<double> fs;
+    facet::frame(f.type, f.nn, dim_, f.orient, xs, cen, fs);
+    p.master->near(lo, hi, near);
+    for (int m : near) {
+      const auto& g = mf[static_cast<std::size_t>(m)];
+      double xm[mortar::kMaxFacetNodes][3], mc[3] = {0, 0, 0};
+      for (int b = 0; b < g.nn; ++b)
+        for (int c = 0; c < 3; ++c) {
+          xm[b][c] = master_x_[3 * static_cast<std::size_t>(g.node[b]) + static_cast<std::size_t>(c)];
+          mc[c] += xm[b][c] / g.nn;
+        }
+      const double ahead = (mc[0] - fs.xm[0]) * fs.n[0] + (mc[1] - fs.xm[1]) * fs.n[1] + (mc[2] - fs.xm[2]) * fs.n[2];
+      if (ahead > 2.0 * h || ahead < -h) continue;
+      using PD = mortar::PD;
+      PD xsd[mortar::kMaxFacetNodes][3], xmd[mortar::kMaxFacetNodes][3];
+      for (int a = 0; a < f.nn; ++a)
+        for (int c = 0; c < 3; ++c) xsd[a][c] = c < dim_ ? PD::seed(xs[a][c], 3 * a + c) : PD(xs[a][c]);
+      for (int b = 0; b < g.nn; ++b)
+        for (int c = 0; c < 3; ++c) xmd[b][c] = c < dim_ ? PD::seed(xm[b][c], 12 + 3 * b + c) : PD(xm[b][c]);
+      PD M[mortar::kMaxFacetNodes][mortar::kMaxFacetNodes];
+      if (!mortar::pair_integrals(dim_, face_of(f), xsd, face_of(g), xmd, M)) continue;
+      FaceCoupling cp;
+      cp.master = m;
+      for (int a = 0; a < f.nn; ++a)
+        for (int b = 0; b < g.nn; ++b) {
+          cp.M[a][b] = M[a][b].v;
+          for (int v = 0; v < mortar::kPairVars; ++v) cp.dM[a][b][v] = M[a][b].d[v];
+        }
+      out[e].push_back(cp);
+    }
+  }
+  return out;
+}
+
+int Contact::mortar_node(Pair& p, std::size_t i, const std::vector<std::vector<FaceCoupling>>& cpl, const contact::LawParams* law,
+                         double* dout, double* nout, double* relout) {
+  const int dim = dim_;
+  const Slave& nd = p.nodes[i];
+  const int j = master_pos_[static_cast<std::size_t>(nd.gid)];
+  const auto& sf = p.slave_faces->facets();
+  const auto& mf = p.master->facets();
+  const auto pos3 = [](int pos, int c) { return 3 * static_cast<std::size_t>(pos) + static_cast<std::size_t>(c); };
+  // Local unknowns: the node, its facets' nodes, the master nodes coupled to them.
+  std::vector<int> vars{j};
+  const auto var = [&](int pos) {
+    const auto it = std::find(vars.begin(), vars.end(), pos);
+    if (it != vars.end()) return static_cast<int>(it - vars.begin());
+    vars.push_back(pos);
+    return static_cast<int>(vars.size()) - 1;
+  };
+  const auto& faces = p.node_faces[i];
+  for (int e : faces)
+    for (int a = 0; a < sf[static_cast<std::size_t>(e)].nn; ++a) var(sf[static_cast<std::size_t>(e)].node[a]);
+  for (int e : faces)
+    for (const auto& c : cpl[static_cast<std::size_t>(e)])
+      for (int b = 0; b < mf[static_cast<std::size_t>(c.master)].nn; ++b) var(mf[static_cast<std::size_t>(c.master)].node[b]);
+  const int nv = dim * static_cast<int>(vars.size());
+  const auto snv = static_cast<std::size_t>(nv);
+  // M_pk per master node k, with d/dy.
+  std::vector<int> masters;
+  std::vector<double> Mk, dMk;
+  const auto slot = [&](int pos) {
+    const auto it = std::find(masters.begin(), masters.end(), pos);
+    if (it != masters.end()) return static_cast<std::size_t>(it - masters.begin());
+    masters.push_back(pos);
+    Mk.push_back(0.0);
+    dMk.resize(dMk.size() + snv, 0.0);
+    return masters.size() - 1;
+  };
+  for (int e : faces) {
+    const auto& f = sf[static_cast<std::size_t>(e)];
+    const int aj = corner_of(f, j);
+    for (const auto& c : cpl[static_cast<std::size_t>(e)]) {
+      const auto& g = mf[static_cast<std::size_t>(c.master)];
+      for (int b = 0; b < g.nn; ++b) {
+        const std::size_t k = slot(g.node[b]);
+        Mk[k] += c.M[aj][b];
+        double* dk = &dMk[k * snv];
+        for (int cc = 0; cc < dim; ++cc) {
+          for (int a = 0; a < f.nn; ++a) dk[var(f.node[a]) * dim + cc] += c.dM[aj][b][3 * a + cc];
+          for (int b2 = 0; b2 < g.nn; ++b2) dk[var(g.node[b2]) * dim + cc] += c.dM[aj][b][12 + 3 * b2 + cc];
+        }
+      }
+    }
+  }
+  double S = 0.0;
+  std::vector<double> dS(snv, 0.0);
+  for (std::size_t k = 0; k < masters.size(); ++k) {
+    S += Mk[k];
+    for (std::size_t v = 0; v < snv; ++v) dS[v] += dMk[k * snv + v];
+  }
+  double xp[3], xpn[3];
+  for (int c = 0; c < 3; ++c) xp[c] = master_x_[pos3(j, c)], xpn[c] = master_xn_[pos3(j, c)];
+  if (masters.empty() || S <= kMinCover * nd.area || S <= 0.0) {
+    *dout = p.master->search_radius();
+    for (int c = 0; c < 3; ++c) nout[c] = 0.0, relout[c] = xp[c] - xpn[c];
+    return contact::Free;
+  }
+  // Nodal normal n = -v / |v|, v = sum of the facets' outward normals at the node.
+  double v[3] = {0, 0, 0};
+  std::vector<double> dv(3 * snv, 0.0);
+  for (int e : faces) {
+    const auto& f = sf[static_cast<std::size_t>(e)];
+    using ND = Dual<3 * mortar::kMaxFacetNodes>;
+    ND xs[mortar::kMaxFacetNodes][3], ne[3];
+    for (int a = 0; a < f.nn; ++a)
+      for (int c = 0; c < 3; ++c) xs[a][c] = c < dim ? ND::seed(master_x_[pos3(f.node[a], c)], 3 * a + c) : ND(master_x_[pos3(f.node[a], c)]);
+    mortar::corner_normal(dim, face_of(f), xs, corner_of(f, j), ne);
+    for (int c = 0; c < 3; ++c) {
+      v[c] -= ne[c].v;
+      for (int a = 0; a < f.nn; ++a)
+        for (int cc = 0; cc < dim; ++cc) dv[static_cast<std::size_t>(c) * snv + static_cast<std::size_t>(var(f.node[a]) * dim + cc)] -= ne[c].d[3 * a + cc];
+    }
+  }
+  const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  double n[3];
+  std::vector<double> dn(3 * snv, 0.0);
+  for (int c = 0; c < 3; ++c) n[c] = v[c] / len;
+  for (int c = 0; c < 3; ++c)
+    for (int e = 0; e < 3; ++e) {
+      const double P = ((c == e) ? 1.0 : 0.0) - n[c] * n[e];
+      for (std::size_t l = 0; l < snv; ++l) dn[static_cast<std::size_t>(c) * snv + l] += P * dv[static_cast<std::size_t>(e) * snv + l] / len;
+    }
+  // Weights, the mortar master point and the master motion over the step.
+  const std::size_t nk = masters.size();
+  std::vector<double> w(nk), dw(nk * snv);
+  double xb[3] = {0, 0, 0}, mb[3] = {0, 0, 0};
+  std::vector<double> dxb(3 * snv, 0.0), dmb(3 * snv, 0.0);
+  for (std::size_t k = 0; k < nk; ++k) {
+    w[k] = Mk[k] / S;
+    for (std::size_t l = 0; l < snv; ++l) dw[k * snv + l] = (dMk[k * snv + l] - w[k] * dS[l]) / S;
+    const int vk = var(masters[k]);
+    for (int c = 0; c < dim; ++c) {
+      const double x = master_x_[pos3(masters[k], c)], m = x - master_xn_[pos3(masters[k], c)];
+      xb[c] += w[k] * x;
+      mb[c] += w[k] * m;
+      const auto row = static_cast<std::size_t>(c) * snv;
+      for (std::size_t l = 0; l < snv; ++l) {
+        dxb[row + l] += x * dw[k * snv + l];
+        dmb[row + l] += m * dw[k * snv + l];
+      }
+      dxb[row + static_cast<std::size_t>(vk * dim + c)] += w[k];
+      dmb[row + static_cast<std::size_t>(vk * dim + c)] += w[k];
+    }
+  }
+  double d = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    d += n[c] * (xp[c] - xb[c]);
+    nout[c] = n[c];
+    relout[c] = xp[c] - xpn[c] - mb[c];
+  }
+  *dout = d;
+  if (!law) return contact::Free;
+
+  // The law in z = (x_p, n, xbar, master motion, r_p), then dz/dy.
+  using ZD = Dual<15>;
+  ZD xz[3], nz[3], bz[3], mz[3], rz[3];
+  for (int c = 0; c < 3; ++c) {
+    xz[c] = c < dim ? ZD::seed(xp[c], c) : ZD(xp[c]);
+    nz[c] = ZD::seed(n[c], 3 + c);
+    bz[c] = c < dim ? ZD::seed(xb[c], 6 + c) : ZD(xb[c]);
+    mz[c] = c < dim ? ZD::seed(mb[c], 9 + c) : ZD(mb[c]);
+    rz[c] = c < dim && !nd.fixed[c] ? ZD::seed(nd.f[c], 12 + c) : ZD(0.0);
+  }
+  ZD relz[3], gap(0.0), nrel(0.0);
+  for (int c = 0; c < 3; ++c) {
+    relz[c] = xz[c] - xpn[c] - mz[c];
+    gap += nz[c] * (xz[c] - bz[c]);
+    nrel += nz[c] * relz[c];
+  }
+  ZD res[3];
+  const ZD g = law->persistence ? nrel : gap;
+  const int state = contact::law(dim, nd.fixed, *law, g, nz, relz, static_cast<const ZD*>(nullptr), rz, res, n);
+  if (state == contact::Inactive) return state;
+  MortarNode& mo = p.mortar_out[i];
+  mo.vars = vars;
+  mo.masters = masters;
+  mo.w = w;
+  mo.nvar = nv + dim;
+  const auto nvar = static_cast<std::size_t>(mo.nvar);
+  mo.dres.assign(static_cast<std::size_t>(dim) * nvar, 0.0);
+  // dz/dy as rows of length nvar.
+  std::vector<double> dz(15 * nvar, 0.0);
+  for (int c = 0; c < 3; ++c) {
+    const auto C = static_cast<std::size_t>(c);
+    if (c < dim) {
+      dz[C * nvar + C] = 1.0;  // x_p: vars[0]
+      dz[(12 + C) * nvar + snv + C] = nd.fixed[c] ? 0.0 : 1.0;
+    }
+    for (std::size_t l = 0; l < snv; ++l) {
+      dz[(3 + C) * nvar + l] = dn[C * snv + l];
+      dz[(6 + C) * nvar + l] = dxb[C * snv + l];
+      dz[(9 + C) * nvar + l] = dmb[C * snv + l];
+    }
+  }
+  for (int k = 0; k < dim; ++k) {
+    mo.res[k] = res[k].v;
+    if (nd.fixed[k]) continue;
+    for (int z = 0; z < 15; ++z) {
+      const double a = res[k].d[z];
+      if (a == 0.0) continue;
+      for (std::size_t l = 0; l < nvar; ++l) mo.dres[static_cast<std::size_t>(k) * nvar + l] += a * dz[static_cast<std::size_t>(z) * nvar + l];
+    }
+  }
+  // Master rows: w_k r_p.
+  mo.add.assign(nk * static_cast<std::size_t>(dim), 0.0);
+  mo.dadd.assign(nk * static_cast<std::size_t>(dim) * nvar, 0.0);
+  for (std::size_t k = 0; k < nk; ++k)
+    for (int c = 0; c < dim; ++c) {
+      const std::size_t row = k * static_cast<std::size_t>(dim) + static_cast<std::size_t>(c);
+      const double rc = nd.fixed[c] ? 0.0 : nd.f[c];
+      mo.add[row] = w[k] * rc;
+      for (std::size_t l = 0; l < snv; ++l) mo.dadd[row * nvar + l] = rc * dw[k * snv + l];
+      if (!nd.fixed[c]) mo.dadd[row * nvar + snv + static_cast<std::size_t>(c)] = w[k];
+    }
+  return state;
+}
+
+void Contact::mortar_rows(const Pair& p, std::size_t i, std::vector<Row>& q, std::vector<Row>& g, std::map<la::GO, Row>& q_far,
+                          std::map<la::GO, Row>& g_far) const {
+  const auto& map = dist_.owned_map();
+  auto row_of = [&](la::GO gid, std::vector<Row>& loc, std::map<la::GO, Row>& far) -> Row& {
+    const la::LO l = map->getLocalElement(gid);
+    return l >= 0 ? loc[static_cast<std::size_t>(l)] : far[gid];
+  };
+  const Slave& nd = p.nodes[i];
+  const MortarNode& mo = p.mortar_out[i];
+  const auto nvar = static_cast<std::size_t>(mo.nvar);
+  const int nv = mo.nvar - dim_;
+  auto ydof = [&](int l) -> la::GO {
+    const GId node = l < nv ? master_nodes_[static_cast<std::size_t>(mo.vars[static_cast<std::size_t>(l / dim_)])] : nd.gid;
+    return static_cast<la::GO>(node) * dim_ + l % dim_;
+  };
+  const la::GO r0 = static_cast<la::GO>(nd.gid) * dim_;
+  for (int k = 0; k < dim_; ++k) {
+    if (nd.fixed[k]) continue;  // Dirichlet rows stay identity rows of Q
+    Row& qr = q[static_cast<std::size_t>(nd.lid * dim_ + k)];
+    Row& gr = g[static_cast<std::size_t>(nd.lid * dim_ + k)];
+    const double* dr = &mo.dres[static_cast<std::size_t>(k) * nvar];
+    for (int j = 0; j < dim_; ++j) qr.push_back({r0 + j, dr[nv + j] - (j == k ? 1.0 : 0.0)});
+    for (int l = 0; l < nv; ++l)
+      if (dr[l] != 0.0) gr.push_back({ydof(l), dr[l]});
+  }
+  for (std::size_t k = 0; k < mo.masters.size(); ++k)
+    for (int c = 0; c < dim_; ++c) {
+      const auto pos = static_cast<std::size_t>(mo.masters[k]);
+      if (master_fixed_[pos * static_cast<std::size_t>(dim_) + static_cast<std::size_t>(c)]) continue;
+      const la::GO row = static_cast<la::GO>(master_nodes_[pos]) * dim_ + c;
+      Row& qr = row_of(row, q, q_far);
+      Row& gr = row_of(row, g, g_far);
+      const double* da = &mo.dadd[(k * static_cast<std::size_t>(dim_) + static_cast<std::size_t>(c)) * nvar];
+      for (int j = 0; j < dim_; ++j) qr.push_back({r0 + j, da[nv + j]});
+      for (int l = 0; l < nv; ++l)
+        if (da[l] != 0.0) gr.push_back({ydof(l), da[l]});
+    }
+}
+
+void Contact::evaluate_mortar(Pair& p, const contact::LawParams& lp, double lf, const double* u, double* r) {
+  (void)u;
+  p.slave_faces->build(master_x_);
+  std::vector<char> cand(p.nodes.size(), 0), needed(p.slave_faces->facets().size(), 0);
+  for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+    Slave& nd = p.nodes[i];
+    for (int c = 0; c < dim_; ++c) nd.f[c] = r[nd.lid * dim_ + c];
+    nd.state = p.out[i].state = contact::Free;
+    nd.inside = true;
+    // Leapfrog, as for node-to-segment.
+    if (p.persistence && !nd.was_active && nd.d_n + lf * (nd.d_n - nd.d_prev) > gap_tol_) continue;
+    cand[i] = 1;
+    for (int e : p.node_faces[i]) needed[static_cast<std::size_t>(e)] = 1;
+  }
+  const auto cpl = couple_faces(p, needed);
+  for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+    if (!cand[i]) continue;
+    Slave& nd = p.nodes[i];
+    const contact::LawParams q = node_params(p, nd, lp);
+    double d = 0.0, n[3], rel[3];
+    const int st = mortar_node(p, i, cpl, &q, &d, n, rel);
+    nd.state = p.out[i].state = st;
+    nd.gap = d;
+    for (int c = 0; c < 3; ++c) nd.normal[c] = n[c], nd.rel[c] = rel[c];
+    nd.facet = n[0] == 0.0 && n[1] == 0.0 && n[2] == 0.0 ? -1 : 0;
+    if (st >= contact::Stick)
+      for (int c = 0; c < dim_; ++c)
+        if (!nd.fixed[c]) r[nd.lid * dim_ + c] = p.mortar_out[i].res[c];
+  }
+}
+
+void Contact::mortar_geometry(Pair& p) {
+  p.slave_faces->build(master_x_);
+  if (p.master) p.master->build(master_x_);
+  const std::vector<char> all(p.slave_faces->facets().size(), 1);
+  const auto cpl = couple_faces(p, all);
+  for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+    Slave& nd = p.nodes[i];
+    double d = 0.0, n[3], rel[3];
+    mortar_node(p, i, cpl, nullptr, &d, n, rel);
+    nd.gap = d;
+    for (int c = 0; c < 3; ++c) nd.normal[c] = n[c], nd.rel[c] = rel[c];
+  }
+}
+
+}  // namespace stentor

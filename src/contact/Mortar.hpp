@@ -1,0 +1,324 @@
+// Dual mortar coupling of a slave and a master surface: the integrals
+//   M_jk = int_{slave} Phi_j N_k^m dA
+// of one slave facet against one master facet, templated on the scalar so that Dual
+// numbers carry their exact derivatives with respect to the two facets' node positions
+// (docs/contact.md, "Mortar").
+//
+// Phi_j are the dual shape functions of the slave facet, biorthogonal to its own shape
+// functions: int Phi_j N_l dA = delta_jl int N_l dA. With them the weighted gap of slave
+// node j, int Phi_j (x^s - x^m) . n_j dA, is S_j n_j . (x_j - sum_k w_jk x_k) with
+// w_jk = M_jk / S_j and S_j = sum_k M_jk: a slave node's conditions stay local (the
+// condensed multiplier is its bulk residual, as in node-to-segment) and only the master
+// side changes: the reaction goes to the master nodes by w_jk instead of by the shape
+// functions at one projection point. A uniform pressure then gives the consistent master
+// forces sum_j w_jk p A_j = p int N_k^m dA (the patch test), since sum_j Phi_j = 1.
+//
+// Integration follows the segment-based scheme of Puso & Laursen (2004) and Popp et al.
+// (2010): 2D, the master facet's end points projected on the slave segment bound the
+// overlap (Gauss points on it); 3D, both facets projected on the auxiliary plane of the
+// slave facet (its centre and unit normal), the master polygon clipped by the slave
+// polygon (Sutherland-Hodgman), the clip polygon split into triangles around its centroid
+// (Gauss points on each). A point of the plane maps back to a facet's parameters by
+// inverting the facet's projected (planar) map, which is exact for the projection along
+// the plane's normal. Facets: line2, tri3, quad4 (linear; quad4's dual functions are
+// computed from the facet's projected geometry, A = D M^-1).
+//
+// Branches (which side of an edge a vertex lies on, min/max of the overlap bounds) use
+// the values only: M is piecewise smooth in the positions, and its derivatives are exact
+// on each piece. Header-only, callable inside Kokkos kernels (no heap, no exceptions).
+#pragma once
+#include <Kokkos_Macros.hpp>
+#include <cmath>
+
+#include "contact/Dual.hpp"
+#include "contact/FacetGeometry.hpp"
+#include "fem/Quadrature.hpp"
+
+namespace stentor::mortar {
+
+constexpr int kMaxFacetNodes = 4;                  // line2, tri3, quad4
+constexpr int kPairVars = 3 * 2 * kMaxFacetNodes;  // positions of one slave and one master facet
+using PD = Dual<kPairVars>;
+constexpr int kMaxPoly = 16;                       // clip polygon vertices (at most 4 + 4)
+
+KOKKOS_INLINE_FUNCTION bool supported(CellType t) { return t == CellType::Line2 || t == CellType::Tri3 || t == CellType::Quad4; }
+
+// Generic direction that breaks ties of the segmentation: a master vertex exactly on a slave
+// facet's edge (matching meshes) counts as inside or outside as it would after an
+// infinitesimal shift of the master along it. Each slave facet on either side of the edge
+// then decides alike, the integrals keep one consistent one-sided derivative (of a real
+// neighbouring configuration), and the zero-area slivers on the other side keep theirs.
+// Without it, matching quad4 meshes gave a singular first tangent (measured: the patch
+// test's KLU2 factorization failed, then 7 Newton iterations at a linear rate).
+constexpr double kTieDir[3] = {0.40824829046386302, 0.57735026918962573, 0.70710678118654752};  // (1, sqrt2, sqrt3)/sqrt6
+
+struct Face {
+  CellType type = CellType::Invalid;
+  int nn = 0;
+  double orient = 1.0;
+};
+
+template <class T>
+KOKKOS_INLINE_FUNCTION T cross2(const T* a, const T* b) { return a[0] * b[1] - a[1] * b[0]; }
+
+// Parameters xi of the point p under the planar map p(xi) = sum_a N_a(xi) P_a: Newton in
+// double to the root, then one step in T (exact first derivatives, F = 0 in value).
+template <class T>
+KOKKOS_INLINE_FUNCTION void planar_inverse(CellType t, int nn, const T (*P)[2], const T p[2], T xi[2]) {
+  double x[2];
+  facet::centre(t, x);
+  double J[2][2] = {{1, 0}, {0, 1}};
+  auto jac = [&](const double* at, double* F) {
+    double N[facet::kMaxNodes], dN[facet::kMaxNodes][2];
+    facet::shape(t, at, N, dN);
+    F[0] = -value(p[0]), F[1] = -value(p[1]);
+    J[0][0] = J[0][1] = J[1][0] = J[1][1] = 0.0;
+    for (int a = 0; a < nn; ++a)
+      for (int k = 0; k < 2; ++k) {
+        F[k] += N[a] * value(P[a][k]);
+        for (int l = 0; l < 2; ++l) J[k][l] += dN[a][l] * value(P[a][k]);
+      }
+  };
+  for (int it = 0; it < 30; ++it) {
+    double F[2];
+    jac(x, F);
+    const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+    const double d0 = (J[1][1] * F[0] - J[0][1] * F[1]) / det, d1 = (J[0][0] * F[1] - J[1][0] * F[0]) / det;
+    x[0] -= d0, x[1] -= d1;
+    if (std::abs(d0) + std::abs(d1) < 1e-15) break;
+  }
+  double F0[2];
+  jac(x, F0);
+  double N[facet::kMaxNodes], dN[facet::kMaxNodes][2];
+  facet::shape(t, x, N, dN);
+  T F[2] = {-p[0], -p[1]};
+  for (int a = 0; a < nn; ++a)
+    for (int k = 0; k < 2; ++k) F[k] += N[a] * P[a][k];
+  const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+  xi[0] = x[0] - (J[1][1] * F[0] - J[0][1] * F[1]) / det;
+  xi[1] = x[1] - (J[0][0] * F[1] - J[1][0] * F[0]) / det;
+}
+
+// Dual coefficients A (Phi_a = sum_c A[a][c] N_c) of a slave facet whose projected corners
+// are P (3D; 2D line2 has constant ones).
+template <class T>
+KOKKOS_INLINE_FUNCTION void dual_coefficients(CellType t, int nn, const T (*P)[2], T A[kMaxFacetNodes][kMaxFacetNodes]) {
+  if (t != CellType::Quad4) {
+    // line2: Phi_a = (1 -+ 3 xi)/2 = 3 N_a - 1 = 2 N_a - N_b; tri3: Phi_a = 4 N_a - 1 = 3 N_a - sum_{b != a} N_b.
+    const double diag = t == CellType::Line2 ? 2.0 : 3.0;
+    for (int a = 0; a < nn; ++a)
+      for (int c = 0; c < nn; ++c) A[a][c] = T(a == c ? diag : -1.0);
+    return;
+  }
+  // Quad4: M_ac = int N_a N_c dA, D_a = int N_a dA over the projected facet (3 x 3 Gauss).
+  double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
+  const int nq = quadrature(CellType::Quad4, 5, qp, qw);
+  T M[4][8], D[4];
+  for (int a = 0; a < 4; ++a) {
+    D[a] = T(0.0);
+    for (int c = 0; c < 8; ++c) M[a][c] = T(c - 4 == a ? 1.0 : 0.0);
+  }
+  for (int a = 0; a < 4; ++a)
+    for (int c = 0; c < 4; ++c) M[a][c] = T(0.0);
+  for (int q = 0; q < nq; ++q) {
+    double N[facet::kMaxNodes], dN[facet::kMaxNodes][2];
+    facet::shape(CellType::Quad4, qp[q], N, dN);
+    T g[2][2] = {{T(0.0), T(0.0)}, {T(0.0), T(0.0)}};
+    for (int a = 0; a < 4; ++a)
+      for (int k = 0; k < 2; ++k)
+        for (int l = 0; l < 2; ++l) g[k][l] += dN[a][l] * P[a][k];
+    T det = g[0][0] * g[1][1] - g[0][1] * g[1][0];
+    if (value(det) < 0.0) det = -det;
+    for (int a = 0; a < 4; ++a) {
+      D[a] += qw[q] * det * N[a];
+      for (int c = 0; c < 4; ++c) M[a][c] += qw[q] * det * N[a] * N[c];
+    }
+  }
+  // [M | I] -> [I | M^-1] (M is symmetric positive definite: no pivoting).
+  for (int k = 0; k < 4; ++k) {
+    const T piv = M[k][k];
+    for (int c = 0; c < 8; ++c) M[k][c] = M[k][c] / piv;
+    for (int r = 0; r < 4; ++r) {
+      if (r == k) continue;
+      const T f = M[r][k];
+      for (int c = 0; c < 8; ++c) M[r][c] = M[r][c] - f * M[k][c];
+    }
+  }
+  for (int a = 0; a < 4; ++a)
+    for (int c = 0; c < 4; ++c) A[a][c] = D[a] * M[a][4 + c];
+}
+
+template <class T>
+KOKKOS_INLINE_FUNCTION void dual_values(int nn, const T A[kMaxFacetNodes][kMaxFacetNodes], const T* N, T* Phi) {
+  for (int a = 0; a < nn; ++a) {
+    Phi[a] = T(0.0);
+    for (int c = 0; c < nn; ++c) Phi[a] += A[a][c] * N[c];
+  }
+}
+
+// 2D: line2 slave segment xs against line2 master segment xm; M[a][b] += int Phi_a N_b.
+// Returns whether they overlap (and face each other).
+template <class T>
+KOKKOS_INLINE_FUNCTION bool pair_integrals_2d(const Face& s, const T (*xs)[3], const Face& m, const T (*xm)[3], T M[kMaxFacetNodes][kMaxFacetNodes]) {
+  using std::sqrt;
+  const T t[2] = {xs[1][0] - xs[0][0], xs[1][1] - xs[0][1]};
+  const T L = sqrt(t[0] * t[0] + t[1] * t[1]);
+  const T tm[2] = {xm[1][0] - xm[0][0], xm[1][1] - xm[0][1]};
+  // Outward normals (FacetGeometry's convention: o (a_y, -a_x)); facing: ns . nm < 0.
+  const double facing = s.orient * m.orient * value(t[1] * tm[1] + t[0] * tm[0]);
+  if (facing >= 0.0) return false;
+  T xi[2];
+  for (int b = 0; b < 2; ++b) xi[b] = 2.0 * ((xm[b][0] - xs[0][0]) * t[0] + (xm[b][1] - xs[0][1]) * t[1]) / (L * L) - 1.0;
+  const T lo_xi = value(xi[0]) < value(xi[1]) ? xi[0] : xi[1];
+  const T hi_xi = value(xi[0]) < value(xi[1]) ? xi[1] : xi[0];
+  // Ties (a master node over a slave node: matching meshes) are decided as for the master
+  // shifted by an infinitesimal generic offset (kTieDir, see below): sd = its sign along t.
+  const double sd = kTieDir[0] * value(t[0]) + kTieDir[1] * value(t[1]) > 0.0 ? 1.0 : -1.0;
+  const double tol = 1e-12;
+  const bool lo_is_xi = std::abs(value(lo_xi) + 1.0) <= tol ? sd > 0.0 : value(lo_xi) > -1.0;
+  const bool hi_is_xi = std::abs(value(hi_xi) - 1.0) <= tol ? sd < 0.0 : value(hi_xi) < 1.0;
+  const T lo = lo_is_xi ? lo_xi : T(-1.0);
+  const T hi = hi_is_xi ? hi_xi : T(1.0);
+  const double len = value(hi) - value(lo);
+  if (len < -tol) return false;
+  if (len <= tol && sd * (double(hi_is_xi) - double(lo_is_xi)) <= 0.0) return false;
+  double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
+  const int nq = quadrature(CellType::Line2, 5, qp, qw);
+  const T half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
+  for (int q = 0; q < nq; ++q) {
+    const T x = mid + half * qp[q][0];
+    const T w = qw[q] * half * 0.5 * L;
+    const T eta = (2.0 * x - xi[0] - xi[1]) / (xi[1] - xi[0]);
+    const T Phi[2] = {0.5 * (1.0 - 3.0 * x), 0.5 * (1.0 + 3.0 * x)};
+    const T Nm[2] = {0.5 * (1.0 - eta), 0.5 * (1.0 + eta)};
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) M[a][b] += w * Phi[a] * Nm[b];
+  }
+  return true;
+}
+
+// 3D: tri3/quad4 slave facet against a tri3/quad4 master facet, on the slave's auxiliary plane.
+template <class T>
+KOKKOS_INLINE_FUNCTION bool pair_integrals_3d(const Face& s, const T (*xs)[3], const Face& m, const T (*xm)[3], T M[kMaxFacetNodes][kMaxFacetNodes]) {
+  using std::sqrt;
+  double c0[2];
+  facet::centre(s.type, c0);
+  const T xc[2] = {T(c0[0]), T(c0[1])};
+  facet::Frame<T> fs;
+  facet::frame(s.type, s.nn, 3, s.orient, xs, xc, fs);
+  // Facing: the master facet's centre normal against the slave's.
+  {
+    double cm[2];
+    facet::centre(m.type, cm);
+    double xmv[kMaxFacetNodes][3];
+    for (int b = 0; b < m.nn; ++b)
+      for (int c = 0; c < 3; ++c) xmv[b][c] = value(xm[b][c]);
+    facet::Frame<double> fm;
+    facet::frame(m.type, m.nn, 3, m.orient, xmv, cm, fm);
+    if (fm.n[0] * value(fs.n[0]) + fm.n[1] * value(fs.n[1]) + fm.n[2] * value(fs.n[2]) >= 0.0) return false;
+  }
+  const T* n0 = fs.n;
+  T e1[3], e2[3];
+  const T an = fs.a[0][0] * n0[0] + fs.a[0][1] * n0[1] + fs.a[0][2] * n0[2];
+  for (int c = 0; c < 3; ++c) e1[c] = fs.a[0][c] - an * n0[c];
+  const T l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+  for (int c = 0; c < 3; ++c) e1[c] = e1[c] / l1;
+  e2[0] = n0[1] * e1[2] - n0[2] * e1[1];
+  e2[1] = n0[2] * e1[0] - n0[0] * e1[2];
+  e2[2] = n0[0] * e1[1] - n0[1] * e1[0];
+  auto plane = [&](const T* x, T* p) {
+    const T d[3] = {x[0] - fs.xm[0], x[1] - fs.xm[1], x[2] - fs.xm[2]};
+    p[0] = d[0] * e1[0] + d[1] * e1[1] + d[2] * e1[2];
+    p[1] = d[0] * e2[0] + d[1] * e2[1] + d[2] * e2[2];
+  };
+  T Ps[kMaxFacetNodes][2], Pm[kMaxFacetNodes][2];
+  for (int a = 0; a < s.nn; ++a) plane(xs[a], Ps[a]);
+  for (int b = 0; b < m.nn; ++b) plane(xm[b], Pm[b]);
+  // Clip polygon: the slave corners counter-clockwise.
+  int ord[kMaxFacetNodes];
+  T area(0.0);
+  for (int a = 0; a < s.nn; ++a) area += cross2(Ps[a], Ps[(a + 1) % s.nn]);
+  for (int a = 0; a < s.nn; ++a) ord[a] = value(area) > 0.0 ? a : s.nn - 1 - a;
+  // The tie-breaking direction in the plane; the master polygon's orientation there.
+  const double dplane[2] = {kTieDir[0] * value(e1[0]) + kTieDir[1] * value(e1[1]) + kTieDir[2] * value(e1[2]),
+                            kTieDir[0] * value(e2[0]) + kTieDir[1] * value(e2[1]) + kTieDir[2] * value(e2[2])};
+  double morient = 0.0;
+  for (int b = 0; b < m.nn; ++b) morient += value(cross2(Pm[b], Pm[(b + 1) % m.nn]));
+  morient = morient > 0.0 ? 1.0 : -1.0;
+  T poly[kMaxPoly][2], next[kMaxPoly][2];
+  int np = m.nn;
+  for (int b = 0; b < m.nn; ++b) poly[b][0] = Pm[b][0], poly[b][1] = Pm[b][1];
+  for (int e = 0; e < s.nn && np > 0; ++e) {
+    const T* A = Ps[ord[e]];
+    const T* B = Ps[ord[(e + 1) % s.nn]];
+    const T ab[2] = {B[0] - A[0], B[1] - A[1]};
+    int nn2 = 0;
+    const double tol = 1e-12 * (value(ab[0]) * value(ab[0]) + value(ab[1]) * value(ab[1]));
+    const bool tie_in = value(ab[0]) * dplane[1] - value(ab[1]) * dplane[0] > 0.0;
+    const auto inside = [&](const T& sv) { return std::abs(value(sv)) <= tol ? tie_in : value(sv) > 0.0; };
+    for (int i = 0; i < np; ++i) {
+      const T* P = poly[i];
+      const T* Q = poly[(i + 1) % np];
+      const T ap[2] = {P[0] - A[0], P[1] - A[1]}, aq[2] = {Q[0] - A[0], Q[1] - A[1]};
+      const T sp = cross2(ab, ap), sq = cross2(ab, aq);
+      const bool pin = inside(sp), qin = inside(sq);
+      if (pin && nn2 < kMaxPoly) next[nn2][0] = P[0], next[nn2][1] = P[1], ++nn2;
+      if (pin != qin && nn2 < kMaxPoly) {
+        const T f = sp / (sp - sq);
+        next[nn2][0] = P[0] + f * (Q[0] - P[0]);
+        next[nn2][1] = P[1] + f * (Q[1] - P[1]);
+        ++nn2;
+      }
+    }
+    np = nn2;
+    for (int i = 0; i < np; ++i) poly[i][0] = next[i][0], poly[i][1] = next[i][1];
+  }
+  if (np < 3) return false;
+  T A[kMaxFacetNodes][kMaxFacetNodes];
+  dual_coefficients(s.type, s.nn, Ps, A);
+  T cen[2] = {T(0.0), T(0.0)};
+  for (int i = 0; i < np; ++i) cen[0] += poly[i][0] / double(np), cen[1] += poly[i][1] / double(np);
+  // Triangles around the centroid, their areas signed by the clip polygon's orientation (the
+  // master's): a sliver of zero area keeps the derivative of its growth.
+  double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
+  const int nq = quadrature(CellType::Tri3, 4, qp, qw);
+  for (int i = 0; i < np; ++i) {
+    const T u[2] = {poly[i][0] - cen[0], poly[i][1] - cen[1]};
+    const T v[2] = {poly[(i + 1) % np][0] - cen[0], poly[(i + 1) % np][1] - cen[1]};
+    const T twice = morient * cross2(u, v);
+    for (int q = 0; q < nq; ++q) {
+      const T p[2] = {cen[0] + qp[q][0] * u[0] + qp[q][1] * v[0], cen[1] + qp[q][0] * u[1] + qp[q][1] * v[1]};
+      const T w = qw[q] * twice;
+      T xi[2], eta[2];
+      planar_inverse(s.type, s.nn, Ps, p, xi);
+      planar_inverse(m.type, m.nn, Pm, p, eta);
+      T Ns[facet::kMaxNodes], Nm[facet::kMaxNodes], dN[facet::kMaxNodes][2], Phi[kMaxFacetNodes];
+      facet::shape(s.type, xi, Ns, dN);
+      facet::shape(m.type, eta, Nm, dN);
+      dual_values(s.nn, A, Ns, Phi);
+      for (int a = 0; a < s.nn; ++a)
+        for (int b = 0; b < m.nn; ++b) M[a][b] += w * Phi[a] * Nm[b];
+    }
+  }
+  return true;
+}
+
+template <class T>
+KOKKOS_INLINE_FUNCTION bool pair_integrals(int dim, const Face& s, const T (*xs)[3], const Face& m, const T (*xm)[3], T M[kMaxFacetNodes][kMaxFacetNodes]) {
+  return dim == 2 ? pair_integrals_2d(s, xs, m, xm, M) : pair_integrals_3d(s, xs, m, xm, M);
+}
+
+// The outward unit normal of a slave facet at its corner a (line2: -1, +1; tri3, quad4: the corners).
+template <class T>
+KOKKOS_INLINE_FUNCTION void corner_normal(int dim, const Face& s, const T (*xs)[3], int a, T n[3]) {
+  double c[2] = {0.0, 0.0};
+  if (s.type == CellType::Line2) c[0] = a == 0 ? -1.0 : 1.0;
+  if (s.type == CellType::Tri3) c[0] = a == 1 ? 1.0 : 0.0, c[1] = a == 2 ? 1.0 : 0.0;
+  if (s.type == CellType::Quad4) c[0] = (a == 1 || a == 2) ? 1.0 : -1.0, c[1] = a >= 2 ? 1.0 : -1.0;
+  const T xi[2] = {T(c[0]), T(c[1])};
+  facet::Frame<T> f;
+  facet::frame(s.type, s.nn, dim, s.orient, xs, xi, f);
+  for (int k = 0; k < 3; ++k) n[k] = f.n[k];
+}
+
+}  // namespace stentor::mortar
