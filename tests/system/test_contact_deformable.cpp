@@ -599,10 +599,11 @@ std::string s3_geo() {
 struct S3 {
   stentor::testing::Series e, h;
 };
-S3 run_s3(double mu, const std::string& tag) {
+S3 run_s3(double mu, const std::string& tag, const std::string& discretization = "node-to-segment") {
   Config cfg = read_deck(kInputs + "s3_ring_foundation.xml");
   cfg.mesh.file = s3_geo();
   cfg.contact[0].friction = mu;
+  cfg.contact[0].discretization = discretization;
   cfg.stepping.end_time = 0.2;
   cfg.stepping.num_steps = 100;
   cfg.output.fields = false;
@@ -982,4 +983,71 @@ TEST(MortarContact, TangentMatchesFiniteDifferences3D) {
     n = check_tangent3d(cfg, 2e-4, 1.2e-4, 0.02, o + " mu 0.3, persistence");
     EXPECT_GT(n[2] + n[3], 10) << o;
   }
+}
+
+// Dynamics with mortar: the two bars (frictionless persistence: energy, momentum, the
+// velocities exchanged), the oblique impact with mu = 0.3 (each body's momentum change
+// equals the contact impulse, step by step: the reaction on the master is exactly minus
+// the slave's force, sum_k w_pk = 1), and the coarse S3 (energy of both bodies conserved;
+// with friction, the energy lost equals the frictional dissipation).
+TEST(MortarContact, TwoBarsAndS3ConserveEnergyAndMomentum) {
+  Config cfg = bars_deck();
+  cfg.contact[0].discretization = "mortar";
+  BarsRun r = run_bars(cfg);
+  double dE = 0.0, dp = 0.0;
+  const double p0 = r.b0.p[0][0] + r.b0.p[1][0];
+  for (const auto& st : r.steps) {
+    dE = std::max(dE, std::abs(st.energy - r.E0));
+    dp = std::max(dp, std::abs(st.b.p[0][0] + st.b.p[1][0] - p0));
+  }
+  const BodyMomenta& bT = r.steps.back().b;
+  const double vl = bT.p[0][0] / bT.mass[0], vr = bT.p[1][0] / bT.mass[1];
+  std::printf("mortar two bars: contact %.4f .. %.4f s, v_left %.4f v_right %.4f, max |E-E0|/E0 %.2e, |p-p0|/p0 %.2e\n",
+              r.steps[r.first_contact()].t, r.steps[r.last_contact()].t, vl, vr, dE / r.E0, dp / p0);
+  EXPECT_LT(dE / r.E0, 1e-9);
+  EXPECT_LT(dp / p0, 1e-8);
+  EXPECT_NEAR(vl, 0.0, 0.03);
+  EXPECT_NEAR(vr, 1.0, 0.03);
+
+  cfg = oblique_bars_deck(0.3);
+  cfg.contact[0].discretization = "mortar";
+  r = run_bars(cfg);
+  double worst = 0.0;
+  BodyMomenta prev = r.b0;
+  for (const BarsStep& st : r.steps) {
+    for (std::size_t c = 0; c < 2; ++c) {
+      const double J = st.dt * st.force[c];
+      worst = std::max({worst, std::abs(st.b.p[0][c] - prev.p[0][c] - J), std::abs(st.b.p[1][c] - prev.p[1][c] + J)});
+    }
+    prev = st.b;
+  }
+  const double scale = std::hypot(r.steps.back().b.p[1][0], r.steps.back().b.p[1][1]);
+  double dL = 0.0;
+  for (std::size_t i = 0; i < r.steps.size(); ++i) dL = std::max(dL, std::abs(r.L(i) - r.L0()));
+  std::printf("mortar oblique bars, mu 0.3: max per-step |dp - (+-)dt F| %.2e of the exchanged momentum, max |L - L0| / |L0| %.2e\n",
+              worst / scale, dL / std::abs(r.L0()));
+  EXPECT_LT(worst, 1e-9 * scale);
+  EXPECT_GT(scale, 0.5);
+
+  const S3 s0 = run_s3(0.0, "s3_mu0_mortar", "mortar");
+  const auto& E = s0.e["total"];
+  double dev = 0.0;
+  for (double x : E) dev = std::max(dev, std::abs(x - E[0]));
+  int contact_steps = 0;
+  for (double a : s0.h["contact_impact_active"]) contact_steps += a > 0;
+  const S3 s1 = run_s3(0.3, "s3_mu03_mortar", "mortar");
+  const auto& E1 = s1.e["total"];
+  const auto& D = s1.e["friction_dissipation"];
+  double closure = 0.0, min_step = 0.0;
+  for (std::size_t i = 0; i < E1.size(); ++i) {
+    closure = std::max(closure, std::abs(E1[i] + D[i] - E1[0]));
+    if (i > 0) min_step = std::min(min_step, D[i] - D[i - 1]);
+  }
+  std::printf("mortar S3: frictionless max |E - E0| / E0 %.3e over %d contact steps; mu 0.3: D(T) / E0 %.3e, max |E + D - E0| / E0 %.3e\n",
+              dev / E[0], contact_steps, D.back() / E1[0], closure / E1[0]);
+  EXPECT_GT(contact_steps, 20);
+  EXPECT_LT(dev / E[0], 1e-8);
+  EXPECT_GT(D.back(), 1e-3 * E1[0]);
+  EXPECT_LT(closure / E1[0], 1e-8);
+  EXPECT_GE(min_step, -1e-9 * E1[0]);
 }
