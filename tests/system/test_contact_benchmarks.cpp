@@ -93,8 +93,11 @@ HertzCylinders hertz_cylinders(double hc, double ratio) {
   Config cfg = read_deck(kInputs + "hertz_cylinders.xml");
   cfg.mesh.file = geo_variant("hertz_cylinders.geo", {{"hc = DefineNumber[0.004", buf}, {"ratio = DefineNumber[1.3", rbuf}}, tag + ".geo");
   cfg.output.every = 1000;  // the last step only
+  // STENTOR_HERTZ_DISCRETIZATION=mortar (perf/scenes/run_hertz.sh): the dual mortar pair.
+  if (const char* d = std::getenv("STENTOR_HERTZ_DISCRETIZATION")) cfg.contact[0].discretization = d;
   RunOptions opts;
-  const fs::path dir = kDir / tag;
+  const char* disc = std::getenv("STENTOR_HERTZ_DISCRETIZATION");
+  const fs::path dir = kDir / (tag + (disc ? std::string("_") + disc : std::string()));
   opts.output_dir = dir.string();
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
