@@ -226,7 +226,13 @@ class Contact {
   bool changed_ = true;
   const Distribution& dist_;
   std::vector<Pair> pairs_;
-  // Master surfaces: every master node's dofs on every rank (replicated), imported each
+  // Surface ghosting (rebuild_ghosts): the surface nodes (master nodes, and the slave
+  // nodes of mortar pairs) near this rank's slave nodes are imported, not the whole surface.
+  void rebuild_ghosts(const la::Vector& u);
+  // Whether an owned slave or surface node moved more than a quarter of the margin since
+  // the last rebuild_ghosts() (collective).
+  bool ghosts_outrun(const la::Vector& u) const;
+  // Master surfaces: the surface nodes' dofs present on this rank, imported each
   // evaluation; positions at the start of the step; Dirichlet flags of those dofs.
   bool has_master_ = false;
   bool mixed_analysis_ = false;  // static and dynamic stages: `auto` pairs switch (set_analysis)
@@ -236,6 +242,13 @@ class Contact {
   std::vector<double> master_area_;        // tributary reference area per master node
   std::vector<double> master_x_, master_xn_;  // current / start-of-step positions, 3 per master node
   std::vector<char> master_fixed_;         // per master dof (dim per node): prescribed
+  std::vector<char> present_;              // per surface node: imported on this rank
+  std::vector<int> ghost_pos_;             // the imported surface nodes (positions), master_map_ order
+  std::vector<int> ghost_index_;           // per surface node: its index in ghost_pos_, or -1
+  double ghost_margin_ = 0.0;              // 8 h (h: the largest reference facet extent of the surfaces)
+  double ghost_box_[6] = {0, 0, 0, 0, 0, 0};  // this rank's slave nodes' box at the last rebuild
+  std::vector<double> ghost_x_;            // owned surface nodes' positions at the last rebuild (3 each, by position)
+  la::RCP<la::Vector> u_n_;                // the step's start (to import the start positions of new ghosts)
   la::RCP<const la::Map> master_map_;
   la::RCP<const la::Import> master_import_;
   la::RCP<const la::Export> master_export_;

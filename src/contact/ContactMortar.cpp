@@ -8,7 +8,8 @@
 // and then the same law as node-to-segment (contact/NodeLaw.hpp, law()) with the reaction
 // r_k += w_pk r_p on the master nodes. The derivatives of M, S, the dual basis and the
 // nodal normal are carried to the node's rows by the chain rule through (x_p, n_p, xbar_p,
-// the relative master motion, r_p). A node whose facets are covered by less than half
+// the relative master motion, r_p). The facets' integrals and the nodes are Kokkos kernels
+// over the host execution space (OpenMP threads where Kokkos has them). A node whose facets are covered by less than half
 // (S_p < A_p / 2, A_p its tributary area) has no master: it is free.
 #include <Teuchos_CommHelpers.hpp>
 
@@ -70,9 +71,13 @@ std::vector<std::vector<Contact::FaceCoupling>> Contact::couple_faces(const Pair
   const auto& mf = p.master->facets();
   const double h = 0.5 * p.master->search_radius();
   std::vector<std::vector<FaceCoupling>> out(sf.size());
-  std::vector<int> near;
-  for (std::size_t e = 0; e < sf.size(); ++e) {
-    if (!needed[e]) continue;
+  std::vector<std::size_t> list;
+  for (std::size_t e = 0; e < sf.size(); ++e)
+    if (needed[e]) list.push_back(e);
+  // One slave facet per kernel iteration (host execution space: Serial or OpenMP threads).
+  Kokkos::parallel_for("stentor::mortar_faces", Kokkos::RangePolicy<la::ExecSpace>(0, list.size()), [&](const std::size_t li) {
+    const std::size_t e = list[li];
+    std::vector<int> near;
     const auto& f = sf[e];
     double xs[mortar::kMaxFacetNodes][3], lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (int a = 0; a < f.nn; ++a)
@@ -113,7 +118,8 @@ std::vector<std::vector<Contact::FaceCoupling>> Contact::couple_faces(const Pair
         }
       out[e].push_back(cp);
     }
-  }
+  });
+  Kokkos::fence();
   return out;
 }
 
@@ -342,7 +348,7 @@ void Contact::mortar_rows(const Pair& p, std::size_t i, std::vector<Row>& q, std
 
 void Contact::evaluate_mortar(Pair& p, const contact::LawParams& lp, double lf, const double* u, double* r) {
   (void)u;
-  p.slave_faces->build(master_x_);
+  p.slave_faces->build(master_x_, &present_);
   std::vector<char> cand(p.nodes.size(), 0), needed(p.slave_faces->facets().size(), 0);
   for (std::size_t i = 0; i < p.nodes.size(); ++i) {
     Slave& nd = p.nodes[i];
@@ -355,8 +361,9 @@ void Contact::evaluate_mortar(Pair& p, const contact::LawParams& lp, double lf, 
     for (int e : p.node_faces[i]) needed[static_cast<std::size_t>(e)] = 1;
   }
   const auto cpl = couple_faces(p, needed);
-  for (std::size_t i = 0; i < p.nodes.size(); ++i) {
-    if (!cand[i]) continue;
+  // One slave node per kernel iteration (each writes its own record and rows).
+  Kokkos::parallel_for("stentor::mortar_nodes", Kokkos::RangePolicy<la::ExecSpace>(0, p.nodes.size()), [&](const std::size_t i) {
+    if (!cand[i]) return;
     Slave& nd = p.nodes[i];
     const contact::LawParams q = node_params(p, nd, lp);
     double d = 0.0, n[3], rel[3];
@@ -368,21 +375,25 @@ void Contact::evaluate_mortar(Pair& p, const contact::LawParams& lp, double lf, 
     if (st >= contact::Stick)
       for (int c = 0; c < dim_; ++c)
         if (!nd.fixed[c]) r[nd.lid * dim_ + c] = p.mortar_out[i].res[c];
-  }
+  });
+  Kokkos::fence();
 }
 
 void Contact::mortar_geometry(Pair& p) {
-  p.slave_faces->build(master_x_);
-  if (p.master) p.master->build(master_x_);
-  const std::vector<char> all(p.slave_faces->facets().size(), 1);
-  const auto cpl = couple_faces(p, all);
-  for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+  p.slave_faces->build(master_x_, &present_);
+  if (p.master) p.master->build(master_x_, &present_);
+  std::vector<char> needed(p.slave_faces->facets().size(), 0);
+  for (const auto& faces : p.node_faces)
+    for (int e : faces) needed[static_cast<std::size_t>(e)] = 1;
+  const auto cpl = couple_faces(p, needed);
+  Kokkos::parallel_for("stentor::mortar_geometry", Kokkos::RangePolicy<la::ExecSpace>(0, p.nodes.size()), [&](const std::size_t i) {
     Slave& nd = p.nodes[i];
     double d = 0.0, n[3], rel[3];
     mortar_node(p, i, cpl, nullptr, &d, n, rel);
     nd.gap = d;
     for (int c = 0; c < 3; ++c) nd.normal[c] = n[c], nd.rel[c] = rel[c];
-  }
+  });
+  Kokkos::fence();
 }
 
 }  // namespace stentor

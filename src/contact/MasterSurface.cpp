@@ -29,6 +29,16 @@ MasterSurface::MasterSurface(const Mesh& mesh, const std::string& group, const s
   }
   std::sort(nodes_.begin(), nodes_.end());
   nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
+  for (const Facet& fc : facets_) {
+    double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
+    for (int a = 0; a < fc.nn; ++a)
+      for (int c = 0; c < 3; ++c) {
+        const double v = mesh.x[3 * static_cast<std::size_t>(fc.gid[a]) + static_cast<std::size_t>(c)];
+        lo[c] = std::min(lo[c], v);
+        hi[c] = std::max(hi[c], v);
+      }
+    for (int c = 0; c < 3; ++c) h_ = std::max(h_, hi[c] - lo[c]);
+  }
 }
 
 void MasterSurface::index(const std::vector<int>& node_pos) {
@@ -44,11 +54,15 @@ void MasterSurface::cell_of(const double* p, long long* i) const {
   for (int c = 0; c < 3; ++c) i[c] = static_cast<long long>(std::floor(p[c] / cell_));
 }
 
-void MasterSurface::build(const std::vector<double>& x) {
-  h_ = 0.0;
+void MasterSurface::build(const std::vector<double>& x, const std::vector<char>* present) {
+  double hc = h_;
   std::vector<std::array<double, 3>> centre(facets_.size());
+  std::vector<char> use(facets_.size(), 1);
   for (std::size_t f = 0; f < facets_.size(); ++f) {
     const Facet& fc = facets_[f];
+    if (present)
+      for (int a = 0; a < fc.nn; ++a) use[f] = use[f] && (*present)[static_cast<std::size_t>(fc.node[a])];
+    if (!use[f]) continue;
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (int a = 0; a < fc.nn; ++a)
       for (int c = 0; c < 3; ++c) {
@@ -58,12 +72,13 @@ void MasterSurface::build(const std::vector<double>& x) {
       }
     for (int c = 0; c < 3; ++c) {
       centre[f][static_cast<std::size_t>(c)] = 0.5 * (lo[c] + hi[c]);
-      h_ = std::max(h_, hi[c] - lo[c]);
+      hc = std::max(hc, hi[c] - lo[c]);
     }
   }
-  cell_ = h_ > 0.0 ? 3.0 * h_ : 1.0;
+  cell_ = hc > 0.0 ? 3.0 * hc : 1.0;
   bins_.clear();
   for (std::size_t f = 0; f < facets_.size(); ++f) {
+    if (!use[f]) continue;
     long long i[3];
     cell_of(centre[f].data(), i);
     bins_[key(i)].push_back(static_cast<int>(f));
@@ -140,9 +155,11 @@ MasterSurface::Hit MasterSurface::closest(int dim, const double xs[3], const std
           // A point more than h behind the facet is on the far side of its body, not in contact.
           const double d = fr.n[0] * (xs[0] - fr.xm[0]) + fr.n[1] * (xs[1] - fr.xm[1]) + fr.n[2] * (xs[2] - fr.xm[2]);
           if (d < -h_) continue;
-          // The nearest; at equal distance (a shared node) a projection inside the facet wins.
+          // The nearest; at equal distance (a shared node) a projection inside the facet wins,
+          // then the lower facet index (not the visiting order, which depends on the bins).
           const double tol = 1e-10 * h_;
-          const bool better = dist < best.dist - tol || (dist <= best.dist + tol && inside && !best.inside);
+          const bool tie = dist <= best.dist + tol && inside == best.inside;
+          const bool better = dist < best.dist - tol || (dist <= best.dist + tol && inside && !best.inside) || (tie && f < best.facet);
           if (better) {
             best.facet = f;
             best.xi[0] = xi[0], best.xi[1] = xi[1];

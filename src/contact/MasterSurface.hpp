@@ -2,11 +2,16 @@
 // (replicated on every rank, like the mesh), and a bin search for the facet closest to a
 // slave point in the current configuration.
 //
-// Search: facets are binned by their centroid on a uniform grid of spacing 3h (h: the
-// largest facet extent at the current positions); a query visits the 3^dim bins around
-// the point, so every facet whose closest point lies within the search radius 2h is
-// seen. Bins are rebuilt at every evaluation from the current positions (linear in the
-// number of master facets, small beside the assembly), so no margin can be outrun.
+// Search: facets are binned by their centroid on a uniform grid of spacing 3 max(h, h_c)
+// (h: the largest facet extent of the reference mesh; h_c: of the binned facets at the
+// current positions); a query visits the 3^dim bins around the point, so every facet
+// whose closest point lies within the search radius 2h is seen. Bins are rebuilt at every
+// evaluation from the current positions (linear in the number of binned facets, small
+// beside the assembly). Only facets whose nodes are all present on this rank are binned
+// (Contact imports the surface nodes near its slave nodes, not the whole surface). The
+// decisions (radius 2h, a point more than h behind a facet is not in contact, ties between
+// equally distant facets to the lower index) do not depend on which facets a rank holds,
+// so any partition finds the same facets.
 #pragma once
 #include <string>
 #include <unordered_map>
@@ -37,9 +42,11 @@ class MasterSurface {
   // Mesh nodes of the group's facets (sorted, unique).
   const std::vector<GId>& nodes() const { return nodes_; }
 
-  // Rebuilds the bins from the current master positions (3 per master node).
-  void build(const std::vector<double>& x);
+  // Rebuilds the bins from the current master positions (3 per master node); with
+  // `present` (per master node), only the facets whose nodes are all present.
+  void build(const std::vector<double>& x, const std::vector<char>* present = nullptr);
   double search_radius() const { return 2.0 * h_; }
+  double size() const { return h_; }  // largest facet extent of the reference mesh
 
   struct Hit {
     int facet = -1;
