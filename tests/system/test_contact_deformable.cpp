@@ -1028,6 +1028,16 @@ TEST(MortarContact, TwoBarsAndS3ConserveEnergyAndMomentum) {
               worst / scale, dL / std::abs(r.L0()));
   EXPECT_LT(worst, 1e-9 * scale);
   EXPECT_GT(scale, 0.5);
+  // Frictionless oblique impact: angular momentum, first order in dt as for node-to-segment.
+  for (const int steps : {160, 320}) {
+    cfg = oblique_bars_deck(0.0, steps);
+    cfg.contact[0].discretization = "mortar";
+    r = run_bars(cfg);
+    double dl = 0.0;
+    for (std::size_t i = 0; i < r.steps.size(); ++i) dl = std::max(dl, std::abs(r.L(i) - r.L0()));
+    std::printf("mortar oblique bars, frictionless, %d steps: max |L - L0| / |L0| %.3e\n", steps, dl / std::abs(r.L0()));
+    EXPECT_LT(dl, 2e-3 * std::abs(r.L0()));
+  }
 
   const S3 s0 = run_s3(0.0, "s3_mu0_mortar", "mortar");
   const auto& E = s0.e["total"];
