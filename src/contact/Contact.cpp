@@ -703,7 +703,7 @@ void Contact::send_reactions(la::Vector& r) {
         const Slave& nd = p.nodes[i];
         if (nd.state < contact::Stick) continue;
         if (p.mortar) {
-          const MortarNode& mo = p.mortar_out[i];
+          const contact::MortarRows& mo = p.mortar_out[i];
           for (std::size_t k = 0; k < mo.masters.size(); ++k)
             for (int c = 0; c < dim_; ++c) {
               const auto kk = static_cast<std::size_t>(mo.masters[k] * dim_ + c);
@@ -873,7 +873,7 @@ std::array<long, 2> Contact::pattern_signature() const {
       if (nd.state < contact::Stick) continue;
       auto h = static_cast<unsigned long>(nd.gid) * 2654435761ul + static_cast<unsigned long>(nd.facet) * 40503ul + 12345ul;
       if (p.mortar) {
-        const MortarNode& mo = p.mortar_out[static_cast<std::size_t>(&nd - p.nodes.data())];
+        const contact::MortarRows& mo = p.mortar_out[static_cast<std::size_t>(&nd - p.nodes.data())];
         for (int v : mo.vars) h += (static_cast<unsigned long>(v) + 1ul) * 40503ul;
       }
       loc[0] += 1;
@@ -1086,7 +1086,7 @@ Contact::NodalFields Contact::master_fields() const {
     for (const Slave& nd : p.nodes) {
       if (nd.state < contact::Stick || nd.facet < 0) continue;
       if (p.mortar) {
-        const MortarNode& mo = p.mortar_out[static_cast<std::size_t>(&nd - p.nodes.data())];
+        const contact::MortarRows& mo = p.mortar_out[static_cast<std::size_t>(&nd - p.nodes.data())];
         for (std::size_t k = 0; k < mo.masters.size(); ++k) {
           auto& f = force[mo.masters[k]];
           for (int c = 0; c < 3; ++c) f[static_cast<std::size_t>(c)] -= mo.w[k] * nd.f[c];

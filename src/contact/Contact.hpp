@@ -9,6 +9,7 @@
 //                              Coulomb stick/slip) as a function of its local unknowns;
 //   contact/MasterSurface.*    master facets of a boundary group and their search bins;
 //   contact/Mortar.hpp         dual mortar integrals of a slave facet against a master facet;
+//   contact/MortarNode.hpp     a mortar slave node: its stencil, nodal normal, weights, law;
 //   contact/Contact.*          pairs, slave nodes, the active set, and the enforcement
 //                              (ContactMortar.cpp: the mortar discretization's nodes).
 //
@@ -29,6 +30,7 @@
 #include <vector>
 
 #include "assembly/Assembler.hpp"
+#include "contact/MortarNode.hpp"
 #include "contact/NodeLaw.hpp"
 #include "deck/Config.hpp"
 #include "mesh/Mesh.hpp"
@@ -152,19 +154,6 @@ class Contact {
     double gap = 0.0, normal[3] = {0, 0, 0}, rel[3] = {0, 0, 0};
   };
 
-  // A mortar slave node's conditions at the last evaluation (ContactMortar.cpp). Its local
-  // unknowns: the positions of the nodes `vars` (dim each; surface positions, vars[0] the
-  // slave node itself), then its bulk residual (dim).
-  struct MortarNode {
-    std::vector<int> vars;      // surface positions (master_nodes_ order)
-    std::vector<int> masters;   // surface positions of the master nodes that receive the reaction
-    std::vector<double> w;      // their weights w_pk = M_pk / S_p
-    int nvar = 0;
-    double res[3] = {0, 0, 0};
-    std::vector<double> dres;   // dim x nvar
-    std::vector<double> add;    // masters x dim: w_pk r_p
-    std::vector<double> dadd;   // masters x dim x nvar
-  };
 
  private:
   struct Pair {
@@ -175,7 +164,7 @@ class Contact {
     bool mortar = false;                         // cfg.discretization == "mortar"
     std::unique_ptr<MasterSurface> slave_faces;  // mortar: the slave group's oriented facets (surface positions)
     std::vector<std::vector<int>> node_faces;    // mortar: per slave node (nodes order), its slave facets
-    std::vector<MortarNode> mortar_out;          // mortar: per slave node, the last evaluation
+    std::vector<contact::MortarRows> mortar_out; // mortar: per slave node, the last evaluation
     std::vector<Slave> nodes;
     std::vector<contact::NodeOutput> out;   // per slave node, last apply()
     long excluded = 0;                      // slave nodes with every component prescribed (left out), global
@@ -206,7 +195,7 @@ class Contact {
   void update_changed();
   std::vector<double> slave_pressures(const Pair& p) const;
   // Mortar (ContactMortar.cpp).
-  struct FaceCoupling;
+  using FaceCoupling = contact::FaceCoupling;
   void setup_mortar(Pair& p);
   std::vector<std::vector<FaceCoupling>> couple_faces(const Pair& p, const std::vector<char>& needed) const;
   // Slave node i's mortar geometry at the current surface positions: gap d (the search

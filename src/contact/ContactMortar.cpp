@@ -15,19 +15,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <map>
 
 #include "contact/Contact.hpp"
 #include "contact/MasterSurface.hpp"
 #include "contact/Mortar.hpp"
+#include "contact/MortarNode.hpp"
 
 namespace stentor {
-
-struct Contact::FaceCoupling {
-  int master = -1;                          // master facet
-  double M[4][4] = {};                      // int Phi_a N_b (slave corner a, master node b)
-  double dM[4][4][mortar::kPairVars] = {};  // d/d(slave facet positions, 3 per node; then the master facet's)
-};
 
 namespace {
 
@@ -60,7 +56,7 @@ void Contact::setup_mortar(Pair& p) {
     for (int a = 0; a < sf[e].nn; ++a) faces_of[sf[e].node[a]].push_back(static_cast<int>(e));
   p.node_faces.assign(p.nodes.size(), {});
   for (std::size_t i = 0; i < p.nodes.size(); ++i) p.node_faces[i] = faces_of[master_pos_[static_cast<std::size_t>(p.nodes[i].gid)]];
-  p.mortar_out.assign(p.nodes.size(), MortarNode{});
+  p.mortar_out.assign(p.nodes.size(), contact::MortarRows{});
 }
 
 // The integrals of every needed slave facet against the master facets near it: those with
@@ -123,135 +119,129 @@ std::vector<std::vector<Contact::FaceCoupling>> Contact::couple_faces(const Pair
   return out;
 }
 
-int Contact::mortar_node(Pair& p, std::size_t i, const std::vector<std::vector<FaceCoupling>>& cpl, const contact::LawParams* law,
-                         double* dout, double* nout, double* relout) {
-  const int dim = dim_;
-  const Slave& nd = p.nodes[i];
-  const int j = master_pos_[static_cast<std::size_t>(nd.gid)];
-  const auto& sf = p.slave_faces->facets();
-  const auto& mf = p.master->facets();
-  const auto pos3 = [](int pos, int c) { return 3 * static_cast<std::size_t>(pos) + static_cast<std::size_t>(c); };
-  // Local unknowns: the node, its facets' nodes, the master nodes coupled to them.
-  std::vector<int> vars{j};
-  const auto var = [&](int pos) {
-    const auto it = std::find(vars.begin(), vars.end(), pos);
-    if (it != vars.end()) return static_cast<int>(it - vars.begin());
-    vars.push_back(pos);
-    return static_cast<int>(vars.size()) - 1;
-  };
-  const auto& faces = p.node_faces[i];
+namespace contact {
+
+std::size_t Stencil::var(int pos) {
+  const auto it = std::find(vars.begin(), vars.end(), pos);
+  if (it != vars.end()) return static_cast<std::size_t>(it - vars.begin());
+  vars.push_back(pos);
+  return vars.size() - 1;
+}
+
+std::size_t Stencil::slot(int pos) {
+  const auto it = std::find(masters.begin(), masters.end(), pos);
+  if (it != masters.end()) return static_cast<std::size_t>(it - masters.begin());
+  masters.push_back(pos);
+  M.emplace_back(nv());
+  return masters.size() - 1;
+}
+
+Stencil gather_stencil(int dim, int j, const std::vector<int>& faces, const Facets& sf, const Facets& mf,
+                       const std::vector<std::vector<FaceCoupling>>& cpl) {
+  Stencil st;
+  st.dim = dim;
+  st.vars = {j};
   for (int e : faces)
-    for (int a = 0; a < sf[static_cast<std::size_t>(e)].nn; ++a) var(sf[static_cast<std::size_t>(e)].node[a]);
+    for (int a = 0; a < sf[static_cast<std::size_t>(e)].nn; ++a) st.var(sf[static_cast<std::size_t>(e)].node[a]);
   for (int e : faces)
     for (const auto& c : cpl[static_cast<std::size_t>(e)])
-      for (int b = 0; b < mf[static_cast<std::size_t>(c.master)].nn; ++b) var(mf[static_cast<std::size_t>(c.master)].node[b]);
-  const int nv = dim * static_cast<int>(vars.size());
-  const auto snv = static_cast<std::size_t>(nv);
-  // M_pk per master node k, with d/dy.
-  std::vector<int> masters;
-  std::vector<double> Mk, dMk;
-  const auto slot = [&](int pos) {
-    const auto it = std::find(masters.begin(), masters.end(), pos);
-    if (it != masters.end()) return static_cast<std::size_t>(it - masters.begin());
-    masters.push_back(pos);
-    Mk.push_back(0.0);
-    dMk.resize(dMk.size() + snv, 0.0);
-    return masters.size() - 1;
-  };
+      for (int b = 0; b < mf[static_cast<std::size_t>(c.master)].nn; ++b) st.var(mf[static_cast<std::size_t>(c.master)].node[b]);
+  const auto D = static_cast<std::size_t>(dim);
   for (int e : faces) {
     const auto& f = sf[static_cast<std::size_t>(e)];
     const int aj = corner_of(f, j);
     for (const auto& c : cpl[static_cast<std::size_t>(e)]) {
       const auto& g = mf[static_cast<std::size_t>(c.master)];
       for (int b = 0; b < g.nn; ++b) {
-        const std::size_t k = slot(g.node[b]);
-        Mk[k] += c.M[aj][b];
-        double* dk = &dMk[k * snv];
+        Grad& Mk = st.M[st.slot(g.node[b])];
+        Mk.v += c.M[aj][b];
         for (int cc = 0; cc < dim; ++cc) {
-          for (int a = 0; a < f.nn; ++a) dk[var(f.node[a]) * dim + cc] += c.dM[aj][b][3 * a + cc];
-          for (int b2 = 0; b2 < g.nn; ++b2) dk[var(g.node[b2]) * dim + cc] += c.dM[aj][b][12 + 3 * b2 + cc];
+          const auto C = static_cast<std::size_t>(cc);
+          for (int a = 0; a < f.nn; ++a) Mk.d[st.var(f.node[a]) * D + C] += c.dM[aj][b][3 * a + cc];
+          for (int b2 = 0; b2 < g.nn; ++b2) Mk.d[st.var(g.node[b2]) * D + C] += c.dM[aj][b][12 + 3 * b2 + cc];
         }
       }
     }
   }
-  double S = 0.0;
-  std::vector<double> dS(snv, 0.0);
-  for (std::size_t k = 0; k < masters.size(); ++k) {
-    S += Mk[k];
-    for (std::size_t v = 0; v < snv; ++v) dS[v] += dMk[k * snv + v];
-  }
-  double xp[3], xpn[3];
-  for (int c = 0; c < 3; ++c) xp[c] = master_x_[pos3(j, c)], xpn[c] = master_xn_[pos3(j, c)];
-  if (masters.empty() || S <= kMinCover * nd.area || S <= 0.0) {
-    *dout = p.master->search_radius();
-    for (int c = 0; c < 3; ++c) nout[c] = 0.0, relout[c] = xp[c] - xpn[c];
-    return contact::Free;
-  }
-  // Nodal normal n = -v / |v|, v = sum of the facets' outward normals at the node.
-  double v[3] = {0, 0, 0};
-  std::vector<double> dv(3 * snv, 0.0);
+  return st;
+}
+
+std::array<Grad, 3> nodal_normal(Stencil& st, int j, const std::vector<int>& faces, const Facets& sf, const std::vector<double>& x) {
+  const std::size_t nv = st.nv();
+  const int dim = st.dim;
+  std::array<Grad, 3> v{Grad(nv), Grad(nv), Grad(nv)};
   for (int e : faces) {
     const auto& f = sf[static_cast<std::size_t>(e)];
     using ND = Dual<3 * mortar::kMaxFacetNodes>;
     ND xs[mortar::kMaxFacetNodes][3], ne[3];
     for (int a = 0; a < f.nn; ++a)
-      for (int c = 0; c < 3; ++c) xs[a][c] = c < dim ? ND::seed(master_x_[pos3(f.node[a], c)], 3 * a + c) : ND(master_x_[pos3(f.node[a], c)]);
-    mortar::corner_normal(dim, face_of(f), xs, corner_of(f, j), ne);
-    for (int c = 0; c < 3; ++c) {
-      v[c] -= ne[c].v;
-      for (int a = 0; a < f.nn; ++a)
-        for (int cc = 0; cc < dim; ++cc) dv[static_cast<std::size_t>(c) * snv + static_cast<std::size_t>(var(f.node[a]) * dim + cc)] -= ne[c].d[3 * a + cc];
-    }
-  }
-  const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-  double n[3];
-  std::vector<double> dn(3 * snv, 0.0);
-  for (int c = 0; c < 3; ++c) n[c] = v[c] / len;
-  for (int c = 0; c < 3; ++c)
-    for (int e = 0; e < 3; ++e) {
-      const double P = ((c == e) ? 1.0 : 0.0) - n[c] * n[e];
-      for (std::size_t l = 0; l < snv; ++l) dn[static_cast<std::size_t>(c) * snv + l] += P * dv[static_cast<std::size_t>(e) * snv + l] / len;
-    }
-  // Weights, the mortar master point and the master motion over the step.
-  const std::size_t nk = masters.size();
-  std::vector<double> w(nk), dw(nk * snv);
-  double xb[3] = {0, 0, 0}, mb[3] = {0, 0, 0};
-  std::vector<double> dxb(3 * snv, 0.0), dmb(3 * snv, 0.0);
-  for (std::size_t k = 0; k < nk; ++k) {
-    w[k] = Mk[k] / S;
-    for (std::size_t l = 0; l < snv; ++l) dw[k * snv + l] = (dMk[k * snv + l] - w[k] * dS[l]) / S;
-    const int vk = var(masters[k]);
-    for (int c = 0; c < dim; ++c) {
-      const double x = master_x_[pos3(masters[k], c)], m = x - master_xn_[pos3(masters[k], c)];
-      xb[c] += w[k] * x;
-      mb[c] += w[k] * m;
-      const auto row = static_cast<std::size_t>(c) * snv;
-      for (std::size_t l = 0; l < snv; ++l) {
-        dxb[row + l] += x * dw[k * snv + l];
-        dmb[row + l] += m * dw[k * snv + l];
+      for (int c = 0; c < 3; ++c) {
+        const double xv = x[3 * static_cast<std::size_t>(f.node[a]) + static_cast<std::size_t>(c)];
+        xs[a][c] = c < dim ? ND::seed(xv, 3 * a + c) : ND(xv);
       }
-      dxb[row + static_cast<std::size_t>(vk * dim + c)] += w[k];
-      dmb[row + static_cast<std::size_t>(vk * dim + c)] += w[k];
+    mortar::corner_normal(dim, face_of(f), xs, corner_of(f, j), ne);
+    for (std::size_t c = 0; c < 3; ++c) {
+      v[c].v -= ne[c].v;
+      for (int a = 0; a < f.nn; ++a)
+        for (int cc = 0; cc < dim; ++cc)
+          v[c].d[st.var(f.node[a]) * static_cast<std::size_t>(dim) + static_cast<std::size_t>(cc)] -= ne[c].d[3 * a + cc];
     }
   }
-  double d = 0.0;
-  for (int c = 0; c < 3; ++c) {
-    d += n[c] * (xp[c] - xb[c]);
-    nout[c] = n[c];
-    relout[c] = xp[c] - xpn[c] - mb[c];
-  }
-  *dout = d;
-  if (!law) return contact::Free;
+  const double len = std::sqrt(v[0].v * v[0].v + v[1].v * v[1].v + v[2].v * v[2].v);
+  std::array<Grad, 3> n{Grad(nv), Grad(nv), Grad(nv)};
+  for (std::size_t c = 0; c < 3; ++c) n[c].v = v[c].v / len;
+  for (std::size_t c = 0; c < 3; ++c)
+    for (std::size_t e = 0; e < 3; ++e) {
+      const double P = ((c == e) ? 1.0 : 0.0) - n[c].v * n[e].v;
+      for (std::size_t l = 0; l < nv; ++l) n[c].d[l] += P * v[e].d[l] / len;
+    }
+  return n;
+}
 
-  // The law in z = (x_p, n, xbar, master motion, r_p), then dz/dy.
+MortarPoint mortar_point(Stencil& st, const std::vector<double>& x, const std::vector<double>& xn) {
+  const std::size_t nv = st.nv(), nk = st.masters.size();
+  const auto D = static_cast<std::size_t>(st.dim);
+  MortarPoint mp;
+  mp.S = Grad(nv);
+  for (const Grad& Mk : st.M) {
+    mp.S.v += Mk.v;
+    for (std::size_t l = 0; l < nv; ++l) mp.S.d[l] += Mk.d[l];
+  }
+  mp.w.assign(nk, Grad(nv));
+  mp.xbar = {Grad(nv), Grad(nv), Grad(nv)};
+  mp.mbar = {Grad(nv), Grad(nv), Grad(nv)};
+  if (nk == 0 || mp.S.v <= 0.0) return mp;
+  for (std::size_t k = 0; k < nk; ++k) {
+    Grad& w = mp.w[k];
+    w.v = st.M[k].v / mp.S.v;
+    for (std::size_t l = 0; l < nv; ++l) w.d[l] = (st.M[k].d[l] - w.v * mp.S.d[l]) / mp.S.v;
+    const std::size_t vk = st.var(st.masters[k]);
+    for (std::size_t c = 0; c < D; ++c) {
+      const std::size_t q = 3 * static_cast<std::size_t>(st.masters[k]) + c;
+      const double xk = x[q], mk = x[q] - xn[q];
+      mp.xbar[c].v += w.v * xk;
+      mp.mbar[c].v += w.v * mk;
+      for (std::size_t l = 0; l < nv; ++l) mp.xbar[c].d[l] += xk * w.d[l], mp.mbar[c].d[l] += mk * w.d[l];
+      mp.xbar[c].d[vk * D + c] += w.v;
+      mp.mbar[c].d[vk * D + c] += w.v;
+    }
+  }
+  return mp;
+}
+
+int mortar_law(int dim, const bool fixed[3], const double r[3], const LawParams& law, const double xp[3], const double xpn[3],
+               const std::array<Grad, 3>& n, const MortarPoint& mp, std::size_t nv, MortarRows& out) {
   using ZD = Dual<15>;
   ZD xz[3], nz[3], bz[3], mz[3], rz[3];
+  double nv3[3];
   for (int c = 0; c < 3; ++c) {
+    const auto C = static_cast<std::size_t>(c);
+    nv3[c] = n[C].v;
     xz[c] = c < dim ? ZD::seed(xp[c], c) : ZD(xp[c]);
-    nz[c] = ZD::seed(n[c], 3 + c);
-    bz[c] = c < dim ? ZD::seed(xb[c], 6 + c) : ZD(xb[c]);
-    mz[c] = c < dim ? ZD::seed(mb[c], 9 + c) : ZD(mb[c]);
-    rz[c] = c < dim && !nd.fixed[c] ? ZD::seed(nd.f[c], 12 + c) : ZD(0.0);
+    nz[c] = ZD::seed(n[C].v, 3 + c);
+    bz[c] = c < dim ? ZD::seed(mp.xbar[C].v, 6 + c) : ZD(mp.xbar[C].v);
+    mz[c] = c < dim ? ZD::seed(mp.mbar[C].v, 9 + c) : ZD(mp.mbar[C].v);
+    rz[c] = c < dim && !fixed[c] ? ZD::seed(r[c], 12 + c) : ZD(0.0);
   }
   ZD relz[3], gap(0.0), nrel(0.0);
   for (int c = 0; c < 3; ++c) {
@@ -260,51 +250,78 @@ int Contact::mortar_node(Pair& p, std::size_t i, const std::vector<std::vector<F
     nrel += nz[c] * relz[c];
   }
   ZD res[3];
-  const ZD g = law->persistence ? nrel : gap;
-  const int state = contact::law(dim, nd.fixed, *law, g, nz, relz, static_cast<const ZD*>(nullptr), rz, res, n);
-  if (state == contact::Inactive) return state;
-  MortarNode& mo = p.mortar_out[i];
-  mo.vars = vars;
-  mo.masters = masters;
-  mo.w = w;
-  mo.nvar = nv + dim;
-  const auto nvar = static_cast<std::size_t>(mo.nvar);
-  mo.dres.assign(static_cast<std::size_t>(dim) * nvar, 0.0);
-  // dz/dy as rows of length nvar.
+  const int state = contact::law(dim, fixed, law, law.persistence ? nrel : gap, nz, relz, static_cast<const ZD*>(nullptr), rz, res, nv3);
+  if (state == Inactive) return state;
+  out.nvar = static_cast<int>(nv) + dim;
+  const auto nvar = static_cast<std::size_t>(out.nvar);
+  // dz/dy, rows of length nvar.
   std::vector<double> dz(15 * nvar, 0.0);
-  for (int c = 0; c < 3; ++c) {
-    const auto C = static_cast<std::size_t>(c);
-    if (c < dim) {
-      dz[C * nvar + C] = 1.0;  // x_p: vars[0]
-      dz[(12 + C) * nvar + snv + C] = nd.fixed[c] ? 0.0 : 1.0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    if (c < static_cast<std::size_t>(dim)) {
+      dz[c * nvar + c] = 1.0;  // x_p: vars[0]
+      dz[(12 + c) * nvar + nv + c] = fixed[c] ? 0.0 : 1.0;
     }
-    for (std::size_t l = 0; l < snv; ++l) {
-      dz[(3 + C) * nvar + l] = dn[C * snv + l];
-      dz[(6 + C) * nvar + l] = dxb[C * snv + l];
-      dz[(9 + C) * nvar + l] = dmb[C * snv + l];
+    for (std::size_t l = 0; l < nv; ++l) {
+      dz[(3 + c) * nvar + l] = n[c].d[l];
+      dz[(6 + c) * nvar + l] = mp.xbar[c].d[l];
+      dz[(9 + c) * nvar + l] = mp.mbar[c].d[l];
     }
   }
+  out.dres.assign(static_cast<std::size_t>(dim) * nvar, 0.0);
   for (int k = 0; k < dim; ++k) {
-    mo.res[k] = res[k].v;
-    if (nd.fixed[k]) continue;
-    for (int z = 0; z < 15; ++z) {
+    out.res[k] = res[k].v;
+    if (fixed[k]) continue;
+    for (std::size_t z = 0; z < 15; ++z) {
       const double a = res[k].d[z];
       if (a == 0.0) continue;
-      for (std::size_t l = 0; l < nvar; ++l) mo.dres[static_cast<std::size_t>(k) * nvar + l] += a * dz[static_cast<std::size_t>(z) * nvar + l];
+      for (std::size_t l = 0; l < nvar; ++l) out.dres[static_cast<std::size_t>(k) * nvar + l] += a * dz[z * nvar + l];
     }
   }
   // Master rows: w_k r_p.
-  mo.add.assign(nk * static_cast<std::size_t>(dim), 0.0);
-  mo.dadd.assign(nk * static_cast<std::size_t>(dim) * nvar, 0.0);
+  const std::size_t nk = mp.w.size(), D = static_cast<std::size_t>(dim);
+  out.add.assign(nk * D, 0.0);
+  out.dadd.assign(nk * D * nvar, 0.0);
   for (std::size_t k = 0; k < nk; ++k)
-    for (int c = 0; c < dim; ++c) {
-      const std::size_t row = k * static_cast<std::size_t>(dim) + static_cast<std::size_t>(c);
-      const double rc = nd.fixed[c] ? 0.0 : nd.f[c];
-      mo.add[row] = w[k] * rc;
-      for (std::size_t l = 0; l < snv; ++l) mo.dadd[row * nvar + l] = rc * dw[k * snv + l];
-      if (!nd.fixed[c]) mo.dadd[row * nvar + snv + static_cast<std::size_t>(c)] = w[k];
+    for (std::size_t c = 0; c < D; ++c) {
+      const std::size_t row = k * D + c;
+      const double rc = fixed[c] ? 0.0 : r[c];
+      out.add[row] = mp.w[k].v * rc;
+      for (std::size_t l = 0; l < nv; ++l) out.dadd[row * nvar + l] = rc * mp.w[k].d[l];
+      if (!fixed[c]) out.dadd[row * nvar + nv + c] = mp.w[k].v;
     }
   return state;
+}
+
+}  // namespace contact
+
+int Contact::mortar_node(Pair& p, std::size_t i, const std::vector<std::vector<FaceCoupling>>& cpl, const contact::LawParams* law,
+                         double* dout, double* nout, double* relout) {
+  const Slave& nd = p.nodes[i];
+  const int j = master_pos_[static_cast<std::size_t>(nd.gid)];
+  const auto& faces = p.node_faces[i];
+  contact::Stencil st = contact::gather_stencil(dim_, j, faces, p.slave_faces->facets(), p.master->facets(), cpl);
+  const contact::MortarPoint mp = contact::mortar_point(st, master_x_, master_xn_);
+  double xp[3], xpn[3];
+  for (std::size_t c = 0; c < 3; ++c) xp[c] = master_x_[3 * static_cast<std::size_t>(j) + c], xpn[c] = master_xn_[3 * static_cast<std::size_t>(j) + c];
+  if (st.masters.empty() || mp.S.v <= kMinCover * nd.area || mp.S.v <= 0.0) {
+    *dout = p.master->search_radius();
+    for (int c = 0; c < 3; ++c) nout[c] = 0.0, relout[c] = xp[c] - xpn[c];
+    return contact::Free;
+  }
+  const std::array<contact::Grad, 3> n = contact::nodal_normal(st, j, faces, p.slave_faces->facets(), master_x_);
+  *dout = 0.0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    *dout += n[c].v * (xp[c] - mp.xbar[c].v);
+    nout[c] = n[c].v;
+    relout[c] = xp[c] - xpn[c] - mp.mbar[c].v;
+  }
+  if (!law) return contact::Free;
+  contact::MortarRows& mo = p.mortar_out[i];
+  mo.vars = st.vars;
+  mo.masters = st.masters;
+  mo.w.resize(st.masters.size());
+  for (std::size_t k = 0; k < mo.w.size(); ++k) mo.w[k] = mp.w[k].v;
+  return contact::mortar_law(dim_, nd.fixed, nd.f, *law, xp, xpn, n, mp, st.nv(), mo);
 }
 
 void Contact::mortar_rows(const Pair& p, std::size_t i, std::vector<Row>& q, std::vector<Row>& g, std::map<la::GO, Row>& q_far,
@@ -315,7 +332,7 @@ void Contact::mortar_rows(const Pair& p, std::size_t i, std::vector<Row>& q, std
     return l >= 0 ? loc[static_cast<std::size_t>(l)] : far[gid];
   };
   const Slave& nd = p.nodes[i];
-  const MortarNode& mo = p.mortar_out[i];
+  const contact::MortarRows& mo = p.mortar_out[i];
   const auto nvar = static_cast<std::size_t>(mo.nvar);
   const int nv = mo.nvar - dim_;
   auto ydof = [&](int l) -> la::GO {
