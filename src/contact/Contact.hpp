@@ -11,7 +11,8 @@
 //   contact/Mortar.hpp         dual mortar integrals of a slave facet against a master facet;
 //   contact/MortarNode.hpp     a mortar slave node: its stencil, nodal normal, weights, law;
 //   contact/Contact.*          pairs, slave nodes, the active set, and the enforcement
-//                              (ContactMortar.cpp: the mortar discretization's nodes).
+//                              (ContactMortar.cpp: the mortar discretization's nodes;
+//                              ContactGhosts.cpp: which surface nodes a rank imports).
 //
 // Multipliers are condensed: the contact force on a slave node is its bulk residual
 // F = r_p (talk's signs: lambda_nu = -n . r_p <= 0 in compression). An active node's
