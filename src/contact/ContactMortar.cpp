@@ -45,7 +45,7 @@ void Contact::setup_mortar(Pair& p) {
     for (const auto& f : s.facets())
       if (!mortar::supported(f.type))
         throw InputError(where + "group '" + group + "' has " + cell_name(f.type) +
-                         " facets; mortar supports line2, tri3 and quad4 facets (use node-to-segment for quadratic ones)");
+                         " facets; mortar supports line2, line3, tri3 and quad4 facets (use node-to-segment for tri6)");
   };
   check(*p.master, p.cfg.master);
   check(*p.slave_faces, p.cfg.slave);

@@ -20,8 +20,11 @@
 // polygon (Sutherland-Hodgman), the clip polygon split into triangles around its centroid
 // (Gauss points on each). A point of the plane maps back to a facet's parameters by
 // inverting the facet's projected (planar) map, which is exact for the projection along
-// the plane's normal. Facets: line2, tri3, quad4 (linear; quad4's dual functions are
-// computed from the facet's projected geometry, A = D M^-1).
+// the plane's normal. Facets: line2, line3, tri3, quad4 (the dual functions of quad4 and
+// line3 are computed from the facet's geometry, A = D M^-1; tri6 would need a modified
+// basis, its corner integrals int N_a vanish). A curved (line3) pair: the master's end
+// nodes projected on the slave bound the overlap, and a Gauss point maps to the master
+// along the slave's normal.
 //
 // Branches (which side of an edge a vertex lies on, min/max of the overlap bounds) use
 // the values only: M is piecewise smooth in the positions, and its derivatives are exact
@@ -29,6 +32,7 @@
 #pragma once
 #include <Kokkos_Macros.hpp>
 #include <cmath>
+#include <type_traits>
 
 #include "contact/Dual.hpp"
 #include "contact/FacetGeometry.hpp"
@@ -41,7 +45,9 @@ constexpr int kPairVars = 3 * 2 * kMaxFacetNodes;  // positions of one slave and
 using PD = Dual<kPairVars>;
 constexpr int kMaxPoly = 16;                       // clip polygon vertices (at most 4 + 4)
 
-KOKKOS_INLINE_FUNCTION bool supported(CellType t) { return t == CellType::Line2 || t == CellType::Tri3 || t == CellType::Quad4; }
+KOKKOS_INLINE_FUNCTION bool supported(CellType t) {
+  return t == CellType::Line2 || t == CellType::Line3 || t == CellType::Tri3 || t == CellType::Quad4;
+}
 
 // Generic direction that breaks ties of the segmentation: a master vertex exactly on a slave
 // facet's edge (matching meshes) counts as inside or outside as it would after an
@@ -197,6 +203,163 @@ KOKKOS_INLINE_FUNCTION bool pair_integrals_2d(const Face& s, const T (*xs)[3], c
   return true;
 }
 
+// A 2D facet (line2, line3) at xi: the point p and the tangent a = dp/dxi.
+template <class T, class S>
+KOKKOS_INLINE_FUNCTION void curve(CellType t, int nn, const T (*x)[3], const S& xi, T p[2], T a[2]) {
+  S N[facet::kMaxNodes], dN[facet::kMaxNodes][2];
+  const S z[2] = {xi, S(0.0)};
+  facet::shape(t, z, N, dN);
+  p[0] = p[1] = a[0] = a[1] = T(0.0);
+  for (int b = 0; b < nn; ++b)
+    for (int c = 0; c < 2; ++c) {
+      p[c] += N[b] * x[b][c];
+      a[c] += dN[b][0] * x[b][c];
+    }
+}
+
+// The root xi of g(xi) = 0 near xi0 (g(T or double, xi) and its derivative in xi, gd):
+// Newton in double, then one step in T, which gives the exact first derivatives.
+template <class T, class G, class GD>
+KOKKOS_INLINE_FUNCTION T root_1d(double xi0, const G& g, const GD& gd) {
+  double x = xi0;
+  for (int it = 0; it < 30; ++it) {
+    const double dx = value(g(x)) / gd(x);
+    x -= dx;
+    if (std::abs(dx) < 1e-15 || std::abs(x) > 10.0) break;
+  }
+  return T(x) - g(x) / gd(x);
+}
+
+// Dual coefficients of a line3 slave facet from its geometry: A = D M^-1 with M_ac = int N_a
+// N_c |a| dxi and D_a = int N_a |a| dxi (D > 0 for line3, unlike tri6's corners).
+template <class T>
+KOKKOS_INLINE_FUNCTION void dual_coefficients_line3(const T (*x)[3], T A[kMaxFacetNodes][kMaxFacetNodes]) {
+  using std::sqrt;
+  double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
+  const int nq = quadrature(CellType::Line2, 5, qp, qw);
+  T M[3][6], D[3];
+  for (int a = 0; a < 3; ++a) {
+    D[a] = T(0.0);
+    for (int c = 0; c < 6; ++c) M[a][c] = T(c - 3 == a ? 1.0 : 0.0);
+  }
+  for (int q = 0; q < nq; ++q) {
+    T p[2], t[2];
+    curve(CellType::Line3, 3, x, qp[q][0], p, t);
+    const T J = sqrt(t[0] * t[0] + t[1] * t[1]);
+    double N[facet::kMaxNodes], dN[facet::kMaxNodes][2];
+    const double z[2] = {qp[q][0], 0.0};
+    facet::shape(CellType::Line3, z, N, dN);
+    for (int a = 0; a < 3; ++a) {
+      D[a] += qw[q] * J * N[a];
+      for (int c = 0; c < 3; ++c) M[a][c] += qw[q] * J * N[a] * N[c];
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    const T piv = M[k][k];
+    for (int c = 0; c < 6; ++c) M[k][c] = M[k][c] / piv;
+    for (int r = 0; r < 3; ++r) {
+      if (r == k) continue;
+      const T f = M[r][k];
+      for (int c = 0; c < 6; ++c) M[r][c] = M[r][c] - f * M[k][c];
+    }
+  }
+  for (int a = 0; a < 3; ++a)
+    for (int c = 0; c < 3; ++c) A[a][c] = D[a] * M[a][3 + c];
+}
+
+// 2D with a curved (line3) facet on either side: the master's end nodes projected on the
+// slave (closest point) bound the overlap; a Gauss point x^s(xi) maps to the master point
+// on the slave's normal there, x^m(eta) - x^s(xi) parallel to n^s(xi) (so the overlap's ends
+// map to the master's end nodes). Ties as in pair_integrals_2d.
+template <class T>
+KOKKOS_INLINE_FUNCTION bool pair_integrals_2d_curved(const Face& s, const T (*xs)[3], const Face& m, const T (*xm)[3],
+                                                     T M[kMaxFacetNodes][kMaxFacetNodes]) {
+  using std::sqrt;
+  {
+    T p[2], as[2], am[2];
+    curve(s.type, s.nn, xs, 0.0, p, as);
+    curve(m.type, m.nn, xm, 0.0, p, am);
+    if (s.orient * m.orient * value(as[1] * am[1] + as[0] * am[0]) >= 0.0) return false;
+  }
+  // Master end nodes (0, 1) on the slave: a(xi) . (x_m - p(xi)) = 0.
+  T xi[2];
+  for (int b = 0; b < 2; ++b) {
+    const auto g = [&](const auto& z) {
+      using Z = std::decay_t<decltype(z)>;
+      T p[2], a[2];
+      curve(s.type, s.nn, xs, Z(z), p, a);
+      return a[0] * (xm[b][0] - p[0]) + a[1] * (xm[b][1] - p[1]);
+    };
+    const auto gd = [&](double z) {  // a' . (x_m - p) - a . a, a' = sum N_b'' x_b (line3: 1, 1, -2)
+      double p[2], a[2], xv[kMaxFacetNodes][3];
+      for (int c = 0; c < s.nn; ++c)
+        for (int k = 0; k < 3; ++k) xv[c][k] = value(xs[c][k]);
+      curve(s.type, s.nn, xv, z, p, a);
+      double a2[2] = {0.0, 0.0};
+      if (s.type == CellType::Line3)
+        for (int k = 0; k < 2; ++k) a2[k] = xv[0][k] + xv[1][k] - 2.0 * xv[2][k];
+      return a2[0] * (value(xm[b][0]) - p[0]) + a2[1] * (value(xm[b][1]) - p[1]) - a[0] * a[0] - a[1] * a[1];
+    };
+    const double chord = value(xs[1][0] - xs[0][0]) * value(xs[1][0] - xs[0][0]) + value(xs[1][1] - xs[0][1]) * value(xs[1][1] - xs[0][1]);
+    const double guess =
+        2.0 * (value(xm[b][0] - xs[0][0]) * value(xs[1][0] - xs[0][0]) + value(xm[b][1] - xs[0][1]) * value(xs[1][1] - xs[0][1])) / chord - 1.0;
+    xi[b] = root_1d<T>(guess, g, gd);
+  }
+  const T lo_xi = value(xi[0]) < value(xi[1]) ? xi[0] : xi[1];
+  const T hi_xi = value(xi[0]) < value(xi[1]) ? xi[1] : xi[0];
+  const double sd = kTieDir[0] * value(xs[1][0] - xs[0][0]) + kTieDir[1] * value(xs[1][1] - xs[0][1]) > 0.0 ? 1.0 : -1.0;
+  const double tol = 1e-12;
+  const bool lo_is_xi = std::abs(value(lo_xi) + 1.0) <= tol ? sd > 0.0 : value(lo_xi) > -1.0;
+  const bool hi_is_xi = std::abs(value(hi_xi) - 1.0) <= tol ? sd < 0.0 : value(hi_xi) < 1.0;
+  const T lo = lo_is_xi ? lo_xi : T(-1.0);
+  const T hi = hi_is_xi ? hi_xi : T(1.0);
+  const double len = value(hi) - value(lo);
+  if (len < -tol) return false;
+  if (len <= tol && sd * (double(hi_is_xi) - double(lo_is_xi)) <= 0.0) return false;
+  T A[kMaxFacetNodes][kMaxFacetNodes];
+  if (s.type == CellType::Line3) {
+    dual_coefficients_line3(xs, A);
+  } else {
+    for (int a = 0; a < 2; ++a)
+      for (int c = 0; c < 2; ++c) A[a][c] = T(a == c ? 2.0 : -1.0);
+  }
+  double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
+  const int nq = quadrature(CellType::Line2, 5, qp, qw);
+  const T half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
+  const double x0 = value(xi[0]), x1 = value(xi[1]);
+  for (int q = 0; q < nq; ++q) {
+    const T z = mid + half * qp[q][0];
+    T p[2], a[2];
+    curve(s.type, s.nn, xs, z, p, a);
+    const T J = sqrt(a[0] * a[0] + a[1] * a[1]);
+    // The master point on the slave normal (parallel to (a_y, -a_x)): cross(x^m - p, n) = 0,
+    // i.e. a . (x^m(eta) - p) = 0.
+    const auto h = [&](const auto& e) {
+      using E = std::decay_t<decltype(e)>;
+      T pm[2], am[2];
+      curve(m.type, m.nn, xm, E(e), pm, am);
+      return a[0] * (pm[0] - p[0]) + a[1] * (pm[1] - p[1]);
+    };
+    const auto hd = [&](double e) {  // a^s . a^m(eta)
+      double pm[2], am[2], xv[kMaxFacetNodes][3];
+      for (int c = 0; c < m.nn; ++c)
+        for (int k = 0; k < 3; ++k) xv[c][k] = value(xm[c][k]);
+      curve(m.type, m.nn, xv, e, pm, am);
+      return value(a[0]) * am[0] + value(a[1]) * am[1];
+    };
+    const T eta = root_1d<T>(-1.0 + 2.0 * (value(z) - x0) / (x1 - x0), h, hd);
+    T Ns[facet::kMaxNodes], Nm[facet::kMaxNodes], dN[facet::kMaxNodes][2], Phi[kMaxFacetNodes];
+    const T zs[2] = {z, T(0.0)}, zm[2] = {eta, T(0.0)};
+    facet::shape(s.type, zs, Ns, dN);
+    facet::shape(m.type, zm, Nm, dN);
+    dual_values(s.nn, A, Ns, Phi);
+    const T w = qw[q] * half * J;
+    for (int a2 = 0; a2 < s.nn; ++a2)
+      for (int b = 0; b < m.nn; ++b) M[a2][b] += w * Phi[a2] * Nm[b];
+  }
+  return true;
+}
+
 // 3D: tri3/quad4 slave facet against a tri3/quad4 master facet, on the slave's auxiliary plane.
 template <class T>
 KOKKOS_INLINE_FUNCTION bool pair_integrals_3d(const Face& s, const T (*xs)[3], const Face& m, const T (*xm)[3], T M[kMaxFacetNodes][kMaxFacetNodes]) {
@@ -305,7 +468,9 @@ KOKKOS_INLINE_FUNCTION bool pair_integrals_3d(const Face& s, const T (*xs)[3], c
 
 template <class T>
 KOKKOS_INLINE_FUNCTION bool pair_integrals(int dim, const Face& s, const T (*xs)[3], const Face& m, const T (*xm)[3], T M[kMaxFacetNodes][kMaxFacetNodes]) {
-  return dim == 2 ? pair_integrals_2d(s, xs, m, xm, M) : pair_integrals_3d(s, xs, m, xm, M);
+  if (dim == 3) return pair_integrals_3d(s, xs, m, xm, M);
+  if (s.type == CellType::Line2 && m.type == CellType::Line2) return pair_integrals_2d(s, xs, m, xm, M);
+  return pair_integrals_2d_curved(s, xs, m, xm, M);
 }
 
 // The outward unit normal of a slave facet at its corner a (line2: -1, +1; tri3, quad4: the corners).
@@ -313,6 +478,7 @@ template <class T>
 KOKKOS_INLINE_FUNCTION void corner_normal(int dim, const Face& s, const T (*xs)[3], int a, T n[3]) {
   double c[2] = {0.0, 0.0};
   if (s.type == CellType::Line2) c[0] = a == 0 ? -1.0 : 1.0;
+  if (s.type == CellType::Line3) c[0] = a == 0 ? -1.0 : (a == 1 ? 1.0 : 0.0);  // gmsh: ends, then the mid-node
   if (s.type == CellType::Tri3) c[0] = a == 1 ? 1.0 : 0.0, c[1] = a == 2 ? 1.0 : 0.0;
   if (s.type == CellType::Quad4) c[0] = (a == 1 || a == 2) ? 1.0 : -1.0, c[1] = a >= 2 ? 1.0 : -1.0;
   const T xi[2] = {T(c[0]), T(c[1])};
