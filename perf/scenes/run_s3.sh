@@ -5,7 +5,8 @@
 #   usage: perf/scenes/run_s3.sh [build-dir]     (default build; needs gnuplot, python3)
 #   env:   S3_RUNS (raw output dir, default <build>/scenes/s3)
 # Variants: frictionless; mu = 0.3; a foundation 1000x stiffer (C1, C2, D x 1000), whose
-# history is compared with S1 on the rigid plane (inputs/s1_ring.xml, same mesh size).
+# history is compared with S1 on the rigid plane (inputs/s1_ring.xml, same mesh size); the
+# frictionless and mu = 0.3 runs again with the dual mortar discretization (s3_mortar_*).
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=${1:-$ROOT/build}
@@ -37,10 +38,15 @@ block = re.sub(r'name="(C1|C2|D)" type="double" value="([^"]*)"',
 s = (s[:i] + block + s[j:]).replace('value="s3_mu0"', 'value="s3_stiff"')
 open(sys.argv[2], "w").write(s)
 PY
+for v in s3_mu0 s3_mu0.3; do
+  m=${v/s3_/s3_mortar_}
+  sed -e "s|<Parameter name=\"master\" type=\"string\" value=\"foundation_top\"/>|&<Parameter name=\"discretization\" type=\"string\" value=\"mortar\"/>|" \
+      -e "/name=\"basename\"/s|value=\"[^\"]*\"|value=\"$m\"|" "$RUNS/$v.xml" > "$RUNS/$m.xml"
+done
 sed -e "s|value=\"ring.geo\"|value=\"$ROOT/inputs/ring.geo\"|" \
     -e "/name=\"basename\"/s|value=\"[^\"]*\"|value=\"s1_rigid\"|" "$ROOT/inputs/s1_ring.xml" > "$RUNS/s1_rigid.xml"
 if [ "${S3_SKIP_RUNS:-0}" != 1 ]; then   # S3_SKIP_RUNS=1: only redo the tables and plots
-  for v in s3_mu0 s3_mu0.3 s3_stiff s1_rigid; do run "$v" "$RUNS/$v.xml"; done
+  for v in s3_mu0 s3_mu0.3 s3_stiff s1_rigid s3_mortar_mu0 s3_mortar_mu0.3; do run "$v" "$RUNS/$v.xml"; done
 fi
 
 python3 - "$RUNS" "$DOCS" <<'PY'
@@ -51,7 +57,7 @@ def read(path):
         rows = list(csv.DictReader(f))
     return {k: [float(x[k]) for x in rows] for k in rows[0]}
 data = {}
-for n in ["s3_mu0", "s3_mu0.3", "s3_stiff", "s1_rigid"]:
+for n in ["s3_mu0", "s3_mu0.3", "s3_stiff", "s1_rigid", "s3_mortar_mu0", "s3_mortar_mu0.3"]:
     d = os.path.join(runs, n)
     data[n] = (read(os.path.join(d, n + "_energy.csv")), read(os.path.join(d, n + "_history.csv")),
                float(open(os.path.join(runs, n + ".time")).read().split()[-1]))
