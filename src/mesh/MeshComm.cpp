@@ -75,6 +75,33 @@ Mesh read_mesh_on_root(const MeshConfig& cfg, MPI_Comm comm, bool check, bool ve
   return m;
 }
 
+std::vector<int> partition_cells_on_root(const Mesh& m, int nparts, MPI_Comm comm, int root) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::vector<int> part;
+  std::vector<char> err;  // first byte: 'I' (InputError) or 'R' (other), then the message
+  if (rank == root) {
+    try {
+      part = partition_cells(m, nparts);
+    } catch (const InputError& e) {
+      const std::string s = std::string("I") + e.what();
+      err.assign(s.begin(), s.end());
+    } catch (const std::exception& e) {
+      const std::string s = std::string("R") + e.what();
+      err.assign(s.begin(), s.end());
+    }
+  }
+  bcast_bytes(err, comm, root);
+  if (!err.empty()) {
+    const std::string msg(err.begin() + 1, err.end());
+    if (err[0] == 'I') throw InputError(msg);
+    throw std::runtime_error(msg);
+  }
+  part.resize(m.num_volume_cells());
+  MPI_Bcast(part.data(), static_cast<int>(part.size()), MPI_INT, root, comm);
+  return part;
+}
+
 std::vector<int> partition_cells(const Mesh& m, int nparts) {
   const std::size_t nc = m.num_volume_cells();
   if (nparts < 1) throw std::invalid_argument("partition_cells: nparts must be >= 1");

@@ -25,6 +25,12 @@ Mesh read_mesh_on_root(const MeshConfig& cfg, MPI_Comm comm, bool check = true, 
 // std::runtime_error if METIS fails.
 std::vector<int> partition_cells(const Mesh& m, int nparts);
 
+// partition_cells on rank root only, the result broadcast to every rank of comm (one
+// METIS run per job, not one per rank). An InputError on root is rethrown with the same
+// message on every rank, any other failure as std::runtime_error (no rank hangs).
+// Collective.
+std::vector<int> partition_cells_on_root(const Mesh& m, int nparts, MPI_Comm comm, int root = 0);
+
 // Owner of each node: the smallest part among the volume cells that contain it
 // (so the owner always has a cell touching the node). Nodes in no volume cell
 // (check_mesh rejects them on boundaries) get part 0.

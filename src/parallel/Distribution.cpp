@@ -5,11 +5,18 @@
 #include <cstdint>
 #include <utility>
 
+#include <Teuchos_DefaultMpiComm.hpp>
+
 #include "mesh/MeshComm.hpp"
 
 namespace stentor {
 
 namespace {
+
+MPI_Comm raw_comm(const la::Comm& comm) {
+  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
+  return mpi ? (*mpi->getRawMpiComm())() : MPI_COMM_SELF;
+}
 
 // Morton (Z-order) key of x in the box [lo, hi]: 21 bits per axis, interleaved.
 std::uint64_t morton_key(const double* x, const double* lo, const double* hi) {
@@ -51,9 +58,9 @@ void morton_sort(std::vector<T>& items, const Box& box, Xyz xyz) {
 Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm)
     : dim_(mesh.dim), rank_(comm->getRank()), nranks_(comm->getSize()), comm_(comm) {
   const std::size_t nn = mesh.num_nodes();
-  // Every rank computes the same partition (METIS is deterministic with a fixed seed),
-  // so no communication is needed to agree on it.
-  const std::vector<int> cell_part = partition_cells(mesh, nranks_);
+  // Rank 0 runs METIS and broadcasts the cells' parts (one METIS run per job: its graph
+  // and work are not repeated on every rank).
+  const std::vector<int> cell_part = partition_cells_on_root(mesh, nranks_, raw_comm(*comm));
   const std::vector<int> owner = node_owners(mesh, cell_part);
 
   // Nodes touched by this rank's cells, and by any cell (nodes of boundary or point
