@@ -91,8 +91,9 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
     }
     pairs_.push_back(std::move(p));
   }
-  // The replicated surface: master nodes, and the slave nodes of mortar pairs (a mortar
-  // node's conditions read its neighbours' positions).
+  // The surface whose positions ranks import (ContactGhosts.cpp: only the part near their
+  // slave nodes): master nodes, and the slave nodes of mortar pairs (a mortar node's
+  // conditions read its neighbours' positions).
   std::vector<char> is_surface = is_master;
   for (auto& p : pairs_)
     if (p.master && p.cfg.discretization == "mortar") {
@@ -178,8 +179,8 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
                      "' can touch anything: every one has all its components prescribed by a Dirichlet condition");
 }
 
-// Replicated master dofs: import of displacements, export (ADD) of reactions, prescribed
-// master dofs, tributary areas.
+// The surface nodes' numbering (master_pos_), reference positions, prescribed dofs,
+// tributary areas and the ghosting margin; rebuild_ghosts() makes the import/export.
 void Contact::setup_master_maps(const Mesh& mesh, const std::vector<char>& is_surface, const Assembler& assembler) {
   const Distribution& dist = dist_;
 

@@ -1,6 +1,7 @@
-// The master side of a deformable contact pair: the oriented boundary facets of a group
-// (replicated on every rank, like the mesh), and a bin search for the facet closest to a
-// slave point in the current configuration.
+// The master side of a deformable contact pair (and, for mortar, the slave side): the
+// oriented boundary facets of a group (their connectivity on every rank, like the mesh;
+// positions only where Contact imported them), and a bin search for the facet closest to
+// a slave point in the current configuration.
 //
 // Search: facets are binned by their centroid on a uniform grid of spacing 3 max(h, h_c)
 // (h: the largest facet extent of the reference mesh; h_c: of the binned facets at the
