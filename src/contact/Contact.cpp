@@ -280,7 +280,7 @@ std::vector<contact::Obstacle> Contact::rigid_obstacles(double t) const {
   return out;
 }
 
-void Contact::initialize(const la::Vector& u0, double end_time) {
+void Contact::initialize(const la::Vector& u0, double end_time, const la::Vector* v0, double dt0) {
   end_time_ = end_time;
   t0_ = t1_ = 0.0;
   if (has_master_) {
@@ -306,11 +306,63 @@ void Contact::initialize(const la::Vector& u0, double end_time) {
         locate(p, nd, x);
         double rel[3];
         nd.d_n = facet_gap(p, nd, x, n, rel);
+        for (int c = 0; c < 3; ++c) nd.normal[c] = nd.facet >= 0 ? n[c] : 0.0;
       } else {
         nd.d_n = contact::rigid_gap(ob, x, n);
       }
       nd.d_prev = nd.d_n;
       nd.gap = nd.d_n;
+    }
+  }
+  if (v0 && dt0 > 0.0) initial_gap_rates(u0, *v0, dt0);
+}
+
+// The first step's leapfrog test d_0 + dt/2 (d_0 - d_-1) then sees the initial motion:
+// d_-1 = d_0 - dt0 ddot_0 with the gap rate from the initial velocities (rigid obstacles:
+// the gap of x_0 + dt0 v_0 against the obstacle at dt0, minus d_0; master surfaces: the
+// normal relative velocity n . (v_p - sum_a N_a v_a), mortar: with the weights w_pk).
+// Without it a body thrown from close by was free in the first step whatever its speed,
+// and crossed the obstacle in that step (docs/studies/README.md, S2 stability map).
+void Contact::initial_gap_rates(const la::Vector& u0, const la::Vector& v0, double dt0) {
+  auto uh = u0.getLocalViewHost(Tpetra::Access::ReadOnly);
+  auto vh = v0.getLocalViewHost(Tpetra::Access::ReadOnly);
+  std::vector<double> vm;  // surface node velocities (3 each)
+  if (has_master_) {
+    master_u_->doImport(v0, *master_import_, Tpetra::INSERT);
+    auto mh = master_u_->getLocalViewHost(Tpetra::Access::ReadOnly);
+    vm.assign(master_x_.size(), 0.0);
+    for (std::size_t i = 0; i < ghost_pos_.size(); ++i)
+      for (int c = 0; c < dim_; ++c)
+        vm[3 * static_cast<std::size_t>(ghost_pos_[i]) + static_cast<std::size_t>(c)] = mh(i * static_cast<std::size_t>(dim_) + static_cast<std::size_t>(c), 0);
+  }
+  for (std::size_t ip = 0; ip < pairs_.size(); ++ip) {
+    Pair& p = pairs_[ip];
+    const contact::Obstacle ob1 = obstacle(p, dt0);
+    for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+      Slave& nd = p.nodes[i];
+      double v[3] = {0, 0, 0}, vbar[3] = {0, 0, 0};
+      for (int c = 0; c < dim_; ++c) v[c] = vh(nd.lid * dim_ + c, 0);
+      double rate = 0.0;
+      if (!p.master) {
+        double x1[3] = {nd.X[0], nd.X[1], nd.X[2]}, n[3];
+        for (int c = 0; c < dim_; ++c) x1[c] += uh(nd.lid * dim_ + c, 0) + dt0 * v[c];
+        rate = (contact::rigid_gap(ob1, x1, n) - nd.d_n) / dt0;
+      } else if (p.mortar) {
+        const contact::MortarRows& mo = p.mortar_out[i];
+        if (mo.masters.empty()) continue;
+        for (std::size_t k = 0; k < mo.masters.size(); ++k)
+          for (int c = 0; c < 3; ++c) vbar[c] += mo.w[k] * vm[3 * static_cast<std::size_t>(mo.masters[k]) + static_cast<std::size_t>(c)];
+        rate = dot3(nd.normal, v) - dot3(nd.normal, vbar);
+      } else {
+        if (nd.facet < 0) continue;
+        const auto& fc = p.master->facets()[static_cast<std::size_t>(nd.facet)];
+        double N[facet::kMaxNodes], dN[facet::kMaxNodes][2];
+        facet::shape(fc.type, nd.xi, N, dN);
+        for (int a = 0; a < fc.nn; ++a)
+          for (int c = 0; c < 3; ++c) vbar[c] += N[a] * vm[3 * static_cast<std::size_t>(fc.node[a]) + static_cast<std::size_t>(c)];
+        rate = dot3(nd.normal, v) - dot3(nd.normal, vbar);
+      }
+      nd.d_prev = nd.d_n - dt0 * rate;
     }
   }
 }

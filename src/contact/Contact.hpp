@@ -49,8 +49,10 @@ class Contact {
   Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, const Assembler& assembler);
   ~Contact();
 
-  // Gap history at t = 0 from u_0 (d_{-1} = d_0).
-  void initialize(const la::Vector& u0, double end_time);
+  // Gap history at t = 0 from u_0: d_{-1} = d_0, or with the initial velocities v0 and the
+  // first step dt0 (dynamics), d_{-1} = d_0 - dt0 (gap rate), so the first step's leapfrog
+  // test sees the initial motion. Collective.
+  void initialize(const la::Vector& u0, double end_time, const la::Vector* v0 = nullptr, double dt0 = 0.0);
   // Pairs whose slave nodes start inside their obstacle or master surface (initialize()'s
   // gaps) deeper than 1e-6 of the model's size: one warning line each, naming the pair, the
   // number of such nodes and the deepest penetration. Collective; the same lines on every rank.
@@ -186,6 +188,7 @@ class Contact {
   void node_input(const Pair& p, const Slave& nd, const double* x, contact::NodeInput& in) const;
   // The law's parameters of one slave node: its stiffness scale, release threshold and c_nu, c_tau.
   contact::LawParams node_params(const Pair& p, const Slave& nd, const contact::LawParams& lp) const;
+  void initial_gap_rates(const la::Vector& u0, const la::Vector& v0, double dt0);
   void read_scales(const la::CrsMatrix& K);
   void evaluate_nodes(const la::Vector& u, la::Vector& r);
   void send_reactions(la::Vector& r);

@@ -304,6 +304,8 @@ int Contact::mortar_node(Pair& p, std::size_t i, const std::vector<std::vector<F
   double xp[3], xpn[3];
   for (std::size_t c = 0; c < 3; ++c) xp[c] = master_x_[3 * static_cast<std::size_t>(j) + c], xpn[c] = master_xn_[3 * static_cast<std::size_t>(j) + c];
   if (st.masters.empty() || mp.S.v <= kMinCover * nd.area || mp.S.v <= 0.0) {
+    p.mortar_out[i].masters.clear();
+    p.mortar_out[i].w.clear();
     *dout = p.master->search_radius();
     for (int c = 0; c < 3; ++c) nout[c] = 0.0, relout[c] = xp[c] - xpn[c];
     return contact::Free;
@@ -315,12 +317,12 @@ int Contact::mortar_node(Pair& p, std::size_t i, const std::vector<std::vector<F
     nout[c] = n[c].v;
     relout[c] = xp[c] - xpn[c] - mp.mbar[c].v;
   }
-  if (!law) return contact::Free;
   contact::MortarRows& mo = p.mortar_out[i];
   mo.vars = st.vars;
   mo.masters = st.masters;
   mo.w.resize(st.masters.size());
   for (std::size_t k = 0; k < mo.w.size(); ++k) mo.w[k] = mp.w[k].v;
+  if (!law) return contact::Free;
   return contact::mortar_law(dim_, nd.fixed, nd.f, *law, xp, xpn, n, mp, st.nv(), mo);
 }
 

@@ -20,6 +20,7 @@ class StepControl {
     tried_ = std::min(dt_, remaining);
     return tried_;
   }
+  double next() const { return dt_; }  // the step propose() would try (before the end of the interval)
   enum class Cut { Ok, TooManyCutbacks, BelowMinimum };
   // After a failed step: halves the step tried; says why not when it may not.
   Cut cut() {

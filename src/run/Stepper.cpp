@@ -35,7 +35,12 @@ Stepper::Stepper(Model& model, Timers& timers, std::ostream* newton_log, std::os
 EnergyAudit Stepper::initialize_dynamics(RunState& s) { return m_.integrator->initialize(s.u, m_.cfg.stepping.end_time); }
 
 void Stepper::initialize_contact(RunState& s) {
-  m_.contact->initialize(s.u, m_.cfg.stepping.end_time);
+  // Dynamics: the initial velocities feed the first step's leapfrog test (Contact::initialize).
+  if (m_.dynamic && m_.integrator) {
+    m_.contact->initialize(s.u, m_.cfg.stepping.end_time, &m_.integrator->velocity(), s.control.next());
+  } else {
+    m_.contact->initialize(s.u, m_.cfg.stepping.end_time);
+  }
   system_.contact = m_.contact.get();
 }
 

@@ -115,6 +115,26 @@ TEST(Contact, ImpactPersistenceConservesEnergy) {
   EXPECT_GT(py1, 0.5 * std::abs(py0));  // bounced
 }
 
+// The first step's leapfrog test sees the initial velocity (Contact::initialize with v_0):
+// the block starts 0.02 m above the plane at 2 m/s and the step is 0.03 s, so it would
+// cross the plane within the first step. Before, the first step had no gap history
+// (d_-1 = d_0), the block was free in it and ended 0.04 m below the plane (measured);
+// now its nodes are candidates in step 1 and persistence stops them above it.
+TEST(Contact, FirstStepLeapfrogUsesTheInitialVelocity) {
+  Config cfg = impact_deck("persistence");
+  cfg.stepping.num_steps = 4;  // dt = 0.03 s: 0.06 m per step at 2 m/s
+  const Outcome r = run(cfg, "impact_first_step");
+  const Series& h = r.history;
+  const double E0 = r.energy["total"][0];
+  double dev = 0.0;
+  for (double E : r.energy["total"]) dev = std::max(dev, std::abs(E - E0));
+  std::printf("[contact] first step: active %g, min gap %.4e m; max |E - E0| / E0 %.2e\n", h["contact_floor_active"][0],
+              h["contact_floor_min_gap"][0], dev / E0);
+  EXPECT_GT(h["contact_floor_active"][0], 0.0);
+  for (double g : h["contact_floor_min_gap"]) EXPECT_GT(g, -1e-12);
+  EXPECT_LT(dev, 1e-8 * E0);
+}
+
 TEST(Contact, ImpactGapLosesEnergy) {
   const Outcome r = run(impact_deck("gap"), "impact_gap");
   const Series& e = r.energy;
