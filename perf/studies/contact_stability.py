@@ -72,12 +72,15 @@ def deck(scheme, form, contrast, v, factor):
     return name, d.write(os.path.join(WORK, name + ".xml"))
 
 
-def measure(scheme, form, contrast, v, factor):
-    name, path = deck(scheme, form, contrast, v, factor)
-    r = sl.run(STENTOR, path, os.path.join(WORK, name), name, limit_s=LIMIT, reuse=bool(env("REUSE")))
+def measure_deck(name, path, key, dt, stentor, work, limit):
+    """Run one generated deck (wall-time limit `limit` s, outputs under work/name) and return its CSV
+    row (HEADER); key = (scheme, formulation, contrast, speed, factor). Shared with
+    contact_stability_s2.py."""
+    scheme, form, contrast, v, factor = key
+    r = sl.run(stentor, path, os.path.join(work, name), name, limit_s=limit, reuse=bool(env("REUSE")))
     e = r.csv("energy", "run")
     if r.timed_out:
-        outcome, reason = "killed", "wall-time limit %d s" % LIMIT
+        outcome, reason = "killed", "wall-time limit %d s" % limit
     elif r.rc == 0:
         outcome, reason = "completed", ""
     else:
@@ -88,7 +91,7 @@ def measure(scheme, form, contrast, v, factor):
         e0 = e["total"][0]
         drift = max(abs(x - e0) for x in e["total"]) / e0
         balance = max(abs(x) for x in e["balance_residual"]) / e0
-    row = [scheme, form, contrast, v, factor, DT0 * factor, outcome, reason, r.steps, r.cutbacks, r.newton,
+    row = [scheme, form, contrast, v, factor, dt, outcome, reason, r.steps, r.cutbacks, r.newton,
            r.newton / r.steps if r.steps else "", drift, balance, r.wall, r.cpu]
     print("  %-9s %-11s contrast %-6g v %-3g dt x%-3d %-9s steps %-4d cut-backs %-4d newton/step %-5s drift %-8s %6.1f s %s"
           % (scheme, form, contrast, v, factor, outcome, r.steps, r.cutbacks,
@@ -97,12 +100,25 @@ def measure(scheme, form, contrast, v, factor):
     return row
 
 
-def plot():
+def measure(scheme, form, contrast, v, factor):
+    name, path = deck(scheme, form, contrast, v, factor)
+    return measure_deck(name, path, (scheme, form, contrast, v, factor), DT0 * factor, STENTOR, WORK, LIMIT)
+
+
+def plot(csv_path=None, png=None, dt0=None, title=None, xlabel="stiffness contrast ring:foundation, impact speed",
+         xtick="%g:1\n%g m/s", note=None):
+    """The colour map of a stability CSV (HEADER); defaults: this study's CSV, PNG, DT0 and title.
+    note(row): an optional extra line of text for a cell (None: none). Shared with
+    contact_stability_s2.py."""
+    csv_path = csv_path or CSV
+    png = png or PNG
+    dt0 = DT0 if dt0 is None else dt0
+    title = title or "S3 stability map, T = %g s" % T
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     from matplotlib.colors import ListedColormap, BoundaryNorm
-    rows = sl.read_rows(CSV)
+    rows = sl.read_rows(csv_path)
     combos = []
     for r in rows:
         if (r["scheme"], r["formulation"]) not in combos:
@@ -125,20 +141,22 @@ def plot():
             nps = float(r["newton_per_step"]) if r["newton_per_step"] else 0.0
             text[i][j] = ("%s/%d\n%.0e" % ("%.1f" % nps if nps < 10 else "%.0f" % nps, int(r["cutbacks"]), float(r["drift"]))
                           if o == "completed" and r["drift"] else o)
+            if note and note(r):
+                text[i][j] += "\n" + note(r)
         ax.imshow(grid, cmap=cmap, norm=BoundaryNorm([-0.5, 0.5, 1.5, 2.5, 3.5], 4), aspect="auto", origin="lower")
         for i in range(len(facs)):
             for j in range(len(cols)):
                 ax.text(j, i, text[i][j], ha="center", va="center", fontsize=7)
-        ax.set_xticks(range(len(cols)), ["%g:1\n%g m/s" % c for c in cols], fontsize=7)
-        ax.set_yticks(range(len(facs)), ["%g ms" % (DT0 * x * 1e3) for x in facs])
-        ax.set_xlabel("stiffness contrast ring:foundation, impact speed")
+        ax.set_xticks(range(len(cols)), [xtick % c for c in cols], fontsize=7)
+        ax.set_yticks(range(len(facs)), ["%g ms" % (dt0 * x * 1e3) for x in facs])
+        ax.set_xlabel(xlabel)
         ax.set_ylabel("time step")
         ax.set_title("%s + %s" % (s, f))
-    fig.suptitle("S3 stability map, T = %g s. Cells: Newton iterations per step / cut-backs, energy error "
-                 "max|E-E0|/E0. Green: completed; yellow: with cut-backs; orange: exit 3; red: killed" % T,
+    fig.suptitle("%s. Cells: Newton iterations per step / cut-backs, energy error "
+                 "max|E-E0|/E0. Green: completed; yellow: with cut-backs; orange: exit 3; red: killed" % title,
                  fontsize=9)
     fig.tight_layout()
-    fig.savefig(PNG, dpi=90)
+    fig.savefig(png, dpi=90)
     plt.close(fig)
 
 
