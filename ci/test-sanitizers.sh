@@ -19,7 +19,7 @@ if [ ! -f "$B/build.ninja" ]; then
         -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" > "$B/configure.log" 2>&1 \
     || { cat "$B/configure.log"; exit 1; }
 fi
-tests="test_deck test_io test_checkpoint test_ciarlet_geymonat test_plasticity test_contact test_plasticity_fe"
+tests="test_deck test_io test_checkpoint test_ciarlet_geymonat test_plasticity test_contact test_plasticity_fe test_mortar"
 # gtest_discover_tests runs each test program after linking (--gtest_list_tests): without
 # this, LeakSanitizer reports Open MPI's allocations there and fails the build.
 export ASAN_OPTIONS=detect_leaks=0
@@ -48,7 +48,8 @@ run test_io ./test_io
 run test_checkpoint ./test_checkpoint
 run test_material ./test_ciarlet_geymonat
 run test_plasticity ./test_plasticity
-run test_contact ./test_contact --gtest_filter="${STENTOR_ASAN_CONTACT:-Contact.StaticBlockOnPlane:Contact.ImpactPersistenceConservesEnergy:Contact.CoulombSlipAboveLimit}"
+run test_contact ./test_contact --gtest_filter="${STENTOR_ASAN_CONTACT:-Contact.StaticBlockOnPlane:Contact.ImpactPersistenceConservesEnergy:Contact.CoulombSlipAboveLimit:Contact.FirstStepLeapfrogUsesTheInitialVelocity}"
+run test_mortar ./test_mortar
 run test_plasticity_fe ./test_plasticity_fe --gtest_filter="${STENTOR_ASAN_PLASTIC:-*}"
 # The corpus subset, without the address-space limit (ASan reserves terabytes of it)
 # and with more time (ASan runs 2-5x slower). Left out: the .geo cases that only an
