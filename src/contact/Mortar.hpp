@@ -105,6 +105,27 @@ KOKKOS_INLINE_FUNCTION void planar_inverse(CellType t, int nn, const T (*P)[2], 
   xi[1] = x[1] - (J[0][0] * F[1] - J[1][0] * F[0]) / det;
 }
 
+// A = D M^-1 from a facet's mass matrix M_ac = int N_a N_c dA and D_a = int N_a dA:
+// Gauss-Jordan on [M | I] (M is symmetric positive definite: no pivoting).
+template <class T>
+KOKKOS_INLINE_FUNCTION void dual_from_mass(int nn, const T M[kMaxFacetNodes][kMaxFacetNodes], const T* D,
+                                           T A[kMaxFacetNodes][kMaxFacetNodes]) {
+  T W[kMaxFacetNodes][2 * kMaxFacetNodes];
+  for (int a = 0; a < nn; ++a)
+    for (int c = 0; c < nn; ++c) W[a][c] = M[a][c], W[a][nn + c] = T(a == c ? 1.0 : 0.0);
+  for (int k = 0; k < nn; ++k) {
+    const T piv = W[k][k];
+    for (int c = 0; c < 2 * nn; ++c) W[k][c] = W[k][c] / piv;
+    for (int r = 0; r < nn; ++r) {
+      if (r == k) continue;
+      const T f = W[r][k];
+      for (int c = 0; c < 2 * nn; ++c) W[r][c] = W[r][c] - f * W[k][c];
+    }
+  }
+  for (int a = 0; a < nn; ++a)
+    for (int c = 0; c < nn; ++c) A[a][c] = D[a] * W[a][nn + c];
+}
+
 // Dual coefficients A (Phi_a = sum_c A[a][c] N_c) of a slave facet whose projected corners
 // are P (3D; 2D line2 has constant ones).
 template <class T>
@@ -119,13 +140,11 @@ KOKKOS_INLINE_FUNCTION void dual_coefficients(CellType t, int nn, const T (*P)[2
   // Quad4: M_ac = int N_a N_c dA, D_a = int N_a dA over the projected facet (3 x 3 Gauss).
   double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
   const int nq = quadrature(CellType::Quad4, 5, qp, qw);
-  T M[4][8], D[4];
+  T M[kMaxFacetNodes][kMaxFacetNodes], D[kMaxFacetNodes];
   for (int a = 0; a < 4; ++a) {
     D[a] = T(0.0);
-    for (int c = 0; c < 8; ++c) M[a][c] = T(c - 4 == a ? 1.0 : 0.0);
-  }
-  for (int a = 0; a < 4; ++a)
     for (int c = 0; c < 4; ++c) M[a][c] = T(0.0);
+  }
   for (int q = 0; q < nq; ++q) {
     double N[facet::kMaxNodes], dN[facet::kMaxNodes][2];
     facet::shape(CellType::Quad4, qp[q], N, dN);
@@ -140,18 +159,7 @@ KOKKOS_INLINE_FUNCTION void dual_coefficients(CellType t, int nn, const T (*P)[2
       for (int c = 0; c < 4; ++c) M[a][c] += qw[q] * det * N[a] * N[c];
     }
   }
-  // [M | I] -> [I | M^-1] (M is symmetric positive definite: no pivoting).
-  for (int k = 0; k < 4; ++k) {
-    const T piv = M[k][k];
-    for (int c = 0; c < 8; ++c) M[k][c] = M[k][c] / piv;
-    for (int r = 0; r < 4; ++r) {
-      if (r == k) continue;
-      const T f = M[r][k];
-      for (int c = 0; c < 8; ++c) M[r][c] = M[r][c] - f * M[k][c];
-    }
-  }
-  for (int a = 0; a < 4; ++a)
-    for (int c = 0; c < 4; ++c) A[a][c] = D[a] * M[a][4 + c];
+  dual_from_mass(4, M, D, A);
 }
 
 template <class T>
@@ -160,6 +168,26 @@ KOKKOS_INLINE_FUNCTION void dual_values(int nn, const T A[kMaxFacetNodes][kMaxFa
     Phi[a] = T(0.0);
     for (int c = 0; c < nn; ++c) Phi[a] += A[a][c] * N[c];
   }
+}
+
+// 2D: the overlap [lo, hi] of the slave parameter range [-1, 1] with the master's end
+// points projected at xi[0], xi[1]; false when they do not overlap. Ties (a master node
+// over a slave node: matching meshes) are decided as for the master shifted by an
+// infinitesimal generic offset (kTieDir) along the slave's chord (tx, ty); a zero-length
+// overlap that this shift would open is kept (it carries the derivative of its growth).
+template <class T>
+KOKKOS_INLINE_FUNCTION bool overlap_bounds(const T xi[2], double tx, double ty, T& lo, T& hi) {
+  const T lo_xi = value(xi[0]) < value(xi[1]) ? xi[0] : xi[1];
+  const T hi_xi = value(xi[0]) < value(xi[1]) ? xi[1] : xi[0];
+  const double sd = kTieDir[0] * tx + kTieDir[1] * ty > 0.0 ? 1.0 : -1.0;
+  const double tol = 1e-12;
+  const bool lo_is_xi = std::abs(value(lo_xi) + 1.0) <= tol ? sd > 0.0 : value(lo_xi) > -1.0;
+  const bool hi_is_xi = std::abs(value(hi_xi) - 1.0) <= tol ? sd < 0.0 : value(hi_xi) < 1.0;
+  lo = lo_is_xi ? lo_xi : T(-1.0);
+  hi = hi_is_xi ? hi_xi : T(1.0);
+  const double len = value(hi) - value(lo);
+  if (len < -tol) return false;
+  return len > tol || sd * (double(hi_is_xi) - double(lo_is_xi)) > 0.0;
 }
 
 // 2D: line2 slave segment xs against line2 master segment xm; M[a][b] += int Phi_a N_b.
@@ -175,19 +203,8 @@ KOKKOS_INLINE_FUNCTION bool pair_integrals_2d(const Face& s, const T (*xs)[3], c
   if (facing >= 0.0) return false;
   T xi[2];
   for (int b = 0; b < 2; ++b) xi[b] = 2.0 * ((xm[b][0] - xs[0][0]) * t[0] + (xm[b][1] - xs[0][1]) * t[1]) / (L * L) - 1.0;
-  const T lo_xi = value(xi[0]) < value(xi[1]) ? xi[0] : xi[1];
-  const T hi_xi = value(xi[0]) < value(xi[1]) ? xi[1] : xi[0];
-  // Ties (a master node over a slave node: matching meshes) are decided as for the master
-  // shifted by an infinitesimal generic offset (kTieDir, see below): sd = its sign along t.
-  const double sd = kTieDir[0] * value(t[0]) + kTieDir[1] * value(t[1]) > 0.0 ? 1.0 : -1.0;
-  const double tol = 1e-12;
-  const bool lo_is_xi = std::abs(value(lo_xi) + 1.0) <= tol ? sd > 0.0 : value(lo_xi) > -1.0;
-  const bool hi_is_xi = std::abs(value(hi_xi) - 1.0) <= tol ? sd < 0.0 : value(hi_xi) < 1.0;
-  const T lo = lo_is_xi ? lo_xi : T(-1.0);
-  const T hi = hi_is_xi ? hi_xi : T(1.0);
-  const double len = value(hi) - value(lo);
-  if (len < -tol) return false;
-  if (len <= tol && sd * (double(hi_is_xi) - double(lo_is_xi)) <= 0.0) return false;
+  T lo, hi;
+  if (!overlap_bounds(xi, value(t[0]), value(t[1]), lo, hi)) return false;
   double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
   const int nq = quadrature(CellType::Line2, 5, qp, qw);
   const T half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
@@ -237,10 +254,10 @@ KOKKOS_INLINE_FUNCTION void dual_coefficients_line3(const T (*x)[3], T A[kMaxFac
   using std::sqrt;
   double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
   const int nq = quadrature(CellType::Line2, 5, qp, qw);
-  T M[3][6], D[3];
+  T M[kMaxFacetNodes][kMaxFacetNodes], D[kMaxFacetNodes];
   for (int a = 0; a < 3; ++a) {
     D[a] = T(0.0);
-    for (int c = 0; c < 6; ++c) M[a][c] = T(c - 3 == a ? 1.0 : 0.0);
+    for (int c = 0; c < 3; ++c) M[a][c] = T(0.0);
   }
   for (int q = 0; q < nq; ++q) {
     T p[2], t[2];
@@ -254,17 +271,7 @@ KOKKOS_INLINE_FUNCTION void dual_coefficients_line3(const T (*x)[3], T A[kMaxFac
       for (int c = 0; c < 3; ++c) M[a][c] += qw[q] * J * N[a] * N[c];
     }
   }
-  for (int k = 0; k < 3; ++k) {
-    const T piv = M[k][k];
-    for (int c = 0; c < 6; ++c) M[k][c] = M[k][c] / piv;
-    for (int r = 0; r < 3; ++r) {
-      if (r == k) continue;
-      const T f = M[r][k];
-      for (int c = 0; c < 6; ++c) M[r][c] = M[r][c] - f * M[k][c];
-    }
-  }
-  for (int a = 0; a < 3; ++a)
-    for (int c = 0; c < 3; ++c) A[a][c] = D[a] * M[a][3 + c];
+  dual_from_mass(3, M, D, A);
 }
 
 // 2D with a curved (line3) facet on either side: the master's end nodes projected on the
@@ -305,23 +312,13 @@ KOKKOS_INLINE_FUNCTION bool pair_integrals_2d_curved(const Face& s, const T (*xs
         2.0 * (value(xm[b][0] - xs[0][0]) * value(xs[1][0] - xs[0][0]) + value(xm[b][1] - xs[0][1]) * value(xs[1][1] - xs[0][1])) / chord - 1.0;
     xi[b] = root_1d<T>(guess, g, gd);
   }
-  const T lo_xi = value(xi[0]) < value(xi[1]) ? xi[0] : xi[1];
-  const T hi_xi = value(xi[0]) < value(xi[1]) ? xi[1] : xi[0];
-  const double sd = kTieDir[0] * value(xs[1][0] - xs[0][0]) + kTieDir[1] * value(xs[1][1] - xs[0][1]) > 0.0 ? 1.0 : -1.0;
-  const double tol = 1e-12;
-  const bool lo_is_xi = std::abs(value(lo_xi) + 1.0) <= tol ? sd > 0.0 : value(lo_xi) > -1.0;
-  const bool hi_is_xi = std::abs(value(hi_xi) - 1.0) <= tol ? sd < 0.0 : value(hi_xi) < 1.0;
-  const T lo = lo_is_xi ? lo_xi : T(-1.0);
-  const T hi = hi_is_xi ? hi_xi : T(1.0);
-  const double len = value(hi) - value(lo);
-  if (len < -tol) return false;
-  if (len <= tol && sd * (double(hi_is_xi) - double(lo_is_xi)) <= 0.0) return false;
+  T lo, hi;
+  if (!overlap_bounds(xi, value(xs[1][0] - xs[0][0]), value(xs[1][1] - xs[0][1]), lo, hi)) return false;
   T A[kMaxFacetNodes][kMaxFacetNodes];
   if (s.type == CellType::Line3) {
     dual_coefficients_line3(xs, A);
   } else {
-    for (int a = 0; a < 2; ++a)
-      for (int c = 0; c < 2; ++c) A[a][c] = T(a == c ? 2.0 : -1.0);
+    dual_coefficients(s.type, s.nn, static_cast<const T(*)[2]>(nullptr), A);  // line2: constants
   }
   double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
   const int nq = quadrature(CellType::Line2, 5, qp, qw);
