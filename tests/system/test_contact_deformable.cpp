@@ -618,20 +618,25 @@ S3 run_s3(double mu, const std::string& tag, const std::string& discretization =
 
 }  // namespace
 
-TEST(DeformableContact, S3FrictionlessConservesEnergyOfBothBodies) {
-  const S3 r = run_s3(0.0, "s3_mu0");
+namespace {
+
+// Coarse S3, frictionless: the total energy of both bodies is conserved through the impacts.
+void expect_s3_conserves_energy(const std::string& discretization, const std::string& tag) {
+  const S3 r = run_s3(0.0, tag, discretization);
   const auto& E = r.e["total"];
   double dev = 0.0;
   for (double x : E) dev = std::max(dev, std::abs(x - E[0]));
   int contact_steps = 0;
   for (double a : r.h["contact_impact_active"]) contact_steps += a > 0;
-  std::printf("S3 frictionless: E0 %.6e, max |E - E0| / E0 %.3e, %d steps in contact\n", E[0], dev / E[0], contact_steps);
+  std::printf("S3 frictionless (%s): E0 %.6e, max |E - E0| / E0 %.3e, %d steps in contact\n", discretization.c_str(), E[0], dev / E[0],
+              contact_steps);
   EXPECT_GT(contact_steps, 20);
   EXPECT_LT(dev / E[0], 1e-8);
 }
 
-TEST(DeformableContact, S3FrictionDissipatesExactlyTheEnergyLost) {
-  const S3 r = run_s3(0.3, "s3_mu03");
+// Coarse S3 with mu = 0.3: the energy lost equals the frictional dissipation, >= 0 every step.
+void expect_s3_friction_closure(const std::string& discretization, const std::string& tag) {
+  const S3 r = run_s3(0.3, tag, discretization);
   const auto& E = r.e["total"];
   const auto& D = r.e["friction_dissipation"];
   double closure = 0.0, min_step = 0.0;
@@ -639,12 +644,18 @@ TEST(DeformableContact, S3FrictionDissipatesExactlyTheEnergyLost) {
     closure = std::max(closure, std::abs(E[i] + D[i] - E[0]));
     if (i > 0) min_step = std::min(min_step, D[i] - D[i - 1]);
   }
-  std::printf("S3 mu = 0.3: E0 %.6e, D_fric(T) %.6e, max |E + D - E0| / E0 %.3e, min step dissipation %.3e\n", E[0], D.back(),
-              closure / E[0], min_step);
+  std::printf("S3 mu = 0.3 (%s): E0 %.6e, D_fric(T) %.6e, max |E + D - E0| / E0 %.3e, min step dissipation %.3e\n",
+              discretization.c_str(), E[0], D.back(), closure / E[0], min_step);
   EXPECT_GT(D.back(), 1e-3 * E[0]);
   EXPECT_LT(closure / E[0], 1e-8);
   EXPECT_GE(min_step, -1e-9 * E[0]);
 }
+
+}  // namespace
+
+TEST(DeformableContact, S3FrictionlessConservesEnergyOfBothBodies) { expect_s3_conserves_energy("node-to-segment", "s3_mu0"); }
+
+TEST(DeformableContact, S3FrictionDissipatesExactlyTheEnergyLost) { expect_s3_friction_closure("node-to-segment", "s3_mu03"); }
 
 TEST(CurvedObstacle, BalloonInflateDeflateConvergesWithoutCutbacks) {
   Config cfg = read_deck(kInputs + "balloon_ring.xml");
@@ -1041,27 +1052,8 @@ TEST(MortarContact, TwoBarsAndS3ConserveEnergyAndMomentum) {
     EXPECT_LT(dl, 2e-3 * std::abs(r.L0()));
   }
 
-  const S3 s0 = run_s3(0.0, "s3_mu0_mortar", "mortar");
-  const auto& E = s0.e["total"];
-  double dev = 0.0;
-  for (double x : E) dev = std::max(dev, std::abs(x - E[0]));
-  int contact_steps = 0;
-  for (double a : s0.h["contact_impact_active"]) contact_steps += a > 0;
-  const S3 s1 = run_s3(0.3, "s3_mu03_mortar", "mortar");
-  const auto& E1 = s1.e["total"];
-  const auto& D = s1.e["friction_dissipation"];
-  double closure = 0.0, min_step = 0.0;
-  for (std::size_t i = 0; i < E1.size(); ++i) {
-    closure = std::max(closure, std::abs(E1[i] + D[i] - E1[0]));
-    if (i > 0) min_step = std::min(min_step, D[i] - D[i - 1]);
-  }
-  std::printf("mortar S3: frictionless max |E - E0| / E0 %.3e over %d contact steps; mu 0.3: D(T) / E0 %.3e, max |E + D - E0| / E0 %.3e\n",
-              dev / E[0], contact_steps, D.back() / E1[0], closure / E1[0]);
-  EXPECT_GT(contact_steps, 20);
-  EXPECT_LT(dev / E[0], 1e-8);
-  EXPECT_GT(D.back(), 1e-3 * E1[0]);
-  EXPECT_LT(closure / E1[0], 1e-8);
-  EXPECT_GE(min_step, -1e-9 * E1[0]);
+  expect_s3_conserves_energy("mortar", "s3_mu0_mortar");
+  expect_s3_friction_closure("mortar", "s3_mu03_mortar");
 }
 
 // Mortar on quadratic 2D facets (line3: tri6 blocks, Mesh->order 2): the dual basis from the
