@@ -911,8 +911,10 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
   std::vector<double> loc(np * 6 + 2, 0.0), glob(loc.size(), 0.0), mloc(np, 1e300), mglob(np, 0.0);
   for (std::size_t i = 0; i < np; ++i) {
     auto& p = pairs_[i];
-    if (p.master) p.master->build(master_x_, &present_);
-    if (p.mortar) mortar_geometry(p);
+    if (p.mortar)
+      mortar_geometry(p);  // builds both surfaces' bins itself
+    else if (p.master)
+      p.master->build(master_x_, &present_);
     const contact::Obstacle ob = obstacle(p, t1_);
     for (auto& nd : p.nodes) {
       double x[3] = {nd.X[0], nd.X[1], nd.X[2]}, n[3] = {0, 0, 0};
