@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Time to solution of the whole 4-step cube stretch (perf/decks/cube_p1.xml, cube_p2.xml:
-# uniaxial 20%, Ciarlet-Geymonat rubber, symmetry constraints) with the Newton/linear
-# solver variants of issue 14, on 1 and 2 ranks. One stentor run per row; prints a
+# uniaxial 20%, Ciarlet-Geymonat rubber, symmetry constraints) and of the dynamic contact
+# case (perf/decks/s2_torus_dynamic.xml: S2 through its first impact) with the
+# Newton/linear solver variants of issue 14, on any number of ranks. One stentor run per row; prints a
 # Markdown table (wall, CPU, peak memory per rank, Newton and GMRES iterations, linear
 # set-up and solve time, final reaction of the pulled face) and keeps the logs.
 #
@@ -11,7 +12,8 @@
 #
 # Environment: CASES ("deck:h" list), RANKS ("1"), VARIANTS (name:key=value,... with keys
 # predictor (Stepping), forcing (Newton), reuse (Linear Solver->preconditioner reuse),
-# preconditioner (Linear Solver)), BUILD (default build), OUT (default /tmp/stentor-tts).
+# preconditioner (Linear Solver), smoother (Linear Solver->MueLu->smoother: type)),
+# BUILD (default build), OUT (default /tmp/stentor-tts), MPIFLAGS (mpirun options, default --bind-to none), PY (python3 with the standard library).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=$(cd "${BUILD:-$root/build}" && pwd)
@@ -20,11 +22,12 @@ CASES=${CASES:-"cube_p1:0.05 cube_p2:0.1"}
 RANKS=${RANKS:-1}
 VARIANTS=${VARIANTS:-"before:predictor=none default:predictor=auto ew:forcing=eisenstat-walker ew+reuse:forcing=eisenstat-walker,reuse=5"}
 OUT=${OUT:-/tmp/stentor-tts}
-PY=/usr/bin/python3
+PY=${PY:-/usr/bin/python3}
+MPIFLAGS=${MPIFLAGS:---bind-to none}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 [ -x "$STENTOR" ] || { echo "time_to_solution: $STENTOR not found (build first, or set BUILD)" >&2; exit 2; }
 mkdir -p "$OUT"
-echo "machine: $(getconf _NPROCESSORS_ONLN) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(git -C "$root" rev-parse --short HEAD)"
+echo "machine: $(getconf _NPROCESSORS_ONLN) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo "no git")"
 echo "| case | DOF | ranks | variant | Newton | GMRES | wall [s] | CPU [s] | lin. set-up [s] | lin. solve [s] | peak RSS/rank [MB] | reaction x [N] |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for c in $CASES; do
@@ -49,7 +52,11 @@ def setp(lst, name, typ, val):
     ET.SubElement(lst, "Parameter", name=name, type=typ, value=val)
 mesh = sub("Mesh")
 setp(mesh, "size", "double", h)
-setp(mesh, "file", "string", root + "/inputs/block3d.geo")
+# The deck's mesh file, relative to perf/decks, made absolute (the copy lives in OUT).
+import os
+for e in mesh.findall("Parameter"):
+    if e.get("name") == "file" and not os.path.isabs(e.get("value")):
+        e.set("value", os.path.normpath(os.path.join(os.path.dirname(src), e.get("value"))))
 setp(sub("Output"), "basename", "string", tag)
 lin = sub("Linear Solver")
 for e in list(lin.findall("Parameter")):
@@ -59,11 +66,15 @@ keys = {"predictor": ("Stepping", "predictor", "string"), "forcing": ("Newton", 
         "preconditioner": ("Linear Solver", "preconditioner", "string")}
 for kv in filter(None, opts.split(",")):
     k, v = kv.split("=")
+    if k == "smoother":   # MueLu's smoother type (Linear Solver->MueLu->smoother: type)
+        ml = next((e for e in lin.findall("ParameterList") if e.get("name") == "MueLu"), None)
+        if ml is None: ml = ET.SubElement(lin, "ParameterList", name="MueLu")
+        setp(ml, "smoother: type", "string", v); continue
     l, n, ty = keys[k]; setp(sub(l), n, ty, v)
 t.write(dst)
 PYEOF
       log=$OUT/$tag.log
-      (cd "$OUT" && /usr/bin/time -f "TIME %e %U %S %M" mpirun -np "$r" --bind-to none "$STENTOR" "$xml") >"$log" 2>&1 || true
+      (cd "$OUT" && /usr/bin/time -f "TIME %e %U %S %M" mpirun -np "$r" $MPIFLAGS "$STENTOR" "$xml") >"$log" 2>&1 || true
       $PY - "$log" "$OUT/results/$tag/${tag}_history.csv" "$deck" "$h" "$r" "$name" <<'PYEOF'
 import sys, re, csv
 log, hist, deck, h, r, name = sys.argv[1:]
