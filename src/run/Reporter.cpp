@@ -528,6 +528,8 @@ void Reporter::summary(const RunState& s) {
     const LinearSolver::Times& lt = m_.linear->times();
     out_ << "    (newton: linear set-up " << lt.setup << " s in " << lt.setups << " calls, " << lt.builds
          << " preconditioner builds; linear solve " << lt.solve << " s in " << lt.solves << " calls)\n";
+    if (lt.stale_rebuilds > 0)
+      out_ << "    (" << lt.stale_rebuilds << " reused preconditioner(s) rebuilt: GMRES gained less than one digit in a cycle)\n";
     if (lt.fallbacks > 0) out_ << "    (linear solver fell back " << lt.fallbacks << " time(s): " << m_.linear->description() << " at the end)\n";
   }
   out_ << std::defaultfloat;

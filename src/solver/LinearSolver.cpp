@@ -346,9 +346,17 @@ LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x, dou
     // non-finite one is a breakdown (collective norms: every rank agrees).
     if (why.empty() && impl_->cfg.method != "direct" && !(std::isfinite(res.residual) && std::isfinite(x.norm2())))
       why = "GMRES ended with a non-finite residual";
-    // Less than one digit gained with a preconditioner built for this very matrix: no use
-    // as a Newton direction, and rebuilding it would give the same.
-    if (why.empty() && impl_->cfg.method != "direct" && !res.converged && impl_->fresh && res.residual > 0.1) {
+    // Less than one digit gained (solve_once stops after the first GMRES cycle then): a
+    // reused preconditioner is rebuilt for this matrix and the solve repeated; one built for
+    // this very matrix is no use as a Newton direction, and rebuilding it would give the same.
+    const bool stalled = impl_->cfg.method != "direct" && !res.converged && res.residual > 0.1;
+    if (why.empty() && stalled && !impl_->fresh && impl_->cfg.preconditioner != "none") {
+      ++impl_->times.stale_rebuilds;
+      force_rebuild_ = true;
+      setup_or_fall_back(impl_->A_last);
+      continue;
+    }
+    if (why.empty() && stalled && impl_->fresh) {
       std::ostringstream os;
       os << "GMRES gained less than one digit (relative residual " << std::setprecision(3) << res.residual << " after "
          << res.iterations << " iterations) with a freshly built preconditioner";
@@ -362,6 +370,43 @@ LinearSolver::Result LinearSolver::solve(const la::Vector& b, la::Vector& x, dou
     setup_or_fall_back(impl_->A_last);  // the same matrix, new configuration (further down if need be; timed as this solve)
   }
 }
+
+namespace {
+
+// GMRES from x = 0. Where more iterations than one cycle (Num Blocks) are allowed, the
+// first cycle runs alone: if it gains less than one digit (relative residual > 0.1) the
+// solve stops there (solve() rebuilds or falls back, instead of spending the whole
+// iteration budget on a preconditioner that does not work, e.g. 1000 iterations on a
+// contact tangent); otherwise GMRES goes on from the cycle's iterate, which is what its
+// restart does anyway, with the residual scaled by |b| (= the first cycle's |r0|).
+void gmres_in_two_phases(Belos::LinearProblem<la::SC, la::MV, la::Operator>& problem,
+                         const la::RCP<Teuchos::ParameterList>& params, LinearSolver::Result& res) {
+  const int max_its = params->get<int>("Maximum Iterations");
+  const int cycle = params->isType<int>("Num Blocks") ? params->get<int>("Num Blocks") : 300;  // Belos's default
+  auto run = [&](const la::RCP<Teuchos::ParameterList>& pl) {
+    Belos::PseudoBlockGmresSolMgr<la::SC, la::MV, la::Operator> solver(Teuchos::rcpFromRef(problem), pl);
+    const Belos::ReturnType ret = solver.solve();
+    res.converged = (ret == Belos::Converged);
+    res.iterations += solver.getNumIters();
+    res.residual = solver.achievedTol();
+  };
+  if (max_its <= cycle) {
+    run(params);
+    return;
+  }
+  auto first = Teuchos::rcp(new Teuchos::ParameterList(*params));
+  first->set("Maximum Iterations", cycle);
+  run(first);
+  if (res.converged || res.residual > 0.1) return;
+  auto rest = Teuchos::rcp(new Teuchos::ParameterList(*params));
+  rest->set("Maximum Iterations", max_its - res.iterations);
+  rest->set("Implicit Residual Scaling", std::string("Norm of RHS"));
+  rest->set("Explicit Residual Scaling", std::string("Norm of RHS"));
+  problem.setProblem();  // x now holds the first cycle's iterate: the new initial guess
+  run(rest);
+}
+
+}  // namespace
 
 LinearSolver::Result LinearSolver::solve_once(const la::Vector& b, la::Vector& x, double tolerance) {
   Impl& m = *impl_;
@@ -428,16 +473,13 @@ LinearSolver::Result LinearSolver::solve_once(const la::Vector& b, la::Vector& x
     if (tolerance > 0.0) params->set("Convergence Tolerance", tolerance);
     if (clamp) params->set("Num Blocks", static_cast<int>(std::max(rows, 1LL)));
   }
-  Belos::PseudoBlockGmresSolMgr<la::SC, la::MV, la::Operator> solver(problem, params);
-  const Belos::ReturnType ret = solver.solve();
-  res.converged = (ret == Belos::Converged);
-  res.iterations = solver.getNumIters();
+  gmres_in_two_phases(*problem, params, res);
   m.last_converged = res.converged;
   m.last_iterations = res.iterations;
   if (m.first_iterations < 0) m.first_iterations = res.iterations;
-  res.residual = solver.achievedTol();
   return res;
 }
+
 
 std::string LinearSolver::description() const {
   const auto& c = impl_->cfg;

@@ -7,8 +7,8 @@
 // Fallback: when the preconditioner set-up or a solve throws on any rank (e.g. MueLu's
 // "damping factor needs to be finite" on a matrix with zero diagonal entries, an ILU
 // breakdown, Belos's "residual norms is NaN"), or a GMRES solve ends with a non-finite
-// residual or solution, or gains less than one digit (relative residual > 0.1) with a
-// preconditioner built for this very matrix, the solver moves one step down the chain
+// residual or solution, or gains less than one digit (relative residual > 0.1) in its first
+// cycle with a preconditioner built for this very matrix, the solver moves one step down the chain
 // muelu -> schwarz (RILUK) -> direct (KLU2) for the rest of the run, solves the same
 // system again, and prints one warning line on rank 0. On several ranks the ranks vote
 // after every set-up and solve (parallel/Agreement.hpp), so all of them take the same
@@ -16,6 +16,10 @@
 // job with exit status 3 after the vote's time limit, never a hang. Only a failure of the
 // last link reaches Newton: LinearSolverFailure, thrown on every rank alike (a failed
 // iteration: cut-back).
+//
+// A reused preconditioner (Linear Solver->preconditioner reuse) with which GMRES gains less
+// than one digit in its first cycle is rebuilt for the current matrix and the system solved
+// again; only a freshly built one that stalls moves down the chain.
 #pragma once
 #include <memory>
 #include <string>
@@ -66,6 +70,7 @@ class LinearSolver {
   struct Times {
     double setup = 0.0, solve = 0.0;
     long setups = 0, solves = 0, builds = 0;
+    long stale_rebuilds = 0;  // reused preconditioners rebuilt because GMRES stalled with them
     int fallbacks = 0;  // steps taken down the fallback chain
   };
   const Times& times() const;

@@ -2,7 +2,8 @@
 //  - residual-only line-search trials give the same iterates as trials with the tangent,
 //    with fewer tangent assemblies (a cubic algebraic system where the full step overshoots);
 //  - a reused preconditioner still solves to the requested tolerance and is rebuilt when
-//    a solve degrades;
+//    a solve degrades, at once when GMRES's first cycle gains less than one digit;
+//  - GMRES beyond its first cycle ends at the configured tolerance;
 //  - Stepping->predictor = auto (lifting on the first static step), Newton->forcing =
 //    eisenstat-walker and Linear Solver->preconditioner reuse reach the same solution as
 //    the plain iteration on the 3D block (P2, 20% stretch in one step), with fewer Newton
@@ -262,6 +263,81 @@ TEST(LinearSolverReuse, StalePreconditionerStillSolvesToTolerance) {
   EXPECT_GT(res.norm2(), 1e-10 * b.norm2());
   EXPECT_TRUE(loose.converged);
   EXPECT_DOUBLE_EQ(lin.tolerance(), 1e-10);
+}
+
+// Tridiagonal matrix with `diag` on the diagonal, `lower` left of it and `upper` right of it.
+void set_tridiagonal(la::CrsMatrix& A, double diag, double lower, double upper) {
+  const auto map = A.getRowMap();
+  const la::GO n = static_cast<la::GO>(map->getGlobalNumElements());
+  A.resumeFill();
+  for (la::LO l = 0; l < static_cast<la::LO>(map->getNodeNumElements()); ++l) {
+    const la::GO g = map->getGlobalElement(l);
+    for (la::GO c = std::max<la::GO>(0, g - 1); c <= std::min<la::GO>(n - 1, g + 1); ++c)
+      A.replaceGlobalValues(g, Teuchos::tuple<la::GO>(c), Teuchos::tuple<double>(c == g ? diag : c < g ? lower : upper));
+  }
+  A.fillComplete();
+}
+
+double true_residual(const la::CrsMatrix& A, const la::Vector& b, const la::Vector& x) {
+  la::Vector r(b.getMap());
+  A.apply(x, r);
+  r.update(1.0, b, -1.0);
+  return r.norm2() / b.norm2();
+}
+
+// GMRES that needs several cycles (restart 10) goes on after its first cycle from that
+// cycle's iterate and ends at the configured tolerance, relative to |b| as in one run.
+TEST(LinearSolver, GmresBeyondOneCycleSolvesToTolerance) {
+  auto map = Teuchos::rcp(new la::Map(200, 0, comm()));
+  auto A = tridiagonal(map);
+  set_tridiagonal(*A, 2.3, -1.0, -1.0);
+  LinearSolverConfig lc;
+  lc.preconditioner = "none";
+  lc.restart = 10;
+  lc.max_iterations = 1000;
+  lc.tolerance = 1e-10;
+  LinearSolver lin(lc, comm());
+  la::Vector b(map), x(map);
+  b.randomize();
+  lin.setup(A);
+  const LinearSolver::Result r = lin.solve(b, x);
+  ASSERT_TRUE(r.converged);
+  EXPECT_GT(r.iterations, 2 * lc.restart);
+  EXPECT_LE(r.residual, 1e-10);
+  EXPECT_LE(true_residual(*A, b, x), 1.01e-10);
+}
+
+// A reused preconditioner that no longer fits the matrix (the exact inverse of a discrete
+// Laplacian, applied to a strongly unsymmetric tridiagonal matrix) stalls in GMRES's first
+// cycle: it is rebuilt
+// for the new matrix at once, and the system solved to tolerance in one more solve,
+// instead of spending the 1000 allowed iterations first.
+TEST(LinearSolverReuse, StalledReusedPreconditionerIsRebuiltAfterOneCycle) {
+  auto map = Teuchos::rcp(new la::Map(200, 0, comm()));
+  auto A = tridiagonal(map);
+  LinearSolverConfig lc;
+  lc.preconditioner = "schwarz";  // ILU(0) of a tridiagonal matrix: its exact LU on one rank
+  lc.fill_level = 0;
+  lc.restart = 10;
+  lc.max_iterations = 1000;
+  lc.tolerance = 1e-10;
+  lc.preconditioner_reuse = 20;
+  LinearSolver lin(lc, comm());
+  la::Vector b(map), x(map);
+  b.putScalar(1.0);
+  set_tridiagonal(*A, 2.01, -1.0, -1.0);
+  lin.setup(A);
+  ASSERT_TRUE(lin.solve(b, x).converged);
+  set_tridiagonal(*A, 2.01, -30.0, 30.0);
+  lin.setup(A);  // reuses the preconditioner of the first matrix
+  EXPECT_EQ(lin.times().builds, 1);
+  const LinearSolver::Result r = lin.solve(b, x);
+  ASSERT_TRUE(r.converged);
+  EXPECT_LE(true_residual(*A, b, x), 1.01e-10);
+  EXPECT_EQ(lin.times().stale_rebuilds, 1);
+  EXPECT_EQ(lin.times().builds, 2);
+  EXPECT_EQ(lin.times().fallbacks, 0);
+  EXPECT_LE(r.iterations, 5);  // the rebuilt (exact on one rank) preconditioner's solve
 }
 
 namespace {
