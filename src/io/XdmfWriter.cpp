@@ -2,9 +2,11 @@
 
 #include <hdf5.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -89,6 +91,8 @@ class H5Id {
     return s;
   }
   void reset() { (void)close(); }
+  // Forgets the identifier without closing it.
+  void release() { id_ = -1; }
   hid_t get() const { return id_; }
 
  private:
@@ -163,6 +167,15 @@ struct QuietH5Errors {
 
 }  // namespace
 
+RowRange block_rows(std::size_t n, int rank, int nranks) {
+  const auto p = static_cast<std::size_t>(nranks), r = static_cast<std::size_t>(rank);
+  const std::size_t q = n / p, extra = n % p;
+  RowRange rows;
+  rows.begin = r * q + std::min(r, extra);
+  rows.end = rows.begin + q + (r < extra ? 1 : 0);
+  return rows;
+}
+
 struct XdmfWriter::Impl {
   QuietH5Errors quiet;  // first: restored after the handles below are closed
   struct Block {
@@ -188,6 +201,10 @@ struct XdmfWriter::Impl {
 
   std::string h5_path, h5_name, xdmf_path;
   std::size_t num_nodes = 0, num_cells = 0;
+  MPI_Comm comm = MPI_COMM_NULL;  // parallel only
+  int rank = 0;
+  bool parallel = false;
+  RowRange nodes, cells;  // this rank's rows
   std::vector<Block> blocks;
   // The whole mesh as one topology: /mesh/topology is num_cells x npc when every cell has
   // one type, else the 1-D XDMF "Mixed" list (type id, nodes; topology_size entries).
@@ -212,21 +229,46 @@ struct XdmfWriter::Impl {
   }
   void check_status(herr_t s, const std::string& what) const { check(s, what); }
 
-  // Creates dataset `name` under `loc` and writes `data` (may be empty).
-  void write_dataset(hid_t loc, const std::string& name, hid_t type, int rank, const hsize_t* dims,
-                     const void* data, const std::string& label) {
-    H5Id space(check(H5Screate_simple(rank, dims, nullptr), "H5Screate_simple for " + label),
+  // Creates dataset `name` (nd dimensions `dims`) under `loc` and writes `data`: the rows
+  // `rows` of dims[0] (all of them serially), row-major (may be empty).
+  void write_dataset(hid_t loc, const std::string& name, hid_t type, int nd, const hsize_t* dims,
+                     const void* data, const std::string& label, RowRange rows) {
+    H5Id space(check(H5Screate_simple(nd, dims, nullptr), "H5Screate_simple for " + label),
                H5Sclose);
     H5Id dset(check(H5Dcreate2(loc, name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
                                H5P_DEFAULT),
                     "creating dataset " + label),
               H5Dclose);
     hsize_t count = 1;
-    for (int i = 0; i < rank; ++i) count *= dims[i];
-    if (count > 0)
+    for (int i = 0; i < nd; ++i) count *= dims[i];
+    if (count > 0 && !parallel)
       check_status(H5Dwrite(dset.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data),
                    "writing dataset " + label);
+    if (count > 0 && parallel) write_rows(dset.get(), space.get(), type, nd, dims, data, rows, label);
     check_status(dset.close(), "closing dataset " + label);
+  }
+
+  // Parallel: this rank's rows of a dataset, collectively (a rank without rows selects none).
+  void write_rows(hid_t dset, hid_t file_space, hid_t type, int nd, const hsize_t* dims, const void* data,
+                  RowRange rows, const std::string& label) {
+    const hsize_t start[2] = {static_cast<hsize_t>(rows.begin), 0};
+    const hsize_t block[2] = {static_cast<hsize_t>(rows.size()), nd > 1 ? dims[1] : 1};
+    const hsize_t one[1] = {1};
+    H5Id mem(check(rows.size() ? H5Screate_simple(nd, block, nullptr) : H5Screate_simple(1, one, nullptr),
+                   "H5Screate_simple for " + label),
+             H5Sclose);
+    if (rows.size()) {
+      check_status(H5Sselect_hyperslab(file_space, H5S_SELECT_SET, start, nullptr, block, nullptr),
+                   "selecting rows of " + label);
+    } else {
+      check_status(H5Sselect_none(file_space), "selecting no rows of " + label);
+      check_status(H5Sselect_none(mem.get()), "selecting no rows of " + label);
+    }
+    H5Id xfer(check(H5Pcreate(H5P_DATASET_XFER), "H5Pcreate"), H5Pclose);
+    check_status(H5Pset_dxpl_mpio(xfer.get(), H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio");
+    static const double dummy = 0.0;  // a buffer for an empty selection
+    check_status(H5Dwrite(dset, type, mem.get(), file_space, xfer.get(), data ? data : &dummy),
+                 "writing dataset " + label);
   }
 
   void write_string_attr(hid_t loc, const char* attr, const std::string& value,
@@ -266,7 +308,7 @@ struct XdmfWriter::Impl {
     if (ncomp != 1 && ncomp != 3 && ncomp != 6 && ncomp != 9)
       fail(std::string(kind) + "('" + name + "'): ncomp must be 1, 3, 6 or 9, got " +
            std::to_string(ncomp));
-    const std::size_t n = on_nodes ? num_nodes : num_cells;
+    const std::size_t n = (on_nodes ? nodes : cells).size();
     if (data.size() != n * static_cast<std::size_t>(ncomp))
       fail(std::string(kind) + "('" + name + "'): expected " + std::to_string(n) + " x " +
            std::to_string(ncomp) + " values, got " + std::to_string(data.size()));
@@ -289,9 +331,9 @@ struct XdmfWriter::Impl {
       }
       src = full.data();
     }
-    hsize_t dims[2] = {static_cast<hsize_t>(n), static_cast<hsize_t>(f.ncomp)};
+    hsize_t dims[2] = {static_cast<hsize_t>(on_nodes ? num_nodes : num_cells), static_cast<hsize_t>(f.ncomp)};
     write_dataset(step_group.get(), dset, H5T_NATIVE_DOUBLE, f.ncomp == 1 ? 1 : 2, dims, src,
-                  f.path);
+                  f.path, on_nodes ? nodes : cells);
     current.fields.push_back(std::move(f));
   }
 
@@ -305,8 +347,15 @@ struct XdmfWriter::Impl {
     return o.str();
   }
 
+  // This rank's rows of block i (of its own cells), clamped to the block.
+  RowRange block_part(const Block& b) const {
+    const auto clamp = [&](std::size_t c) { return std::min(std::max(c, b.offset), b.offset + b.ncells) - b.offset; };
+    return RowRange{clamp(cells.begin), clamp(cells.end)};
+  }
+
   // /mesh/topology (every block's cells in block order, one cell type or XDMF "Mixed"),
-  // /mesh/cell_block (the block index of each cell) and the block legend.
+  // /mesh/cell_block (the block index of each cell) and the block legend. `conn`: this
+  // rank's rows of each block (block_part), XDMF node order.
   void write_whole_mesh(const Mesh& mesh, const std::vector<std::vector<long long>>& conn) {
     std::set<CellType> types;
     for (std::size_t i = 0; i < blocks.size(); ++i) {
@@ -316,11 +365,14 @@ struct XdmfWriter::Impl {
     mixed = types.size() != 1;
     if (mixed && types.count(CellType::Line2)) fail("line cells (Polyline) cannot be mixed with other cell types");
     std::vector<long long> topo, cell_block;
-    cell_block.reserve(num_cells);
+    cell_block.reserve(cells.size());
+    std::size_t mixed_begin = 0;  // this rank's first entry of a Mixed list
     for (std::size_t i = 0; i < blocks.size(); ++i) {
       const Block& b = blocks[i];
-      cell_block.insert(cell_block.end(), b.ncells, static_cast<long long>(i));
-      for (std::size_t c = 0; c < b.ncells; ++c) {
+      const RowRange part = block_part(b);
+      mixed_begin += part.begin * static_cast<std::size_t>(1 + b.npc);
+      cell_block.insert(cell_block.end(), part.size(), static_cast<long long>(i));
+      for (std::size_t c = 0; c < part.size(); ++c) {
         if (mixed) topo.push_back(xdmf_mixed_type_id(mesh.volumes[i].type));
         topo.insert(topo.end(), conn[i].begin() + static_cast<std::ptrdiff_t>(c * b.npc),
                     conn[i].begin() + static_cast<std::ptrdiff_t>((c + 1) * b.npc));
@@ -328,19 +380,20 @@ struct XdmfWriter::Impl {
     }
     if (mixed) {
       topology = "Mixed";
-      topology_size = topo.size();
-      const hsize_t d[1] = {static_cast<hsize_t>(topo.size())};
-      write_dataset(file.get(), "/mesh/topology", H5T_NATIVE_LLONG, 1, d, topo.data(), "/mesh/topology");
+      for (const Block& b : blocks) topology_size += b.ncells * static_cast<std::size_t>(1 + b.npc);
+      const hsize_t d[1] = {static_cast<hsize_t>(topology_size)};
+      write_dataset(file.get(), "/mesh/topology", H5T_NATIVE_LLONG, 1, d, topo.data(), "/mesh/topology",
+                    RowRange{mixed_begin, mixed_begin + topo.size()});
     } else {
       topology = xdmf_topology_name(*types.begin());
       npc = cell_num_nodes(*types.begin());
       const hsize_t d[2] = {static_cast<hsize_t>(num_cells), static_cast<hsize_t>(npc)};
-      write_dataset(file.get(), "/mesh/topology", H5T_NATIVE_LLONG, 2, d, topo.data(), "/mesh/topology");
+      write_dataset(file.get(), "/mesh/topology", H5T_NATIVE_LLONG, 2, d, topo.data(), "/mesh/topology", cells);
     }
     H5Id ds(check(H5Dopen2(file.get(), "/mesh/topology", H5P_DEFAULT), "opening /mesh/topology"), H5Dclose);
     write_string_attr(ds.get(), "topology", topology, "/mesh/topology");
     const hsize_t d[1] = {static_cast<hsize_t>(num_cells)};
-    write_dataset(file.get(), "/mesh/cell_block", H5T_NATIVE_LLONG, 1, d, cell_block.data(), "/mesh/cell_block");
+    write_dataset(file.get(), "/mesh/cell_block", H5T_NATIVE_LLONG, 1, d, cell_block.data(), "/mesh/cell_block", cells);
   }
 
   // One Uniform grid per step (see the header for why): Time, the whole mesh's Topology
@@ -383,6 +436,46 @@ struct XdmfWriter::Impl {
     return o.str();
   }
 
+  // The .h5 (MPI-IO in parallel).
+  void create_file() {
+    H5Id fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
+    if (parallel) check_status(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL), "H5Pset_fapl_mpio");
+    file = H5Id(check(H5Fcreate(h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), "creating the HDF5 file"),
+                H5Fclose);
+  }
+
+  // /mesh: this rank's rows of the coordinates, of every block's connectivity and of the
+  // whole mesh's topology.
+  void write_mesh(const Mesh& mesh) {
+    H5Id g(check(H5Gcreate2(file.get(), "/mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "creating group /mesh"),
+           H5Gclose);
+    hsize_t dims[2] = {static_cast<hsize_t>(num_nodes), 3};
+    write_dataset(g.get(), "coordinates", H5T_NATIVE_DOUBLE, 2, dims, mesh.x.data() + 3 * nodes.begin,
+                  "/mesh/coordinates", nodes);
+    std::vector<std::vector<long long>> block_conn;  // this rank's rows, XDMF node order
+    for (std::size_t i = 0; i < mesh.volumes.size(); ++i) {
+      const CellBlock& cb = mesh.volumes[i];
+      const Block& b = blocks[i];
+      const std::string gname = "/mesh/block_" + std::to_string(i);
+      H5Id bg(check(H5Gcreate2(file.get(), gname.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                    "creating group " + gname),
+              H5Gclose);
+      write_string_attr(bg.get(), "name", cb.name, gname);
+      write_string_attr(bg.get(), "topology", b.topology, gname);
+      int perm[kMaxCellNodes];
+      xdmf_node_permutation(cb.type, perm);
+      const RowRange part = block_part(b);
+      std::vector<long long> conn(part.size() * static_cast<std::size_t>(b.npc));
+      for (std::size_t c = 0; c < part.size(); ++c)
+        for (int j = 0; j < b.npc; ++j) conn[c * b.npc + j] = cb.conn[(part.begin + c) * b.npc + perm[j]];
+      hsize_t cd[2] = {static_cast<hsize_t>(b.ncells), static_cast<hsize_t>(b.npc)};
+      write_dataset(bg.get(), "connectivity", H5T_NATIVE_LLONG, 2, cd, conn.data(), b.conn_path, part);
+      block_conn.push_back(std::move(conn));
+    }
+    write_whole_mesh(mesh, block_conn);
+    check_status(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "H5Fflush");
+  }
+
   void write_xdmf() const {
     const std::string tmp = xdmf_path + ".tmp";
     {
@@ -400,6 +493,9 @@ struct XdmfWriter::Impl {
 };
 
 XdmfWriter::XdmfWriter(const std::string& dir, const std::string& basename, const Mesh& mesh)
+    : XdmfWriter(dir, basename, mesh, MPI_COMM_NULL) {}
+
+XdmfWriter::XdmfWriter(const std::string& dir, const std::string& basename, const Mesh& mesh, MPI_Comm comm)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   if (basename.empty() || basename.find_first_of("/: \t\r\n") != std::string::npos)
@@ -409,6 +505,13 @@ XdmfWriter::XdmfWriter(const std::string& dir, const std::string& basename, cons
   m.xdmf_path = (fs::path(dir) / (basename + ".xdmf")).string();
   if (mesh.x.size() % 3 != 0) m.fail("mesh coordinates are not 3 per node");
   m.num_nodes = mesh.num_nodes();
+  int nranks = 1;
+  if (comm != MPI_COMM_NULL) {
+    MPI_Comm_size(comm, &nranks);
+    MPI_Comm_rank(comm, &m.rank);
+  }
+  m.parallel = nranks > 1;
+  if (m.parallel) m.comm = comm;
 
   // Validate blocks before creating anything.
   std::set<std::string> used;
@@ -435,40 +538,22 @@ XdmfWriter::XdmfWriter(const std::string& dir, const std::string& basename, cons
     b.conn_path = "/mesh/block_" + std::to_string(i) + "/connectivity";
     m.blocks.push_back(std::move(b));
   }
-
-  m.file = H5Id(m.check(H5Fcreate(m.h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT),
-                        "creating the HDF5 file"),
-                H5Fclose);
-  H5Id g(m.check(H5Gcreate2(m.file.get(), "/mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                 "creating group /mesh"),
-         H5Gclose);
-  hsize_t dims[2] = {static_cast<hsize_t>(m.num_nodes), 3};
-  m.write_dataset(g.get(), "coordinates", H5T_NATIVE_DOUBLE, 2, dims, mesh.x.data(),
-                  "/mesh/coordinates");
-  std::vector<std::vector<long long>> block_conn;  // XDMF node order
-  for (std::size_t i = 0; i < mesh.volumes.size(); ++i) {
-    const CellBlock& cb = mesh.volumes[i];
-    const Impl::Block& b = m.blocks[i];
-    const std::string gname = "/mesh/block_" + std::to_string(i);
-    H5Id bg(m.check(H5Gcreate2(m.file.get(), gname.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                    "creating group " + gname),
-            H5Gclose);
-    m.write_string_attr(bg.get(), "name", cb.name, gname);
-    m.write_string_attr(bg.get(), "topology", b.topology, gname);
-    int perm[kMaxCellNodes];
-    xdmf_node_permutation(cb.type, perm);
-    std::vector<long long> conn(cb.conn.size());
-    for (std::size_t c = 0; c < b.ncells; ++c)
-      for (int j = 0; j < b.npc; ++j) conn[c * b.npc + j] = cb.conn[c * b.npc + perm[j]];
-    hsize_t cd[2] = {static_cast<hsize_t>(b.ncells), static_cast<hsize_t>(b.npc)};
-    m.write_dataset(bg.get(), "connectivity", H5T_NATIVE_LLONG, 2, cd, conn.data(), b.conn_path);
-    block_conn.push_back(std::move(conn));
-  }
-  m.write_whole_mesh(mesh, block_conn);
-  m.check_status(H5Fflush(m.file.get(), H5F_SCOPE_GLOBAL), "H5Fflush");
+  m.nodes = block_rows(m.num_nodes, m.rank, nranks);
+  m.cells = block_rows(m.num_cells, m.rank, nranks);
+  m.create_file();
+  m.write_mesh(mesh);
 }
 
-XdmfWriter::~XdmfWriter() = default;  // Impl's handles close the step group, then the file
+XdmfWriter::~XdmfWriter() {
+  // Closing is collective in parallel: not while an exception unwinds (see the header).
+  if (impl_ && impl_->parallel && std::uncaught_exceptions() > 0) {
+    impl_->step_group.release();
+    impl_->file.release();
+  }
+}  // Impl's handles close the step group, then the file
+
+RowRange XdmfWriter::node_rows() const { return impl_->nodes; }
+RowRange XdmfWriter::cell_rows() const { return impl_->cells; }
 
 void XdmfWriter::begin_step(double time) {
   Impl& m = *impl_;
@@ -499,10 +584,10 @@ void XdmfWriter::geometry(const std::vector<double>& x) {
   if (m.current.geometry == path) m.fail("geometry() called twice in one step");
   for (const auto& f : m.current.fields)
     if (f.path == path) m.fail("geometry(): a field named 'coordinates' holds its dataset name");
-  if (x.size() != 3 * m.num_nodes)
-    m.fail("geometry(): expected " + std::to_string(m.num_nodes) + " x 3 values, got " + std::to_string(x.size()));
+  if (x.size() != 3 * m.nodes.size())
+    m.fail("geometry(): expected " + std::to_string(m.nodes.size()) + " x 3 values, got " + std::to_string(x.size()));
   const hsize_t dims[2] = {static_cast<hsize_t>(m.num_nodes), 3};
-  m.write_dataset(m.step_group.get(), "coordinates", H5T_NATIVE_DOUBLE, 2, dims, x.data(), path);
+  m.write_dataset(m.step_group.get(), "coordinates", H5T_NATIVE_DOUBLE, 2, dims, x.data(), path, m.nodes);
   m.current.geometry = path;
 }
 
@@ -512,9 +597,10 @@ void XdmfWriter::end_step() {
   m.check_status(m.step_group.close(), "closing group " + m.current.group);
   m.in_step = false;
   m.check_status(H5Fflush(m.file.get(), H5F_SCOPE_GLOBAL), "H5Fflush");
-  check_write(true, "XdmfWriter: writing step " + std::to_string(m.steps.size()) + " to", m.h5_path);  // test hook
   m.steps.push_back(std::move(m.current));
   m.current = Impl::Step{};
+  if (m.rank != 0) return;
+  check_write(true, "XdmfWriter: writing step " + std::to_string(m.steps.size() - 1) + " to", m.h5_path);  // test hook
   m.write_xdmf();
 }
 

@@ -1,9 +1,16 @@
 // Results for ParaView (its three XDMF readers) and meshio: one HDF5 file with the heavy
 // data and an XDMF file describing it.
 //
-// Serial writer: the caller gathers the mesh and the fields on one rank (rank 0) and
-// creates/uses the writer there only; the HDF5 file is opened with the default (sec2)
-// driver, no MPI-IO.
+// Serial or parallel. Serial (the constructor without a communicator, or a communicator
+// of one rank): the HDF5 file is opened with the default (sec2) driver and the caller
+// passes whole datasets. Parallel (a communicator of several ranks): every rank of it
+// creates the writer with the same (replicated) mesh and makes every call, in the same
+// order; the file is opened with MPI-IO (H5Pset_fapl_mpio), datasets and attributes are
+// created collectively, and each rank writes one contiguous block of rows of each dataset
+// (collective H5Dwrite): node datasets rows node_rows(), cell datasets (and /mesh/topology,
+// /mesh/cell_block, the blocks' connectivity) rows cell_rows() of the block-ordered cells,
+// both block_rows() of the row count. Rank 0 alone writes the .xdmf. The file's datasets
+// are the same whatever the number of ranks.
 //
 // <dir>/<basename>.h5
 //   /mesh/coordinates            num_nodes x 3 doubles (z = 0 in 2D)
@@ -45,7 +52,14 @@
 //
 // Every failure throws std::runtime_error naming the file; a failed write (any failed
 // HDF5 call, the .xdmf) throws WriteError with the reason (e.g. "No space left on device").
+// Parallel: a failed write may throw on some ranks only (the .xdmf, rank 0's test hook in
+// end_step): the caller makes the ranks agree (parallel/Agreement.hpp). A writer destroyed
+// while an exception unwinds leaves its file open (closing is collective, and the other
+// ranks may be elsewhere); HDF5 closes it at MPI_Finalize.
 #pragma once
+#include <mpi.h>
+
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -67,27 +81,43 @@ int xdmf_node_permutation(CellType t, int perm[kMaxCellNodes]);
 // -1 for types without an XDMF topology here.
 int xdmf_mixed_type_id(CellType t);
 
+// Rows [begin, end) of a dataset.
+struct RowRange {
+  std::size_t begin = 0, end = 0;
+  std::size_t size() const { return end - begin; }
+};
+
+// Rank `rank`'s share of n rows split over `nranks` ranks in contiguous blocks, in rank
+// order, the first n % nranks ranks one row more (Tpetra's uniform contiguous map).
+RowRange block_rows(std::size_t n, int rank, int nranks);
+
 class XdmfWriter {
  public:
   // Writes <dir>/<basename>.h5 with the mesh (dir must exist). Only mesh.volumes are
-  // written; their cell types must have an XDMF topology.
+  // written; their cell types must have an XDMF topology. Serial.
   XdmfWriter(const std::string& dir, const std::string& basename, const Mesh& mesh);
+  // Collective over `comm` (see above; serial when it has one rank).
+  XdmfWriter(const std::string& dir, const std::string& basename, const Mesh& mesh, MPI_Comm comm);
   ~XdmfWriter();
   XdmfWriter(const XdmfWriter&) = delete;
   XdmfWriter& operator=(const XdmfWriter&) = delete;
 
+  // This rank's rows of the node datasets and of the cell datasets (all of them serially).
+  RowRange node_rows() const;
+  RowRange cell_rows() const;
+
   void begin_step(double time);
-  // num_nodes*ncomp values, node-major; ncomp 1 (scalar), 3 (vector), 9 (tensor, row
-  // major) or 6 (symmetric tensor: xx,yy,zz,xy,yz,xz).
+  // node_rows().size()*ncomp values (this rank's nodes), node-major; ncomp 1 (scalar),
+  // 3 (vector), 9 (tensor, row major) or 6 (symmetric tensor: xx,yy,zz,xy,yz,xz).
   void node_field(const std::string& name, int ncomp, const std::vector<double>& data);
-  // num_volume_cells*ncomp values, cells in block order (all of volumes[0], then ...).
+  // cell_rows().size()*ncomp values, cells in block order (all of volumes[0], then ...).
   // The name "cell_block" is reserved (the writer's own block index).
   void cell_field(const std::string& name, int ncomp, const std::vector<double>& data);
-  // A moving mesh: this step's node positions (num_nodes x 3) as /step_<k>/coordinates,
+  // A moving mesh: this step's node positions (node_rows() x 3) as /step_<k>/coordinates,
   // the step grid's Geometry instead of /mesh/coordinates (meshio's TimeSeriesReader reads
   // the first step's points only: write a displacement field too).
   void geometry(const std::vector<double>& x);
-  // Flushes the step's datasets to the .h5, then rewrites the .xdmf.
+  // Flushes the step's datasets to the .h5, then (rank 0) rewrites the .xdmf.
   void end_step();
 
   const std::string& h5_path() const;

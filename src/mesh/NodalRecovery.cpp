@@ -1,29 +1,69 @@
 #include "mesh/NodalRecovery.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace stentor {
 
-std::vector<double> recover_at_nodes(const Mesh& mesh, const std::vector<double>& cell_values, int k,
-                                     const std::vector<double>& volume) {
-  const std::size_t nn = mesh.num_nodes(), kk = static_cast<std::size_t>(k);
+namespace {
+
+// The recovery on the nodes [begin, end): `each_cell(add)` calls add(b, i, volume, values)
+// for every cell (block b, index i in it) to take into account, in the summation order.
+template <class EachCell>
+std::vector<double> recover(const Mesh& mesh, std::size_t begin, std::size_t end, std::size_t kk, EachCell each_cell) {
+  const std::size_t nn = end - begin;
   std::vector<double> sum(nn * kk, 0.0), weight(nn, 0.0);
   std::vector<int> body(nn, -1);
-  for (std::size_t b = 0; b < mesh.volumes.size(); ++b) {
+  each_cell([&](std::size_t b, std::size_t i, double volume, const double* values) {
     const CellBlock& blk = mesh.volumes[b];
     const auto npc = static_cast<std::size_t>(blk.nodes_per_cell);
-    for (std::size_t i = 0; i < blk.num_cells(); ++i) {
-      const auto c = static_cast<std::size_t>(blk.cell_id[i]);
-      for (std::size_t a = 0; a < npc; ++a) {
-        const auto n = static_cast<std::size_t>(blk.conn[i * npc + a]);
-        if (body[n] < 0) body[n] = static_cast<int>(b);
-        if (body[n] != static_cast<int>(b)) continue;
-        weight[n] += volume[c];
-        for (std::size_t j = 0; j < kk; ++j) sum[n * kk + j] += volume[c] * cell_values[c * kk + j];
-      }
+    for (std::size_t a = 0; a < npc; ++a) {
+      const auto g = static_cast<std::size_t>(blk.conn[i * npc + a]);
+      if (g < begin || g >= end) continue;
+      const std::size_t n = g - begin;
+      if (body[n] < 0) body[n] = static_cast<int>(b);
+      if (body[n] != static_cast<int>(b)) continue;
+      weight[n] += volume;
+      for (std::size_t j = 0; j < kk; ++j) sum[n * kk + j] += volume * values[j];
     }
-  }
+  });
   for (std::size_t n = 0; n < nn; ++n)
     for (std::size_t j = 0; j < kk; ++j) sum[n * kk + j] = weight[n] > 0.0 ? sum[n * kk + j] / weight[n] : 0.0;
   return sum;
+}
+
+}  // namespace
+
+std::vector<double> recover_at_nodes(const Mesh& mesh, const std::vector<double>& cell_values, int k,
+                                     const std::vector<double>& volume) {
+  const auto kk = static_cast<std::size_t>(k);
+  return recover(mesh, 0, mesh.num_nodes(), kk, [&](auto&& add) {
+    for (std::size_t b = 0; b < mesh.volumes.size(); ++b)
+      for (std::size_t i = 0; i < mesh.volumes[b].num_cells(); ++i) {
+        const auto c = static_cast<std::size_t>(mesh.volumes[b].cell_id[i]);
+        add(b, i, volume[c], &cell_values[c * kk]);
+      }
+  });
+}
+
+std::vector<double> recover_at_node_rows(const Mesh& mesh, std::size_t begin, std::size_t end, const std::vector<GId>& cells,
+                                         const std::vector<double>& cell_values, int k, const std::vector<double>& volume) {
+  const auto kk = static_cast<std::size_t>(k);
+  return recover(mesh, begin, end, kk, [&](auto&& add) {
+    std::size_t b = 0;
+    for (std::size_t j = 0; j < cells.size(); ++j) {
+      const GId id = cells[j];
+      // The block of the cell: its ids are consecutive (GmshReader numbers the cells so).
+      for (b = 0; b < mesh.volumes.size(); ++b) {
+        const CellBlock& blk = mesh.volumes[b];
+        if (blk.num_cells() > 0 && id >= blk.cell_id.front() && id <= blk.cell_id.back()) break;
+      }
+      if (b == mesh.volumes.size()) throw std::logic_error("recover_at_node_rows: no cell " + std::to_string(id));
+      const auto i = static_cast<std::size_t>(id - mesh.volumes[b].cell_id.front());
+      if (mesh.volumes[b].cell_id[i] != id) throw std::logic_error("recover_at_node_rows: cell ids of a block not consecutive");
+      add(b, i, volume[j], &cell_values[j * kk]);
+    }
+  });
 }
 
 }  // namespace stentor

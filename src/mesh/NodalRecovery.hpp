@@ -17,4 +17,12 @@ namespace stentor {
 std::vector<double> recover_at_nodes(const Mesh& mesh, const std::vector<double>& cell_values, int k,
                                      const std::vector<double>& volume);
 
+// The same values on the nodes [begin, end) only, from the cells listed in `cells` (global
+// ids), k values and one volume each in the list's order (a partitioned mesh: each rank
+// its rows of the nodes, from the cells that touch them). Every cell with a node in the
+// range must be listed; with the cells in ascending id order (= block order, the order
+// recover_at_nodes sums in), the result equals recover_at_nodes' bitwise.
+std::vector<double> recover_at_node_rows(const Mesh& mesh, std::size_t begin, std::size_t end, const std::vector<GId>& cells,
+                                         const std::vector<double>& cell_values, int k, const std::vector<double>& volume);
+
 }  // namespace stentor

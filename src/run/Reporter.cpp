@@ -13,7 +13,8 @@
 #include <limits>
 
 #include "io/LogCopy.hpp"
-#include "mesh/NodalRecovery.hpp"
+#include "parallel/Agreement.hpp"
+#include "run/OutputRows.hpp"
 
 namespace stentor {
 
@@ -64,21 +65,22 @@ Gathered gather_on_root(const std::vector<long long>& ids, const std::vector<dou
   return g;
 }
 
-// Contact fields on all nodes: status -1 marks nodes that are no slave node (then the
-// gap is NaN, the value without meaning that ParaView draws in its NaN colour, so that no
-// node off the contact surfaces reads as touching; the forces, pressure and slip are 0);
-// 0 free, 1 inactive, 2 stick, 3 slip.
-// Master surfaces: contact_master_traction = the reaction forces on the master nodes
-// (summed over ranks) projected on the master surfaces like the contact pressure
-// (mesh/SurfaceProjection.hpp; zero on other nodes).
-// Only the fields of Output->field list are written.
-void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, std::size_t nn, const Gathered& slaves, const Gathered* masters,
-                          const SurfaceProjection* master_surface) {
+// Contact fields on this rank's node rows: status -1 marks nodes that are no slave node
+// (then the gap is NaN, the value without meaning that ParaView draws in its NaN colour, so
+// that no node off the contact surfaces reads as touching; the forces, pressure and slip
+// are 0); 0 free, 1 inactive, 2 stick, 3 slip. `slaves`: the slave nodes' values routed to
+// their rows. Master surfaces (`traction` not null): contact_master_traction = the
+// reaction forces on the master nodes (summed over ranks) projected on the master surfaces
+// like the contact pressure (mesh/SurfaceProjection.hpp; zero on other nodes), routed to
+// their rows. Only the fields of Output->field list are written. Collective.
+void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, const Records& slaves, const Records* traction) {
   constexpr int kv = Contact::kNodalValues;
+  const RowRange rows = xdmf.node_rows();
+  const std::size_t nn = rows.size();
   std::vector<double> status(nn, double(contact::NotSlave)), gap(nn, std::numeric_limits<double>::quiet_NaN()), lambda_n(nn, 0.0),
       pressure(nn, 0.0), lambda_t(3 * nn, 0.0), slip(3 * nn, 0.0);
   for (std::size_t i = 0; i < slaves.ids.size(); ++i) {
-    const auto g = static_cast<std::size_t>(slaves.ids[i]);
+    const auto g = static_cast<std::size_t>(slaves.ids[i]) - rows.begin;
     const double* v = &slaves.values[kv * i];
     status[g] = v[0];
     gap[g] = v[1];
@@ -98,31 +100,37 @@ void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, std::size_t n
   put("contact_pressure", 1, pressure);
   put("contact_lambda_tangent", 3, lambda_t);
   put("contact_slip", 3, slip);
-  if (!masters || !master_surface || !o.wants("contact_master_traction")) return;  // no master surface in the deck, or not asked for
-  constexpr int km = Contact::kMasterValues;
-  const SurfaceProjection& s = *master_surface;
-  std::vector<double> force(3 * s.nodes().size(), 0.0), traction(3 * nn, 0.0);
-  for (std::size_t i = 0; i < masters->ids.size(); ++i) {
-    const long at = s.index(static_cast<GId>(masters->ids[i]));  // every master node is on a master surface
-    for (std::size_t k = 0; k < 3 && at >= 0; ++k) force[3 * static_cast<std::size_t>(at) + k] += masters->values[km * i + k];
-  }
-  const std::vector<double> t = s.project(force, 3);
-  for (std::size_t i = 0; i < s.nodes().size(); ++i)
-    for (std::size_t k = 0; k < 3; ++k) traction[3 * static_cast<std::size_t>(s.nodes()[i]) + k] = t[3 * i + k];
-  xdmf.node_field("contact_master_traction", 3, traction);
+  if (!traction) return;
+  std::vector<double> t(3 * nn, 0.0);
+  for (std::size_t i = 0; i < traction->ids.size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k) t[3 * (static_cast<std::size_t>(traction->ids[i]) - rows.begin) + k] = traction->values[3 * i + k];
+  xdmf.node_field("contact_master_traction", 3, t);
 }
 
-// Cell fields of every rank on rank 0: `columns` (name, values per cell) of the local
-// cells, packed per cell, gathered, and unpacked by global cell id into num_cells x k
+// Rank 0: the master surfaces' traction (projected summed forces) at their nodes, 3 values
+// each, from the gathered master records (write_contact_fields).
+void master_traction(const Gathered& masters, const SurfaceProjection& s, std::vector<long long>& ids, std::vector<double>& values) {
+  constexpr int km = Contact::kMasterValues;
+  std::vector<double> force(3 * s.nodes().size(), 0.0);
+  for (std::size_t i = 0; i < masters.ids.size(); ++i) {
+    const long at = s.index(static_cast<GId>(masters.ids[i]));  // every master node is on a master surface
+    for (std::size_t k = 0; k < 3 && at >= 0; ++k) force[3 * static_cast<std::size_t>(at) + k] += masters.values[km * i + k];
+  }
+  values = s.project(force, 3);
+  ids.assign(s.nodes().begin(), s.nodes().end());
+}
+
+// Cell fields on this rank's cell rows: `columns` (name, values per cell) of the local
+// cells, packed per cell, routed to the ranks of their rows and unpacked into rows x k
 // arrays (`owner`: the rank of each cell). Collective.
 struct CellColumn {
   std::string name;
   int k;
   const std::vector<double>* local;
-  std::vector<double> global;
+  std::vector<double> rows;
 };
-void gather_cells(const std::vector<GId>& ids, std::vector<CellColumn>& columns, std::size_t num_cells, int nranks,
-                  std::vector<double>& owner) {
+void cells_to_rows(MPI_Comm comm, const std::vector<GId>& ids, std::vector<CellColumn>& columns, std::size_t num_cells,
+                   RowRange rows, std::vector<double>& owner) {
   int kc = 0;
   for (const auto& col : columns) kc += col.k;
   std::vector<double> packed;
@@ -130,16 +138,15 @@ void gather_cells(const std::vector<GId>& ids, std::vector<CellColumn>& columns,
   for (std::size_t c = 0; c < ids.size(); ++c)
     for (const auto& col : columns)
       for (int j = 0; j < col.k; ++j) packed.push_back((*col.local)[c * col.k + j]);
-  const Gathered g = gather_on_root(std::vector<long long>(ids.begin(), ids.end()), packed, kc, nranks);
-  if (g.ids.empty()) return;  // not rank 0
-  owner.assign(num_cells, 0.0);
-  for (auto& col : columns) col.global.assign(num_cells * static_cast<std::size_t>(col.k), 0.0);
+  const Records g = route_to_rows(comm, num_cells, std::vector<long long>(ids.begin(), ids.end()), packed, kc);
+  owner.assign(rows.size(), 0.0);
+  for (auto& col : columns) col.rows.assign(rows.size() * static_cast<std::size_t>(col.k), 0.0);
   for (std::size_t i = 0; i < g.ids.size(); ++i) {
-    const auto id = static_cast<std::size_t>(g.ids[i]);
+    const auto id = static_cast<std::size_t>(g.ids[i]) - rows.begin;
     owner[id] = g.from[i];
     const double* v = &g.values[i * static_cast<std::size_t>(kc)];
     for (auto& col : columns)
-      for (int j = 0; j < col.k; ++j) col.global[id * col.k + j] = *v++;
+      for (int j = 0; j < col.k; ++j) col.rows[id * col.k + j] = *v++;
   }
 }
 
@@ -233,7 +240,6 @@ void Reporter::open() {
       log_copy::attach(stem + ".log");
       if (!staging_->notice().empty()) out_ << "  output   " << staging_->notice() << "\n";
       if (metrics_) metrics_->open(stem);
-      if (cfg_.output.fields) xdmf_ = std::make_unique<XdmfWriter>(staging_->path(), cfg_.output.basename, m_.mesh);
       std::vector<std::string> master_groups;
       for (const ContactPairConfig& c : cfg_.contact)
         if (!c.master.empty()) master_groups.push_back(c.master);
@@ -269,103 +275,146 @@ void Reporter::open() {
     throw InputError("cannot create output");
   }
 
-  if (m_.rank == 0) {
-    std::vector<char> used(m_.mesh.num_nodes(), 0);
-    for (const auto& b : m_.mesh.volumes)
-      for (GId n : b.conn) used[static_cast<std::size_t>(n)] = 1;
-    for (std::size_t n = 0; n < m_.mesh.num_nodes(); ++n)
-      if (used[n])
-        for (int k = 0; k < m_.dim; ++k) all_dofs_.push_back(static_cast<la::GO>(n) * m_.dim + k);
+  if (cfg_.output.fields) open_fields();
+}
+
+// The HDF5/XDMF writer, on every rank (collective), in rank 0's staging folder.
+void Reporter::open_fields() {
+  std::string dir = staging_ ? staging_->path() : std::string();
+  int n = static_cast<int>(dir.size());
+  Teuchos::broadcast(*m_.comm, 0, &n);
+  dir.resize(static_cast<std::size_t>(n));
+  Teuchos::broadcast(*m_.comm, 0, n, dir.data());
+  const MPI_Comm comm = raw_mpi_comm(*m_.comm);
+  std::string local;
+  int code = 0;
+  try {
+    xdmf_ = std::make_unique<XdmfWriter>(dir, cfg_.output.basename, m_.mesh, comm);
+  } catch (const WriteError& e) {
+    code = 2, local = e.what();
+  } catch (const std::exception& e) {
+    code = 1, local = e.what();
   }
-  gather_map_ = Teuchos::rcp(new la::Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
-                                         Teuchos::ArrayView<const la::GO>(all_dofs_), 0, m_.comm));
-  gather_ = Teuchos::rcp(new la::Import(m_.dist->owned_map(), gather_map_));
-  u_all_ = Teuchos::rcp(new la::Vector(gather_map_));
+  const Agreement a = agree_on_failure(*m_.comm, local);
+  if (a.failed()) {
+    int worst = 0;
+    Teuchos::reduceAll(*m_.comm, Teuchos::REDUCE_MAX, 1, &code, &worst);
+    const std::string what = m_.rank == 0 ? "cannot create output in '" + out_dir_ + "': " + a.failure : "cannot create output";
+    if (worst == 2) throw WriteError(what);
+    throw InputError(what);
+  }
+  node_rows_ = std::make_unique<NodeRows>(m_.mesh, *m_.dist, m_.comm, xdmf_->node_rows());
+  master_traction_ = false;
+  for (const ContactPairConfig& c : cfg_.contact) master_traction_ = master_traction_ || !c.master.empty();
 }
 
 void Reporter::discard() {
+  xdmf_.reset();  // collective
   if (m_.rank != 0) return;
-  xdmf_.reset();
   obstacles_.reset();
   history_.reset();
   energy_csv_.reset();
   staging_->discard();
 }
 
+// Every rank writes its rows of each dataset (io/XdmfWriter.hpp); a failed write on any
+// rank stops every rank with WriteError (the ranks vote: parallel/Agreement.hpp).
 void Reporter::write_fields(double t, const la::Vector& u) {
   Timers::Scope s{timers_, "output"};
   const OutputConfig& o = cfg_.output;
-  const bool nodal = o.wants("cauchy_stress_nodal") || o.wants("von_mises_nodal");
   Assembler::CellFieldRequest req;
   req.green_lagrange = o.wants("green_lagrange_strain");
   req.log_strain = o.wants("log_strain");
   req.principal = o.wants("principal_stress");
   const Assembler::CellFields cf = m_.assembler->cell_fields(u, req);
-  // What is gathered: the wanted cell fields (and what the nodal recovery reads).
+  // What goes to the cell rows: the wanted cell fields.
   std::vector<CellColumn> cols;
-  auto want_cells = [&](const std::string& name, int k, const std::vector<double>& v, bool also) {
-    if (o.wants(name) || also) cols.push_back({name, k, &v, {}});
+  auto want_cells = [&](const std::string& name, int k, const std::vector<double>& v) {
+    if (o.wants(name)) cols.push_back({name, k, &v, {}});
   };
   // In the order written (the standard ones as before field lists; mpi_rank after J).
-  want_cells("cauchy_stress", 6, cf.stress, o.wants("cauchy_stress_nodal"));
-  want_cells("von_mises", 1, cf.von_mises, o.wants("von_mises_nodal"));
-  want_cells("J", 1, cf.J, false);
+  want_cells("cauchy_stress", 6, cf.stress);
+  want_cells("von_mises", 1, cf.von_mises);
+  want_cells("J", 1, cf.J);
   const std::size_t nx = cf.extra_names.size();
   std::vector<std::vector<double>> extra(nx);  // history averages, one vector per name
   for (std::size_t k = 0; k < nx; ++k)
     for (std::size_t c = 0; c < cf.cell_ids.size(); ++c) extra[k].push_back(cf.extra[c * nx + k]);
-  for (std::size_t k = 0; k < nx; ++k) want_cells(cf.extra_names[k], 1, extra[k], false);
-  want_cells("principal_stress", 3, cf.principal, false);
-  want_cells("green_lagrange_strain", 6, cf.green_lagrange, false);
-  want_cells("log_strain", 6, cf.log_strain, false);
-  want_cells("volume", 1, cf.volume, nodal);  // not a field: the recovery's weights
+  for (std::size_t k = 0; k < nx; ++k) want_cells(cf.extra_names[k], 1, extra[k]);
+  want_cells("principal_stress", 3, cf.principal);
+  want_cells("green_lagrange_strain", 6, cf.green_lagrange);
+  want_cells("log_strain", 6, cf.log_strain);
+  const MPI_Comm comm = raw_mpi_comm(*m_.comm);
   std::vector<double> owner;
-  gather_cells(cf.cell_ids, cols, m_.mesh.num_volume_cells(), m_.nranks, owner);
-  std::vector<double> disp = displacement_on_root(u), vel;
-  if (o.wants("velocity")) vel = displacement_on_root(m_.integrator->velocity());
-  Gathered reactions;
+  cells_to_rows(comm, cf.cell_ids, cols, m_.mesh.num_volume_cells(), xdmf_->cell_rows(), owner);
+  std::vector<const std::vector<double>*> recovered;  // cauchy_stress_nodal, von_mises_nodal
+  std::vector<int> rk;
+  if (o.wants("cauchy_stress_nodal")) recovered.push_back(&cf.stress), rk.push_back(6);
+  if (o.wants("von_mises_nodal")) recovered.push_back(&cf.von_mises), rk.push_back(1);
+  const std::vector<std::vector<double>> nodal =
+      recover_on_rows(m_.mesh, comm, xdmf_->node_rows(), cf.cell_ids, recovered, rk, cf.volume);
+  std::string failure;
+  try {
+    xdmf_->begin_step(t);
+    write_node_fields(u, nodal);
+    for (const CellColumn& c : cols) {
+      xdmf_->cell_field(c.name, c.k, c.rows);
+      if (c.name == "J" && o.wants("mpi_rank")) xdmf_->cell_field("mpi_rank", 1, owner);
+    }
+    if (!o.wants("J") && o.wants("mpi_rank")) xdmf_->cell_field("mpi_rank", 1, owner);
+    if (m_.contact) write_contact(comm);
+    xdmf_->end_step();
+    write_obstacles(t);
+  } catch (const WriteError& e) {
+    failure = e.what();
+  }
+  const Agreement a = agree_on_failure(*m_.comm, failure);
+  if (a.failed()) throw WriteError(a.failure);
+}
+
+// The step's node fields but the contact ones: displacement, velocity, reaction_force,
+// then the recovered ones (`nodal`: cauchy_stress_nodal, von_mises_nodal as wanted).
+void Reporter::write_node_fields(const la::Vector& u, const std::vector<std::vector<double>>& nodal) {
+  const OutputConfig& o = cfg_.output;
+  const RowRange rows = xdmf_->node_rows();
+  if (o.wants("displacement")) xdmf_->node_field("displacement", 3, node_rows_->values(u));
+  if (o.wants("velocity")) xdmf_->node_field("velocity", 3, node_rows_->values(m_.integrator->velocity()));
   if (o.wants("reaction_force")) {
     const Assembler::DofReactions d = m_.assembler->dof_reactions();
-    std::vector<long long> ids;
+    std::vector<long long> nodes;
     std::vector<double> vals;
     for (std::size_t i = 0; i < d.nodes.size(); ++i) {
-      ids.push_back(static_cast<long long>(d.nodes[i]) * 3 + d.components[i]);  // node and component
+      nodes.push_back(static_cast<long long>(d.nodes[i]));
+      vals.push_back(static_cast<double>(d.components[i]));
       vals.push_back(d.values[i]);
     }
-    reactions = gather_on_root(ids, vals, 1, m_.nranks);
-  }
-  Gathered slaves, masters;  // contact fields at slave nodes, reactions at master nodes
-  if (m_.contact) {
-    const Contact::NodalFields nf = m_.contact->nodal_fields();
-    slaves = gather_on_root(nf.nodes, nf.values, Contact::kNodalValues, m_.nranks);
-    const Contact::NodalFields mf = m_.contact->master_fields();
-    masters = gather_on_root(mf.nodes, mf.values, Contact::kMasterValues, m_.nranks);
-  }
-  if (m_.rank != 0 || !xdmf_) return;
-  const std::size_t nn = m_.mesh.num_nodes();
-  const auto column = [&](const std::string& name) -> const CellColumn& {
-    return *std::find_if(cols.begin(), cols.end(), [&](const CellColumn& c) { return c.name == name; });
-  };
-  xdmf_->begin_step(t);
-  if (o.wants("displacement")) xdmf_->node_field("displacement", 3, disp);
-  if (o.wants("velocity")) xdmf_->node_field("velocity", 3, vel);
-  if (o.wants("reaction_force")) {
-    std::vector<double> rf(3 * nn, 0.0);
-    for (std::size_t i = 0; i < reactions.ids.size(); ++i) rf[static_cast<std::size_t>(reactions.ids[i])] = reactions.values[i];
+    const Records r = route_to_rows(raw_mpi_comm(*m_.comm), m_.mesh.num_nodes(), nodes, vals, 2);
+    std::vector<double> rf(3 * rows.size(), 0.0);
+    for (std::size_t i = 0; i < r.ids.size(); ++i)
+      rf[3 * (static_cast<std::size_t>(r.ids[i]) - rows.begin) + static_cast<std::size_t>(r.values[2 * i])] = r.values[2 * i + 1];
     xdmf_->node_field("reaction_force", 3, rf);
   }
-  if (o.wants("cauchy_stress_nodal"))
-    xdmf_->node_field("cauchy_stress_nodal", 6, recover_at_nodes(m_.mesh, column("cauchy_stress").global, 6, column("volume").global));
-  if (o.wants("von_mises_nodal"))
-    xdmf_->node_field("von_mises_nodal", 1, recover_at_nodes(m_.mesh, column("von_mises").global, 1, column("volume").global));
-  for (const CellColumn& c : cols) {
-    if (o.wants(c.name)) xdmf_->cell_field(c.name, c.k, c.global);
-    if (c.name == "J" && o.wants("mpi_rank")) xdmf_->cell_field("mpi_rank", 1, owner);
+  std::size_t k = 0;
+  if (o.wants("cauchy_stress_nodal")) xdmf_->node_field("cauchy_stress_nodal", 6, nodal[k++]);
+  if (o.wants("von_mises_nodal")) xdmf_->node_field("von_mises_nodal", 1, nodal[k++]);
+}
+
+// The contact fields: the slave nodes' values routed to their rows; the master surfaces'
+// forces gathered on rank 0 (few nodes), projected there and routed to their rows.
+void Reporter::write_contact(MPI_Comm comm) {
+  const Contact::NodalFields nf = m_.contact->nodal_fields();
+  const Records slaves = route_to_rows(comm, m_.mesh.num_nodes(), nf.nodes, nf.values, Contact::kNodalValues);
+  const Contact::NodalFields mf = m_.contact->master_fields();
+  const Gathered masters = gather_on_root(mf.nodes, mf.values, Contact::kMasterValues, m_.nranks);
+  const bool traction = master_traction_ && m_.contact->has_master_surfaces() && cfg_.output.wants("contact_master_traction");
+  Records t;
+  if (traction) {
+    std::vector<long long> ids;
+    std::vector<double> values;
+    if (m_.rank == 0) master_traction(masters, *master_surface_, ids, values);
+    t = route_to_rows(comm, m_.mesh.num_nodes(), ids, values, 3);
   }
-  if (!o.wants("J") && o.wants("mpi_rank")) xdmf_->cell_field("mpi_rank", 1, owner);
-  if (m_.contact) write_contact_fields(*xdmf_, o, nn, slaves, m_.contact->has_master_surfaces() ? &masters : nullptr, master_surface_.get());
-  xdmf_->end_step();
-  write_obstacles(t);
+  write_contact_fields(*xdmf_, cfg_.output, slaves, traction ? &t : nullptr);
 }
 
 // The rigid obstacles at t in <basename>_obstacles.xdmf/.h5 (rank 0, with the fields).
@@ -498,6 +547,20 @@ void Reporter::cutback_line(const RunState& s, double t_new, const NewtonResult&
 }
 
 std::vector<double> Reporter::displacement_on_root(const la::Vector& u) {
+  if (!gather_) {  // every used dof on rank 0, in mesh node order
+    if (m_.rank == 0) {
+      std::vector<char> used(m_.mesh.num_nodes(), 0);
+      for (const auto& b : m_.mesh.volumes)
+        for (GId n : b.conn) used[static_cast<std::size_t>(n)] = 1;
+      for (std::size_t n = 0; n < m_.mesh.num_nodes(); ++n)
+        if (used[n])
+          for (int k = 0; k < m_.dim; ++k) all_dofs_.push_back(static_cast<la::GO>(n) * m_.dim + k);
+    }
+    gather_map_ = Teuchos::rcp(new la::Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
+                                           Teuchos::ArrayView<const la::GO>(all_dofs_), 0, m_.comm));
+    gather_ = Teuchos::rcp(new la::Import(m_.dist->owned_map(), gather_map_));
+    u_all_ = Teuchos::rcp(new la::Vector(gather_map_));
+  }
   std::vector<double> d(3 * m_.mesh.num_nodes(), 0.0);
   u_all_->doImport(u, *gather_, Tpetra::INSERT);
   if (m_.rank == 0) {
@@ -542,10 +605,10 @@ void Reporter::plots() {
 }
 
 void Reporter::finish(bool failed) {
+  xdmf_.reset();  // collective
   if (m_.rank != 0) return;
   history_.reset();
   energy_csv_.reset();
-  xdmf_.reset();
   const bool obstacles = obstacles_ != nullptr;
   obstacles_.reset();
   if (metrics_) metrics_->close();

@@ -1,7 +1,8 @@
 // Everything a run tells the user: the header, one progress line per step, the result
 // files (CSV histories, HDF5/XDMF fields, PNG plots, staged in <dir>.partial and moved
 // into place only when the run succeeds) and the summary with the timers.
-// Rank 0 writes; the collective parts (gathers, probes) run on every rank.
+// Rank 0 writes the text files; every rank writes its rows of the HDF5 fields (parallel
+// HDF5, run/OutputRows.hpp); the collective parts (field output, probes) run on every rank.
 #pragma once
 #include <chrono>
 #include <memory>
@@ -15,6 +16,7 @@
 #include "io/XdmfWriter.hpp"
 #include "mesh/SurfaceProjection.hpp"
 #include "run/MetricsReport.hpp"
+#include "run/OutputRows.hpp"
 #include "run/Model.hpp"
 #include "run/ResultPlots.hpp"
 #include "run/RunState.hpp"
@@ -63,7 +65,7 @@ class Reporter {
   // Every rank: the displacement, 3 per mesh node (collective).
   std::vector<double> displacement(const la::Vector& u);
   // Rank 0: a vector of the dof map (displacement, velocity), 3 per mesh node; zeros
-  // elsewhere (collective).
+  // elsewhere (collective; the end of a run only: not used by the field output).
   std::vector<double> displacement_on_root(const la::Vector& u);
   // Energy balance, summary line, timers.
   void summary(const RunState& s);
@@ -103,9 +105,14 @@ class Reporter {
   std::unique_ptr<ObstacleWriter> obstacles_;  // rank 0, fields on and rigid obstacles present
   std::unique_ptr<SurfaceProjection> master_surface_;  // rank 0, fields on and master surfaces present
   void write_obstacles(double t);
+  void open_fields();  // collective
+  void write_node_fields(const la::Vector& u, const std::vector<std::vector<double>>& nodal);
+  void write_contact(MPI_Comm comm);  // collective
+  std::unique_ptr<NodeRows> node_rows_;  // the dof vectors on the writer's node rows
+  bool master_traction_ = false;        // a contact pair with a master surface
   double total_energy_ = 0.0;               // kinetic + strain of the last energy_row
   InitialState initial_;                    // t = 0 for the plots (initial_metrics)
-  // Gather of every used dof on rank 0, in mesh node order.
+  // Gather of every used dof on rank 0, in mesh node order (displacement_on_root).
   std::vector<la::GO> all_dofs_;
   la::RCP<const la::Map> gather_map_;
   la::RCP<la::Import> gather_;

@@ -6,6 +6,8 @@ DECK is the uniaxial block (inputs/block3d.xml; run as a copy with P1 cells of s
 `field list` = all and `times` = {0.3}). Checks: both runs write the same steps (times
 0, 0.25, 0.3, 0.5, 0.75, 1: 0.3 is reached by a shortened step), every dataset of every
 step agrees between the ranks to 1e-8 of its largest value (mpi_rank aside: it differs),
+the mesh datasets and their attributes are bitwise equal and so is the .xdmf text (the
+2-rank file is written in parallel, each rank its rows: io/XdmfWriter.hpp),
 the sum of reaction_force over each face's nodes equals the history's reaction of that
 face's set, and meshio's TimeSeriesReader reads every field with the right shape.
 Needs Debian's python3-meshio, python3-h5py, python3-numpy; exit 77 (skipped) without.
@@ -78,6 +80,22 @@ for k in steps:
         worst = max(worst, d)
         check(d < 1e-8, "%s/%s: 1 vs 2 ranks differ by %.2e of its largest value" % (k, f, d))
 print("largest relative difference 1 vs 2 ranks: %.2e" % worst)
+# The mesh (written by both ranks, each its rows) bitwise, its attributes, the XDMF text.
+mesh_items = []
+h[0]["mesh"].visititems(lambda name, obj: mesh_items.append(name))
+for name in mesh_items:
+    a, b = h[0]["mesh"][name], h[1]["mesh"].get(name)
+    check(b is not None, "mesh/%s: absent in the 2-rank file" % name)
+    if b is None:
+        continue
+    check(dict(a.attrs) == dict(b.attrs), "mesh/%s: attributes differ" % name)
+    if isinstance(a, h5py.Dataset):
+        check(a.dtype == b.dtype and a.shape == b.shape and np.array_equal(a[()], b[()]), "mesh/%s: 1 vs 2 ranks differ" % name)
+print("mesh datasets and attributes bitwise equal:", len(mesh_items))
+for k in steps:
+    check(h[0][k].attrs["time"] == h[1][k].attrs["time"], "%s: time attribute differs" % k)
+x1, x2 = (open(os.path.join(outs[n], base + ".xdmf")).read() for n in (1, 2))
+check(x1 == x2, "the .xdmf text differs between 1 and 2 ranks")
 check(h[1][steps[-1]]["mpi_rank"][()].max() == 1, "2 ranks: mpi_rank does not reach 1")
 # reaction_force per face = the history's reaction of its set (2-rank run, every step).
 rows = list(csv.DictReader(open(os.path.join(outs[2], base + "_history.csv"))))

@@ -1,0 +1,63 @@
+// The distributed side of the field output (Reporter::write_fields): values held by the
+// ranks that own the nodes or cells, moved to the rows of the HDF5 datasets each rank
+// writes (io/XdmfWriter.hpp: block_rows of the nodes and of the block-ordered cells). No
+// rank holds a whole field.
+#pragma once
+#include <mpi.h>
+
+#include <memory>
+#include <vector>
+
+#include "io/XdmfWriter.hpp"
+#include "mesh/Mesh.hpp"
+#include "parallel/Distribution.hpp"
+
+namespace stentor {
+
+// The raw communicator of a Teuchos one (MPI_COMM_WORLD when it is not an MpiComm).
+MPI_Comm raw_mpi_comm(const la::Comm& comm);
+
+// The rank whose block_rows(n, rank, nranks) holds `row`.
+int block_row_owner(std::size_t n, int nranks, std::size_t row);
+
+// Records of a row id and k values each.
+struct Records {
+  std::vector<long long> ids;
+  std::vector<double> values;
+  std::vector<int> from;  // the rank each record came from
+};
+
+// Sends record i (ids[i], values[k*i .. k*i+k)) to rank dest[i]; returns what this rank
+// received, by sending rank, each rank's records in their order. Collective.
+Records exchange_records(MPI_Comm comm, const std::vector<int>& dest, const std::vector<long long>& ids,
+                         const std::vector<double>& values, int k);
+
+// Records (ids: rows of n) sent each to the rank whose block_rows hold it. Collective.
+Records route_to_rows(MPI_Comm comm, std::size_t n, const std::vector<long long>& ids, const std::vector<double>& values,
+                      int k);
+
+// A vector of the dof map (u, v: dof = node * dim + component) on this rank's node rows,
+// 3 values per node (0 for the nodes of no volume cell, z = 0 in 2D).
+class NodeRows {
+ public:
+  NodeRows(const Mesh& mesh, const Distribution& dist, const la::RCP<const la::Comm>& comm, RowRange rows);
+  std::vector<double> values(const la::Vector& u);  // collective
+
+ private:
+  RowRange rows_;
+  int dim_;
+  std::vector<la::GO> dofs_;  // the used dofs of the rows
+  la::RCP<const la::Map> map_;
+  la::RCP<la::Import> import_;
+  la::RCP<la::Vector> v_;
+};
+
+// Nodal recovery (mesh/NodalRecovery.hpp) on this rank's node rows `rows` of the cell
+// values of each column (k values per local cell each) of this rank's cells `ids` with
+// volumes `volume`: every cell goes to the ranks whose rows its nodes are in, which sum
+// in the serial order (equal to recover_at_nodes bitwise). Collective.
+std::vector<std::vector<double>> recover_on_rows(const Mesh& mesh, MPI_Comm comm, RowRange rows, const std::vector<GId>& ids,
+                                                 const std::vector<const std::vector<double>*>& columns,
+                                                 const std::vector<int>& k, const std::vector<double>& volume);
+
+}  // namespace stentor
