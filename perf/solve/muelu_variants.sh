@@ -7,7 +7,7 @@
 # OUT/variants.csv (appends) and prints a Markdown table; keeps decks and logs in OUT.
 #
 #   perf/solve/muelu_variants.sh [-n "RANKS"] [-v "VARIANTS"] [-x NAME=SPEC]... [-s EDIT]...
-#                                [-o OUT] [-l LIMIT_S] DECK [SIZE]
+#                                [-o OUT] [-l LIMIT_S] [-p] DECK [SIZE]
 #
 #   perf/solve/muelu_variants.sh perf/decks/cube_p1.xml 0.05
 #   perf/solve/muelu_variants.sh -v "default pg gs1 pg+gs1" -s "Stepping/end time=double:0.08" \
@@ -20,7 +20,8 @@
 # is ';'-separated PATH=TYPE:VALUE, PATH relative to `Linear Solver`. -s EDIT: PATH=TYPE:VALUE
 # relative to the deck's top list, applied to every run (shorten a run, set friction).
 # -o: output folder (env OUT, default /tmp/stentor-muelu-variants/<deck>[_h<SIZE>]);
-# -l: time limit per run in seconds (default 600; "timeout" in the table).
+# -l: time limit per run in seconds (default 600; "timeout" in the table). -p: no runs, the
+# table again from the logs already in OUT (same options otherwise; the CSV is rewritten).
 # Env: STENTOR (default build/stentor), NICE (default 10).
 # The default variant is Stentor's own MueLu set-up (src/solver/MueLuPreconditioner.cpp);
 # every run starts from an empty `Linear Solver->MueLu` list, keeps the deck's other
@@ -57,8 +58,9 @@ VARIANTS=${VARIANTS:-$ORDER}
 OUT=${OUT:-}
 LIMIT=600
 EDITS=()
+PARSE_ONLY=0
 usage() { sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//' >&2; exit 2; }
-while getopts "n:v:x:s:o:l:h" opt; do
+while getopts "n:v:x:s:o:l:ph" opt; do
   case $opt in
     n) RANKS=$OPTARG ;;
     v) VARIANTS=$OPTARG ;;
@@ -66,6 +68,7 @@ while getopts "n:v:x:s:o:l:h" opt; do
     s) EDITS+=(--set "$OPTARG") ;;
     o) OUT=$OPTARG ;;
     l) LIMIT=$OPTARG ;;
+    p) PARSE_ONLY=1 ;;
     *) usage ;;
   esac
 done
@@ -80,6 +83,7 @@ STENTOR=${STENTOR:-$root/build/stentor}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 export OMP_NUM_THREADS=1
 mkdir -p "$OUT"
+[ "$PARSE_ONLY" = 1 ] && rm -f "$OUT/variants.csv"
 for v in $VARIANTS; do  # every name known before the first run
   for part in ${v//+/ }; do [ -n "${CAT[$part]+x}" ] || { echo "muelu_variants: unknown variant '$part' (known: ${!CAT[*]})" >&2; exit 2; }; done
 done
@@ -101,12 +105,14 @@ for v in $VARIANTS; do
     xml=$OUT/$tag.xml log=$OUT/$tag.log
     $PY "$lib" deck "$DECK" "$xml" --remove "Linear Solver/MueLu" ${SIZE:+--set "Mesh/size=double:$SIZE"} \
       --set "Output/fields=bool:false" --set "Output/basename=string:$tag" ${EDITS[@]+"${EDITS[@]}"} "${sets[@]}"
-    launch=("$STENTOR")
-    [ "$r" -gt 1 ] && launch=(mpirun -np "$r" --bind-to none "$STENTOR")
-    rc=0
-    (cd "$OUT" && /usr/bin/time -f "TIME %e %U %S %M" timeout "$LIMIT" nice -n "${NICE:-10}" \
-       "${launch[@]}" --overwrite --output "$OUT/$tag" "$xml") >"$log" 2>&1 || rc=$?
-    echo "EXIT $rc" >>"$log"
+    if [ "$PARSE_ONLY" = 0 ]; then
+      launch=("$STENTOR")
+      [ "$r" -gt 1 ] && launch=(mpirun -np "$r" --bind-to none "$STENTOR")
+      rc=0
+      (cd "$OUT" && /usr/bin/time -f "TIME %e %U %S %M" timeout "$LIMIT" nice -n "${NICE:-10}" \
+         "${launch[@]}" --overwrite --output "$OUT/$tag" "$xml") >"$log" 2>&1 || rc=$?
+      echo "EXIT $rc" >>"$log"
+    fi
     $PY "$lib" parse "$log" --csv "$OUT/variants.csv" \
       --label "deck=$name" --label "size=${SIZE:-deck}" --label "ranks=$r" --label "variant=$v" \
       --row "| {variant} | {ranks} | {dofs} | {newton} | {linear} | {per_newton} | {builds} | {setup} | {solve} | {wall} | {cutbacks} | {completed} |"

@@ -21,8 +21,8 @@ without one), per_newton (GMRES iterations per Newton iteration), setup, setups,
 solve (the "(newton: linear set-up ...)" line, seconds), newton_s (the newton timer),
 wall, cpu, rss (MB) from the TIME line, fallbacks (linear-solver fallbacks), fallback_step
 (the step during which the first one happened), status ("yes", "FAILED: ...", "input error",
-"timeout", "crash (exit N)"), completed (status, and the
-first fallback with its step), exit (the exit status from "EXIT n", if the caller logged it).
+"timeout", "crash (exit N)"), completed (status, and each
+fallback with its step), exit (the exit status from "EXIT n", if the caller logged it).
 """
 import argparse
 import csv
@@ -84,9 +84,13 @@ def parse_log(text):
     warn = list(re.finditer(r"^warning: linear solver .*using (.*) from here on$", text, re.M))
     f["fallbacks"] = str(len(warn))
     f["fallback_step"] = "-"
-    if warn:
-        steps = re.findall(r"^\s*step\s+(\d+)\s", text[:warn[0].start()], re.M)
-        f["fallback_step"] = str(int(steps[-1]) + 1 if steps else 1)
+    falls = []  # (to, step) of each fallback
+    for w in warn:
+        steps = re.findall(r"^\s*step\s+(\d+)\s", text[:w.start()], re.M)
+        to = re.search(r"Schwarz|direct", w.group(1))
+        falls.append((to.group(0).lower() if to else w.group(1), int(steps[-1]) + 1 if steps else 1))
+    if falls:
+        f["fallback_step"] = str(falls[0][1])
     m = g(r"^EXIT (\d+)")
     f["exit"] = m.group(1) if m else "?"
     failed = g(r"^FAILED: (.*)$")
@@ -102,9 +106,8 @@ def parse_log(text):
     else:
         f["status"] = "yes"
     f["completed"] = f["status"]
-    if warn:
-        to = re.search(r"Schwarz|direct", warn[0].group(1))
-        f["completed"] += ", fell back to %s in step %s" % (to.group(0).lower() if to else warn[0].group(1), f["fallback_step"])
+    if falls:
+        f["completed"] += ", fell back to " + ", then ".join("%s in step %d" % fs for fs in falls)
     return f
 
 
