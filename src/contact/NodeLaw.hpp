@@ -267,6 +267,16 @@ KOKKOS_INLINE_FUNCTION int law(int dim, const bool fixed[3], const LawParams& p,
     const T len = sqrt(dot3(a, a));
     for (int c = 0; c < 3; ++c) t[0][c] = a[c] / len;
   }
+  // 3D, two tangents: each goes to the free component it is most aligned with, so the row's
+  // diagonal entry is its leading term. In component order, a plane z = 0 (t1 = e_y, t2 =
+  // -e_x) put t1 . r_p on the x row: a zero diagonal on stick rows and an off-diagonal
+  // stiffness on slip rows, which Gauss-Seidel (MueLu's smoother) cannot relax (GMRES
+  // stalled, docs/solvers.md "Contact rows and Gauss-Seidel").
+  if (nt == 2 && std::abs(value(t[0][slot_t[1]])) > std::abs(value(t[0][slot_t[0]]))) {
+    const int s0 = slot_t[0];
+    slot_t[0] = slot_t[1];
+    slot_t[1] = s0;
+  }
   res[slot_n] = p.sp * g;
   for (int k = 0; k < nt; ++k) {
     if (stick) {

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # A questionable deck that runs, with a warning naming the culprit on the log (stdout).
-# usage: warning.sh STENTOR WORKDIR MODE DECK [-e FRAGMENT]...
+# usage: warning.sh STENTOR WORKDIR MODE DECK [-e FRAGMENT | -n FRAGMENT]...
 #   MODE: check (`stentor --check`, exit 0), run (a run into WORKDIR/out, exit 0 or 3),
 #         ok (a run that must end with exit 0) or ok_np2 (the same on 2 ranks, with the
 #         launcher in $STENTOR_MPIEXEC)
+#   -e: the log must contain FRAGMENT; -n: it must not
 set -u
 . "$(dirname "$0")/lib.sh"
 stentor=$1 work=$2 mode=$3 deck=$4
@@ -26,8 +27,11 @@ else
 fi
 cat stdout.txt
 while [ $# -gt 0 ]; do
-  [ "$1" = "-e" ] || fail "expected -e FRAGMENT, got '$1'"
-  grep -qF -- "$2" stdout.txt || fail "the log does not contain '$2'"
+  case $1 in
+    -e) grep -qF -- "$2" stdout.txt || fail "the log does not contain '$2'" ;;
+    -n) ! grep -qF -- "$2" stdout.txt || fail "the log contains '$2'" ;;
+    *) fail "expected -e FRAGMENT or -n FRAGMENT, got '$1'" ;;
+  esac
   shift 2
 done
 echo "PASS"
