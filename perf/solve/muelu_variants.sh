@@ -47,11 +47,12 @@ declare -A CAT=(
   [reuse-none]="MueLu/reuse: type=string:none"
   [reuse-RP]="MueLu/reuse: type=string:RP"
   [prec-reuse0]="preconditioner reuse=int:0"
+  [prec-reuse5]="preconditioner reuse=int:5"
   [prec-reuse100]="preconditioner reuse=int:100"
   [schwarz]="preconditioner=string:schwarz"
   [direct]="method=string:direct"
 )
-ORDER="default sa-nonsym pg unsmoothed cheb2 cheb3 gs1 sgs2 reuse-none reuse-RP prec-reuse0 prec-reuse100"
+ORDER="default sa-nonsym pg unsmoothed cheb2 cheb3 gs1 sgs2 reuse-none reuse-RP prec-reuse0 prec-reuse5 prec-reuse100"
 
 RANKS=${RANKS:-1}
 VARIANTS=${VARIANTS:-$ORDER}
