@@ -181,6 +181,12 @@ void check_muelu_list(const Teuchos::ParameterList& user, const std::string& whe
   if (user.isType<std::string>("coarse: type"))
     check_smoother(where + "->coarse: type", user.get<std::string>("coarse: type"),
                    user.isSublist("coarse: params") ? user.sublist("coarse: params") : none, true);
+  // Petrov-Galerkin needs a non-symmetric problem, and Stentor's default says symmetric:
+  // MueLu's set-up would throw and the run fall back to Schwarz with only a warning.
+  if (user.isType<std::string>("multigrid algorithm") && user.get<std::string>("multigrid algorithm") == "pg" &&
+      !(user.isType<bool>("problem: symmetric") && !user.get<bool>("problem: symmetric")))
+    throw InputError(where + "->multigrid algorithm = 'pg' (Petrov-Galerkin) needs 'problem: symmetric' = false in the same "
+                     "list (Stentor's default is true)");
   // Ranges MueLu does not check: "max levels" = 0 crashes (SIGSEGV) in Trilinos 13.2.
   for (const char* n : {"max levels", "coarse: max size", "number of equations"})
     if (user.isType<int>(n) && user.get<int>(n) < 1)
