@@ -153,7 +153,7 @@ struct NewtonConfig {
   bool line_search = true;             // "line search": backtracking on ||r||
   int line_search_max = 6;             // "line search max halvings"
   int line_search_watchdog = 2;        // "line search watchdog": see newton_solve
-  std::string forcing = "fixed";       // "forcing": fixed | eisenstat-walker (linear tolerance per iteration)
+  std::string forcing = "eisenstat-walker";  // "forcing": fixed | eisenstat-walker (linear tolerance per iteration)
   double forcing_max = 0.1;            // "forcing max": Eisenstat-Walker's upper bound (and first value)
   double max_increment = 0.0;          // "max increment": largest dof change per iteration (0: no limit)
 };
