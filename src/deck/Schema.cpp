@@ -383,7 +383,8 @@ std::vector<ListSpec> build_schema() {
        str("forcing", "eisenstat-walker",
            "Tolerance of each iteration's linear solve (GMRES; a direct solve is exact). `eisenstat-walker`: "
            "inexact Newton, eta_k = 0.9 (norm(r_k) / norm(r_k-1))^2 (Eisenstat and Walker's choice 2 with their "
-           "safeguard), at most `forcing max`, at least `Linear Solver->tolerance`; the iteration expected to be "
+           "safeguard), at most `forcing max`, at least `Linear Solver->tolerance`, first `forcing max` in a static "
+           "step and 0.9 q^2 in a dynamic one (q: the last dynamic step's first residual ratio); the iteration expected to be "
            "the last (eta_k norm(r_k) below half the convergence target) is solved to `Linear Solver->tolerance`, "
            "so the final iterate is as accurate as with `fixed` and results on different rank counts agree to "
            "round-off (1e-12 in S1's contact force). `fixed`: every solve to `Linear Solver->tolerance`. The "

@@ -53,7 +53,12 @@ NewtonResult Stepper::newton(la::Vector& u) {
   Timers::Scope s{timers_, "newton"};
   NewtonConfig nc = m_.cfg.newton;
   nc.residual_tolerance = nc.tolerance_for(m_.dynamic);
-  return newton_solve(system_, u, *m_.linear, nc, newton_log_);
+  // Dynamics: Eisenstat-Walker starts from the last dynamic step's first residual ratio
+  // (one tight solve nearly converges a dynamic step; statics keep `forcing max`, which
+  // measured faster there: docs/performance.md).
+  NewtonResult nr = newton_solve(system_, u, *m_.linear, nc, newton_log_, m_.dynamic ? first_ratio_ : 0.0);
+  if (m_.dynamic && nr.converged && nr.first_ratio > 0.0) first_ratio_ = nr.first_ratio;
+  return nr;
 }
 
 // The initial guess (Stepping->predictor). auto, statics: extrapolate the last converged

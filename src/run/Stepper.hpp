@@ -116,6 +116,7 @@ class Stepper {
   Timers& timers_;
   StepSystem system_;
   std::ostream* newton_log_;
+  double first_ratio_ = 0.0;  // the last converged dynamic step's first |r_1| / |r_0| (Eisenstat-Walker's start)
   // free_translation's unit translations: connected body, direction, z (built at first use).
   struct Translation {
     std::size_t body;

@@ -25,16 +25,17 @@ namespace {
 // iterate just inside the target: 4.5e-10 between 1 and 2 ranks in S1's contact force).
 class Forcing {
  public:
-  Forcing(const NewtonConfig& cfg, double eta_min)
+  Forcing(const NewtonConfig& cfg, double eta_min, double first_ratio_hint)
       : adaptive_(cfg.forcing == "eisenstat-walker" && eta_min > 0.0),
         eta_max_(std::max(cfg.forcing_max, eta_min)),
-        eta_min_(eta_min) {}
+        eta_min_(eta_min),
+        hint_(first_ratio_hint) {}
   bool adaptive() const { return adaptive_; }
   // 0 (the solver's own tolerance) or this iteration's eta, given |r_k| and the target.
   double next(double rn, double target) {
     if (!adaptive_) return 0.0;
     constexpr double gamma = 0.9;
-    double eta = eta_max_;
+    double eta = hint_ > 0.0 ? gamma * hint_ * hint_ : eta_max_;
     if (rn_prev_ > 0.0) {
       eta = gamma * (rn / rn_prev_) * (rn / rn_prev_);
       const double floor = gamma * eta_prev_ * eta_prev_;
@@ -51,6 +52,7 @@ class Forcing {
  private:
   bool adaptive_;
   double eta_max_, eta_min_;
+  double hint_;  // the first iteration's expected |r_1| / |r_0| (0: unknown)
   double rn_prev_ = 0.0, eta_prev_ = 0.0;
 };
 
@@ -136,7 +138,8 @@ bool linear_solve(LinearSolver& lin, const la::RCP<la::CrsMatrix>& K, const la::
   }
 }
 
-NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, const NewtonConfig& cfg, std::ostream* log) {
+NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, const NewtonConfig& cfg, std::ostream* log,
+                          double first_ratio_hint) {
   NewtonResult res;
   la::Vector r(u.getMap()), du(u.getMap()), u_trial(u.getMap()), r_trial(u.getMap());
   if (!sys.evaluate(u, r, true)) {
@@ -160,7 +163,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     res.converged = true;
     return res;
   }
-  Forcing forcing(cfg, lin.tolerance());
+  Forcing forcing(cfg, lin.tolerance(), first_ratio_hint);
   int damped_unsettled = 0;  // consecutive iterations whose full step changed the active set and was damped
   for (int it = 1; it <= cfg.max_iterations; ++it) {
     LinearSolver::Result lr;
@@ -198,6 +201,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     r.update(1.0, r_trial, 0.0);
     const double step = t.alpha * scaled * du_full;  // |alpha du| of the (limited) update
     const double un = u.norm2();
+    if (it == 1 && rn > 0.0) res.first_ratio = t.rn / rn;
     rn = t.rn;
     res.iterations = it;
     res.residual = rn;

@@ -57,6 +57,7 @@ struct NewtonResult {
   int iterations = 0;
   int linear_iterations = 0;
   double residual = 0.0, residual0 = 0.0;
+  double first_ratio = 0.0;  // |r_1| / |r_0| of the first iteration (0: none done)
   std::string failure;  // why it failed, for the log
 };
 
@@ -67,6 +68,11 @@ struct NewtonResult {
 bool linear_solve(LinearSolver& lin, const la::RCP<la::CrsMatrix>& K, const la::Vector& b, la::Vector& x, double tol,
                   LinearSolver::Result& res, std::string& failure);
 
-NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, const NewtonConfig& cfg, std::ostream* log);
+// first_ratio_hint > 0: the first iteration's |r_1| / |r_0| in a previous, similar solve (the
+// last step's NewtonResult::first_ratio); Eisenstat-Walker forcing then starts from
+// 0.9 hint^2 instead of `forcing max` (a step that one tight solve nearly converges, as in
+// dynamics, is not solved loosely first).
+NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, const NewtonConfig& cfg, std::ostream* log,
+                          double first_ratio_hint = 0.0);
 
 }  // namespace stentor

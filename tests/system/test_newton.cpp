@@ -170,6 +170,38 @@ class AtanSystem : public NewtonSystem {
   la::Vector last_;
 };
 
+// Tridiagonal matrix with `diag` on the diagonal, `lower` left of it and `upper` right of it.
+void set_tridiagonal(la::CrsMatrix& A, double diag, double lower, double upper) {
+  const auto map = A.getRowMap();
+  const la::GO n = static_cast<la::GO>(map->getGlobalNumElements());
+  A.resumeFill();
+  for (la::LO l = 0; l < static_cast<la::LO>(map->getNodeNumElements()); ++l) {
+    const la::GO g = map->getGlobalElement(l);
+    for (la::GO c = std::max<la::GO>(0, g - 1); c <= std::min<la::GO>(n - 1, g + 1); ++c)
+      A.replaceGlobalValues(g, Teuchos::tuple<la::GO>(c), Teuchos::tuple<double>(c == g ? diag : c < g ? lower : upper));
+  }
+  A.fillComplete();
+}
+
+// r(u) = A u - b with A = tridiag(-1, 2.5, -1): one exact linear solve converges Newton.
+class LinearTridiagonalSystem : public NewtonSystem {
+ public:
+  explicit LinearTridiagonalSystem(const la::RCP<const la::Map>& map) : A_(tridiagonal(map)), b_(map) {
+    set_tridiagonal(*A_, 2.5, -1.0, -1.0);
+    b_.putScalar(1.0);
+  }
+  bool evaluate(const la::Vector& u, la::Vector& r, bool) override {
+    A_->apply(u, r);
+    r.update(-1.0, b_, 1.0);
+    return true;
+  }
+  la::RCP<la::CrsMatrix> matrix() override { return A_; }
+
+ private:
+  la::RCP<la::CrsMatrix> A_;
+  la::Vector b_;
+};
+
 }  // namespace
 
 // Newton->max increment: without it plain Newton diverges on atan (and fails); with a limit
@@ -221,6 +253,39 @@ TEST(Newton, ResidualOnlyTrialsSameIteratesFewerTangents) {
               cheap.tangents, cheap.residuals, full.tangents);
 }
 
+// Eisenstat-Walker's first forcing term from a hint (the last dynamic step's first residual
+// ratio, passed by the Stepper): a step that one tight solve converges (here a linear
+// system) is solved tightly at once, in one Newton iteration, instead of loosely first
+// (forcing max = 0.1) and then again; both reach the same solution, and first_ratio
+// reports |r_1| / |r_0|.
+TEST(Newton, EisenstatWalkerStartsFromTheFirstRatioHint) {
+  auto map = Teuchos::rcp(new la::Map(60, 0, comm()));
+  LinearSolverConfig lc;
+  lc.preconditioner = "none";
+  lc.tolerance = 1e-12;
+  NewtonConfig nc;
+  nc.residual_tolerance = 1e-10;
+  nc.forcing = "eisenstat-walker";
+  auto run = [&](double hint, std::vector<double>& x) {
+    LinearTridiagonalSystem sys(map);
+    LinearSolver lin(lc, comm());
+    la::Vector u(map);
+    const NewtonResult r = newton_solve(sys, u, lin, nc, nullptr, hint);
+    auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (size_t i = 0; i < u.getLocalLength(); ++i) x.push_back(uh(i, 0));
+    return r;
+  };
+  std::vector<double> x_plain, x_hint;
+  const NewtonResult plain = run(0.0, x_plain), hinted = run(1e-8, x_hint);
+  ASSERT_TRUE(plain.converged);
+  ASSERT_TRUE(hinted.converged);
+  EXPECT_GE(plain.iterations, 2);
+  EXPECT_NEAR(plain.first_ratio, 0.1, 0.05);  // the first solve stopped at eta = forcing max
+  EXPECT_EQ(hinted.iterations, 1);
+  EXPECT_LT(hinted.first_ratio, 1e-10);
+  EXPECT_LT(rel_diff(x_plain, x_hint), 1e-9);
+}
+
 // A preconditioner kept from an earlier matrix (Linear Solver->preconditioner reuse)
 // still gives solves to the requested tolerance; the counters say how often it was built.
 TEST(LinearSolverReuse, StalePreconditionerStillSolvesToTolerance) {
@@ -265,18 +330,6 @@ TEST(LinearSolverReuse, StalePreconditionerStillSolvesToTolerance) {
   EXPECT_DOUBLE_EQ(lin.tolerance(), 1e-10);
 }
 
-// Tridiagonal matrix with `diag` on the diagonal, `lower` left of it and `upper` right of it.
-void set_tridiagonal(la::CrsMatrix& A, double diag, double lower, double upper) {
-  const auto map = A.getRowMap();
-  const la::GO n = static_cast<la::GO>(map->getGlobalNumElements());
-  A.resumeFill();
-  for (la::LO l = 0; l < static_cast<la::LO>(map->getNodeNumElements()); ++l) {
-    const la::GO g = map->getGlobalElement(l);
-    for (la::GO c = std::max<la::GO>(0, g - 1); c <= std::min<la::GO>(n - 1, g + 1); ++c)
-      A.replaceGlobalValues(g, Teuchos::tuple<la::GO>(c), Teuchos::tuple<double>(c == g ? diag : c < g ? lower : upper));
-  }
-  A.fillComplete();
-}
 
 double true_residual(const la::CrsMatrix& A, const la::Vector& b, const la::Vector& x) {
   la::Vector r(b.getMap());
