@@ -13,9 +13,8 @@
 # Environment: CASES ("deck:h" list), RANKS ("1"), VARIANTS (name:key=value,... with keys
 # predictor (Stepping), forcing (Newton), reuse (Linear Solver->preconditioner reuse),
 # preconditioner (Linear Solver), smoother (Linear Solver->MueLu->smoother: type), fields
-# (Output->fields, true|false), mesh (Mesh->algorithm, delaunay|hxt)), BUILD (default
-# build), OUT (default /tmp/stentor-tts), MPIFLAGS (mpirun options, default --bind-to none),
-# PY (a python3 with the standard library).
+# (Output->fields, true|false)), BUILD (default build), OUT (default /tmp/stentor-tts),
+# MPIFLAGS (mpirun options, default --bind-to none), PY (a python3 with the standard library).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=$(cd "${BUILD:-$root/build}" && pwd)
@@ -50,7 +49,6 @@ for c in $CASES; do
           preconditioner) sets+=(--set "Linear Solver/preconditioner=string:$val") ;;
           smoother) sets+=(--set "Linear Solver/MueLu/smoother: type=string:$val") ;;
           fields) sets+=(--set "Output/fields=bool:$val") ;;
-          mesh) sets+=(--set "Mesh/algorithm=string:$val") ;;
           *) echo "time_to_solution: unknown variant key '$k'" >&2; exit 2 ;;
         esac
       done

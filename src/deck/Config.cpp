@@ -793,7 +793,6 @@ void DeckReader::read_mesh(const ParameterList& pl) {
   m.size = get_double(pl, ls, "size");
   m.order = get_int(pl, ls, "order");
   m.recombine = get_bool(pl, ls, "recombine");
-  m.algorithm = get_string(pl, ls, "algorithm");
   m.dimension = get_int(pl, ls, "dimension");
   m.max_cells = get_double(pl, ls, "max cells");
   m.time_limit = get_double(pl, ls, "time limit");

@@ -49,7 +49,6 @@ struct MeshConfig {
   double size = 0.0;       // "Mesh"->"size": target element size when meshing a .geo (0: the .geo's own)
   int order = 1;           // "Mesh"->"order": 1 (P1/Q1) or 2 (P2), for .geo meshing
   bool recombine = false;  // "Mesh"->"recombine": quads (2D) / hexes (3D) from a .geo
-  std::string algorithm = "delaunay";  // "Mesh"->"algorithm": gmsh's 3D algorithm, delaunay | hxt
   int dimension = 0;       // "Mesh"->"dimension": 2 or 3; 0 = highest dimension found in the mesh
   double max_cells = 5e6;  // "Mesh"->"max cells": refuse to mesh a .geo when the estimate is above
   double time_limit = 600; // "Mesh"->"time limit" [s]: gmsh's process (reading + meshing) is stopped after it

@@ -112,12 +112,6 @@ std::vector<ListSpec> build_schema() {
        dbl("size", 0.0, "Target element size when meshing a `.geo` (0: the `.geo`'s own).").ge(0.0),
        integer("order", 1, "Element order when meshing a `.geo`: 1 (P1/Q1) or 2 (P2).").one_of({"1", "2"}),
        boolean("recombine", false, "Quadrilaterals (2D) / hexahedra (3D) when meshing a `.geo`."),
-       str("algorithm", "delaunay",
-           "gmsh's 3D algorithm when meshing a `.geo` (2D meshes ignore it): `delaunay` (gmsh's default, "
-           "Mesh.Algorithm3D = 1) or `hxt` (Mesh.Algorithm3D = 10, Marot et al. 2019; run on one thread, so the "
-           "mesh is the same on every run). Same element size, a different mesh; on the 3D block at 200k DOF "
-           "(P1) meshing took 9.1 s with `delaunay` and 1.3 s with `hxt`, for 11 % fewer nodes (docs/performance.md).")
-           .one_of({"delaunay", "hxt"}),
        integer("dimension", 0, "Spatial dimension; 0: the highest dimension found in the mesh.")
            .one_of({"0", "2", "3"}),
        dbl("max cells", 5e6,

@@ -234,10 +234,6 @@ void mesh_geo(GmshSession& session, const MeshConfig& cfg, const std::string& fi
   gmsh_call(session, file, "mesh the geometry", [&] {
     gmsh::option::setNumber("Mesh.ElementOrder", cfg.order);
     gmsh::option::setNumber("Mesh.SecondOrderIncomplete", 1);
-    gmsh::option::setNumber("Mesh.Algorithm3D", cfg.algorithm == "hxt" ? 10 : 1);
-    // One thread: HXT's mesh on several changed from run to run (GmshReader.hpp).
-    gmsh::option::setNumber("General.NumThreads", 1);
-    gmsh::option::setNumber("Mesh.MaxNumThreads3D", 1);
     if (cfg.recombine) {
       if (dim == 2) {
         // Blossom recombination of the default (Frontal-Delaunay) triangulation.
@@ -492,7 +488,7 @@ Mesh read_mesh_in_child(const MeshConfig& cfg, bool verbose) {
   TempDir dir;
   std::vector<std::string> args = {g_helper_exe, "--gmsh-helper", dir.path, file, num17(cfg.size),
                                    std::to_string(cfg.order), cfg.recombine ? "1" : "0", std::to_string(cfg.dimension),
-                                   num17(cfg.max_cells), verbose ? "1" : "0", std::to_string(::getpid()), cfg.algorithm};
+                                   num17(cfg.max_cells), verbose ? "1" : "0", std::to_string(::getpid())};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -595,7 +591,7 @@ Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
 }
 
 int gmsh_helper_main(int argc, char** argv) {
-  if (argc != 12) {
+  if (argc != 11) {
     std::fprintf(stderr, "stentor --gmsh-helper: internal use only\n");
     return 1;
   }
@@ -627,7 +623,6 @@ int gmsh_helper_main(int argc, char** argv) {
   cfg.recombine = std::atoi(argv[6]) != 0;
   cfg.dimension = std::atoi(argv[7]);
   cfg.max_cells = std::strtod(argv[8], nullptr);
-  cfg.algorithm = argv[11];
   const bool verbose = std::atoi(argv[9]) != 0;
   try {
     const Mesh m = read_mesh_here(cfg, verbose);

@@ -8,7 +8,7 @@
 namespace stentor {
 
 // Reads cfg.file into a Mesh.
-//  * .msh: read as is (cfg.size/order/recombine/algorithm are ignored).
+//  * .msh: read as is (cfg.size/order/recombine are ignored).
 //  * .geo (anything else gmsh can open as a model is treated the same way):
 //    meshed with
 //      - cfg.size > 0: a uniform target size: Mesh.MeshSizeMax = size and
@@ -17,11 +17,6 @@ namespace stentor {
 //        cfg.size == 0: the .geo's own sizes;
 //      - Mesh.ElementOrder = cfg.order, Mesh.SecondOrderIncomplete = 1
 //        (P2 = tri6 / tet10);
-//      - Mesh.Algorithm3D = 1 (Delaunay) or 10 (HXT) for cfg.algorithm, on one
-//        thread (General.NumThreads = Mesh.MaxNumThreads3D = 1; with gmsh's default
-//        HXT's mesh changed from run to run). HXT's mesh also depends on what the
-//        process meshed before: the same in every fresh gmsh process (read_mesh with
-//        enable_gmsh_process, as stentor runs), not between two calls in one process;
 //      - cfg.recombine: 2D: Mesh.RecombineAll = 1 (Blossom: quad4, normally
 //        all quads; any leftover triangles are kept in their own block); 3D: Mesh.SubdivisionAlgorithm = 2 (every tet split into 4
 //        hexes, so the hexes are about half the size). Recombine needs

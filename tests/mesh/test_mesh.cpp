@@ -276,29 +276,6 @@ TEST(GmshReader, RecombineGivesQuadsAndHexes) {
                      {input("block2d.geo") + ": ", "recombine", "order 1"});
 }
 
-// Mesh->algorithm = hxt: gmsh's HXT tetrahedralisation instead of Delaunay. A valid mesh of
-// the same body (volume, groups, P1 and P2, positive Jacobians), and not the Delaunay mesh.
-// (Within one process HXT's mesh depends on what the process meshed before, so two calls
-// are not compared here; stentor meshes in a fresh gmsh process each time, where it is
-// the same mesh on every run: mpi.consistency.par3d_hxt.)
-TEST(GmshReader, HxtMeshesTheSameBody) {
-  for (int order : {1, 2}) {
-    MeshConfig c = config(input("block3d.geo"), 0.15, order);
-    const Mesh del = read_mesh(c);
-    c.algorithm = "hxt";
-    const Mesh a = read_mesh(c);
-    expect_consistent(a);
-    EXPECT_NO_THROW(check_mesh(a));
-    EXPECT_NEAR(measure(a), 1.0, 1e-12);
-    EXPECT_EQ(a.volume_group_names(), del.volume_group_names());
-    EXPECT_EQ(a.boundary_group_names(), del.boundary_group_names());
-    EXPECT_NE(a.x, del.x);  // another mesh: HXT was used
-    const double ratio = static_cast<double>(a.num_nodes()) / static_cast<double>(del.num_nodes());
-    EXPECT_GT(ratio, 0.7);  // the same element size
-    EXPECT_LT(ratio, 1.3);
-  }
-}
-
 TEST(GmshReader, AreasAndVolumes) {
   for (int order : {1, 2}) {
     EXPECT_NEAR(measure(read_mesh(config(input("block2d.geo"), 0.2, order))), 1.0, 1e-12);
