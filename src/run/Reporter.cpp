@@ -351,8 +351,11 @@ void Reporter::write_fields(double t, const la::Vector& u) {
   std::vector<int> rk;
   if (o.wants("cauchy_stress_nodal")) recovered.push_back(&cf.stress), rk.push_back(6);
   if (o.wants("von_mises_nodal")) recovered.push_back(&cf.von_mises), rk.push_back(1);
+  // Collective, skipped alike on every rank when no recovered field is wanted (it would
+  // still send every cell to the ranks of its nodes).
   const std::vector<std::vector<double>> nodal =
-      recover_on_rows(m_.mesh, comm, xdmf_->node_rows(), cf.cell_ids, recovered, rk, cf.volume);
+      recovered.empty() ? std::vector<std::vector<double>>{}
+                        : recover_on_rows(m_.mesh, comm, xdmf_->node_rows(), cf.cell_ids, recovered, rk, cf.volume);
   std::string failure;
   try {
     xdmf_->begin_step(t);
