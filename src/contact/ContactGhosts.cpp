@@ -1,13 +1,13 @@
 // Surface ghosting of the contact pairs with master surfaces (docs/contact.md, "Master
 // positions in parallel"): which surface nodes a rank imports, and their positions.
 #include <Teuchos_CommHelpers.hpp>
-#include <Teuchos_DefaultMpiComm.hpp>
 #include <mpi.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "contact/Contact.hpp"
+#include "parallel/RawComm.hpp"
 
 namespace stentor {
 
@@ -21,12 +21,6 @@ void Contact::update_master_positions(const la::Vector& u, std::vector<double>& 
   }
 }
 
-namespace {
-MPI_Comm raw_comm(const la::Comm& comm) {
-  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
-  return mpi ? (*mpi->getRawMpiComm())() : MPI_COMM_SELF;
-}
-}  // namespace
 
 // Every rank's box of its slave nodes (of master-surface pairs) is gathered; the owner of
 // each surface node sends it to every rank whose box, grown by the margin (8 h), holds it.
@@ -76,7 +70,7 @@ void Contact::rebuild_ghosts(const la::Vector& u) {
     sdispl[static_cast<std::size_t>(r)] = static_cast<int>(sbuf.size());
     sbuf.insert(sbuf.end(), send[static_cast<std::size_t>(r)].begin(), send[static_cast<std::size_t>(r)].end());
   }
-  const MPI_Comm mc = raw_comm(comm);
+  const MPI_Comm mc = raw_mpi_comm(comm);
   MPI_Alltoall(scount.data(), 1, MPI_INT, rcount.data(), 1, MPI_INT, mc);
   int total = 0;
   for (int r = 0; r < np; ++r) rdispl[static_cast<std::size_t>(r)] = total, total += rcount[static_cast<std::size_t>(r)];

@@ -6,16 +6,11 @@
 #include <iostream>
 #include <thread>
 
-#include <Teuchos_DefaultMpiComm.hpp>
+#include "parallel/RawComm.hpp"
 
 namespace stentor {
 
 namespace {
-
-MPI_Comm raw_comm(const Teuchos::Comm<int>& comm) {
-  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
-  return mpi ? (*mpi->getRawMpiComm())() : MPI_COMM_WORLD;
-}
 
 [[noreturn]] void abort_vote(int rank, int size, const std::string& local, double timeout_s) {
   std::cerr << "[rank " << rank << "] "
@@ -37,7 +32,7 @@ Agreement agree_on_failure(const Teuchos::Comm<int>& comm, const std::string& lo
     if (!local.empty()) a = Agreement{0, local};
     return a;
   }
-  const MPI_Comm c = raw_comm(comm);
+  const MPI_Comm c = raw_mpi_comm(comm);
   int mine = local.empty() ? size : rank, lowest = size;
   MPI_Request req;
   MPI_Iallreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, c, &req);

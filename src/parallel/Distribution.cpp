@@ -5,18 +5,12 @@
 #include <cstdint>
 #include <utility>
 
-#include <Teuchos_DefaultMpiComm.hpp>
-
 #include "mesh/MeshComm.hpp"
+#include "parallel/RawComm.hpp"
 
 namespace stentor {
 
 namespace {
-
-MPI_Comm raw_comm(const la::Comm& comm) {
-  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
-  return mpi ? (*mpi->getRawMpiComm())() : MPI_COMM_SELF;
-}
 
 // Morton (Z-order) key of x in the box [lo, hi]: 21 bits per axis, interleaved.
 std::uint64_t morton_key(const double* x, const double* lo, const double* hi) {
@@ -60,7 +54,7 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
   const std::size_t nn = mesh.num_nodes();
   // Rank 0 runs METIS and broadcasts the cells' parts (one METIS run per job: its graph
   // and work are not repeated on every rank).
-  const std::vector<int> cell_part = partition_cells_on_root(mesh, nranks_, raw_comm(*comm));
+  const std::vector<int> cell_part = partition_cells_on_root(mesh, nranks_, raw_mpi_comm(*comm));
   const std::vector<int> owner = node_owners(mesh, cell_part);
 
   // Nodes touched by this rank's cells, and by any cell (nodes of boundary or point

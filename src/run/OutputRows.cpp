@@ -3,16 +3,9 @@
 #include <algorithm>
 #include <numeric>
 
-#include <Teuchos_DefaultMpiComm.hpp>
-
 #include "mesh/NodalRecovery.hpp"
 
 namespace stentor {
-
-MPI_Comm raw_mpi_comm(const la::Comm& comm) {
-  const auto* mpi = dynamic_cast<const Teuchos::MpiComm<int>*>(&comm);
-  return mpi ? (*mpi->getRawMpiComm())() : MPI_COMM_WORLD;
-}
 
 int block_row_owner(std::size_t n, int nranks, std::size_t row) {
   const auto p = static_cast<std::size_t>(nranks);

@@ -11,11 +11,9 @@
 #include "io/XdmfWriter.hpp"
 #include "mesh/Mesh.hpp"
 #include "parallel/Distribution.hpp"
+#include "parallel/RawComm.hpp"
 
 namespace stentor {
-
-// The raw communicator of a Teuchos one (MPI_COMM_WORLD when it is not an MpiComm).
-MPI_Comm raw_mpi_comm(const la::Comm& comm);
 
 // The rank whose block_rows(n, rank, nranks) holds `row`.
 int block_row_owner(std::size_t n, int nranks, std::size_t row);
