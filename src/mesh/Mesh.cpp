@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 namespace stentor {
 namespace {
@@ -116,6 +117,17 @@ Mesh deserialize_mesh(const std::vector<char>& buf) {
   out.boundaries = read_blocks(r);
   if (r.pos != buf.size()) throw std::runtime_error("serialized mesh: trailing data");
   return out;
+}
+
+std::pair<std::size_t, std::size_t> locate_cell(const Mesh& m, GId id) {
+  for (std::size_t b = 0; b < m.volumes.size(); ++b) {
+    const CellBlock& blk = m.volumes[b];
+    if (blk.num_cells() == 0 || id < blk.cell_id.front() || id > blk.cell_id.back()) continue;
+    const auto i = static_cast<std::size_t>(id - blk.cell_id.front());
+    if (blk.cell_id[i] != id) throw std::logic_error("locate_cell: the cell ids of block '" + blk.name + "' are not consecutive");
+    return {b, i};
+  }
+  throw std::logic_error("locate_cell: no volume cell " + std::to_string(id));
 }
 
 std::vector<std::string> Mesh::volume_group_names() const { return unique_names(volumes); }

@@ -4,6 +4,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fem/CellType.hpp"
@@ -46,6 +47,11 @@ struct Mesh {
   };
   Box bounding_box() const;
 };
+
+// Where the volume cell with global id `id` is: its block in Mesh::volumes and its index
+// there. A block's ids are consecutive (GmshReader numbers the cells so); throws
+// std::logic_error when no block holds `id` or a block's ids are not consecutive.
+std::pair<std::size_t, std::size_t> locate_cell(const Mesh& m, GId id);
 
 // The mesh as bytes and back (every field): for the broadcast and for the mesh that
 // gmsh's own process hands back (mesh/GmshReader.hpp). deserialize_mesh throws

@@ -1,8 +1,5 @@
 #include "mesh/NodalRecovery.hpp"
 
-#include <stdexcept>
-#include <string>
-
 namespace stentor {
 
 namespace {
@@ -50,17 +47,8 @@ std::vector<double> recover_at_node_rows(const Mesh& mesh, std::size_t begin, st
                                          const std::vector<double>& cell_values, int k, const std::vector<double>& volume) {
   const auto kk = static_cast<std::size_t>(k);
   return recover(mesh, begin, end, kk, [&](auto&& add) {
-    std::size_t b = 0;
     for (std::size_t j = 0; j < cells.size(); ++j) {
-      const GId id = cells[j];
-      // The block of the cell: its ids are consecutive (GmshReader numbers the cells so).
-      for (b = 0; b < mesh.volumes.size(); ++b) {
-        const CellBlock& blk = mesh.volumes[b];
-        if (blk.num_cells() > 0 && id >= blk.cell_id.front() && id <= blk.cell_id.back()) break;
-      }
-      if (b == mesh.volumes.size()) throw std::logic_error("recover_at_node_rows: no cell " + std::to_string(id));
-      const auto i = static_cast<std::size_t>(id - mesh.volumes[b].cell_id.front());
-      if (mesh.volumes[b].cell_id[i] != id) throw std::logic_error("recover_at_node_rows: cell ids of a block not consecutive");
+      const auto [b, i] = locate_cell(mesh, cells[j]);
       add(b, i, volume[j], &cell_values[j * kk]);
     }
   });

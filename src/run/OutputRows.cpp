@@ -91,18 +91,13 @@ std::vector<std::vector<double>> recover_on_rows(const Mesh& mesh, MPI_Comm comm
   MPI_Comm_size(comm, &nranks);
   const std::size_t nn = mesh.num_nodes();
   const int kc = 1 + std::accumulate(k.begin(), k.end(), 0);
-  // Where each block's cells are: the block of a cell id (ids consecutive per block).
   std::vector<int> dest;
   std::vector<long long> sid;
   std::vector<double> sval;
   std::vector<int> to;
   for (std::size_t c = 0; c < ids.size(); ++c) {
-    std::size_t b = 0;
-    while (b + 1 < mesh.volumes.size() &&
-           (mesh.volumes[b].num_cells() == 0 || ids[c] > mesh.volumes[b].cell_id.back()))
-      ++b;
+    const auto [b, i] = locate_cell(mesh, ids[c]);
     const CellBlock& blk = mesh.volumes[b];
-    const auto i = static_cast<std::size_t>(ids[c] - blk.cell_id.front());
     const auto npc = static_cast<std::size_t>(blk.nodes_per_cell);
     to.clear();
     for (std::size_t a = 0; a < npc; ++a)
