@@ -480,7 +480,6 @@ LinearSolver::Result LinearSolver::solve_once(const la::Vector& b, la::Vector& x
   return res;
 }
 
-
 std::string LinearSolver::description() const {
   const auto& c = impl_->cfg;
   if (c.method == "direct") return "direct (Amesos2 KLU2)";

@@ -16,7 +16,8 @@ namespace {
 // own. Eisenstat-Walker (SIAM J. Sci. Comput. 17 (1996) 16-32, choice 2 with gamma = 0.9,
 // alpha = 2): eta_k = gamma (|r_k| / |r_k-1|)^alpha, kept at least gamma eta_k-1^alpha
 // when that exceeds 0.1 (so eta cannot collapse after one lucky iteration), at most
-// eta_max and at least the fixed tolerance. The last iteration is solved to the fixed
+// eta_max and at least the fixed tolerance; eta_1 = eta_max, or 0.9 hint^2 given the first
+// ratio |r_1| / |r_0| expected from a similar solve (newton_solve's hint). The last iteration is solved to the fixed
 // tolerance: where eta_k |r_k| would already be below half the convergence target (the
 // iteration is expected to converge Newton), eta_k is the fixed tolerance instead, so the
 // final iterate lies as far inside the target as with `fixed` (quadratic convergence from
