@@ -77,6 +77,10 @@ void write_blocks(Writer& w, const std::vector<CellBlock>& blocks) {
     w.pod<int>(b.nodes_per_cell);
     w.vec(b.conn);
     w.vec(b.cell_id);
+    w.vec(b.part);
+    w.vec(b.side);
+    w.vec(b.adjacent);
+    w.pod<std::uint64_t>(b.whole_cells);
   }
 }
 
@@ -91,6 +95,10 @@ std::vector<CellBlock> read_blocks(Reader& r) {
     b.nodes_per_cell = r.pod<int>();
     b.conn = r.vec<GId>();
     b.cell_id = r.vec<GId>();
+    b.part = r.vec<int>();
+    b.side = r.vec<signed char>();
+    b.adjacent = r.vec<GId>();
+    b.whole_cells = r.pod<std::uint64_t>();
   }
   return blocks;
 }
@@ -104,6 +112,10 @@ std::vector<char> serialize_mesh(const Mesh& m) {
   w.vec(m.x);
   write_blocks(w, m.volumes);
   write_blocks(w, m.boundaries);
+  w.pod<char>(m.partial ? 1 : 0);
+  w.vec(m.node_ids);
+  w.pod<std::uint64_t>(m.whole_nodes);
+  w.pod(m.whole_box);
   return std::move(w.buf);
 }
 
@@ -115,6 +127,10 @@ Mesh deserialize_mesh(const std::vector<char>& buf) {
   out.x = r.vec<double>();
   out.volumes = read_blocks(r);
   out.boundaries = read_blocks(r);
+  out.partial = r.pod<char>() != 0;
+  out.node_ids = r.vec<GId>();
+  out.whole_nodes = r.pod<std::uint64_t>();
+  out.whole_box = r.pod<Mesh::Box>();
   if (r.pos != buf.size()) throw std::runtime_error("serialized mesh: trailing data");
   return out;
 }
@@ -123,6 +139,11 @@ std::pair<std::size_t, std::size_t> locate_cell(const Mesh& m, GId id) {
   for (std::size_t b = 0; b < m.volumes.size(); ++b) {
     const CellBlock& blk = m.volumes[b];
     if (blk.num_cells() == 0 || id < blk.cell_id.front() || id > blk.cell_id.back()) continue;
+    if (m.partial) {
+      const auto it = std::lower_bound(blk.cell_id.begin(), blk.cell_id.end(), id);
+      if (it != blk.cell_id.end() && *it == id) return {b, static_cast<std::size_t>(it - blk.cell_id.begin())};
+      continue;
+    }
     const auto i = static_cast<std::size_t>(id - blk.cell_id.front());
     if (blk.cell_id[i] != id) throw std::logic_error("locate_cell: the cell ids of block '" + blk.name + "' are not consecutive");
     return {b, i};
@@ -133,9 +154,22 @@ std::pair<std::size_t, std::size_t> locate_cell(const Mesh& m, GId id) {
 std::vector<std::string> Mesh::volume_group_names() const { return unique_names(volumes); }
 std::vector<std::string> Mesh::boundary_group_names() const { return unique_names(boundaries); }
 
+long long Mesh::stored_index(GId g) const {
+  if (!partial) return g >= 0 && static_cast<std::size_t>(g) < num_stored_nodes() ? g : -1;
+  const auto it = std::lower_bound(node_ids.begin(), node_ids.end(), g);
+  return it != node_ids.end() && *it == g ? static_cast<long long>(it - node_ids.begin()) : -1;
+}
+
+const double* Mesh::coord(GId g) const {
+  const long long i = stored_index(g);
+  if (i < 0) throw std::logic_error("Mesh::coord: node " + std::to_string(g) + " is not stored on this rank");
+  return &x[3 * static_cast<std::size_t>(i)];
+}
+
 Mesh::Box Mesh::bounding_box() const {
+  if (partial) return whole_box;
   Box b{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};
-  for (std::size_t n = 0; n < num_nodes(); ++n)
+  for (std::size_t n = 0; n < num_stored_nodes(); ++n)
     for (int c = 0; c < 3; ++c) {
       b.lo[c] = std::min(b.lo[c], x[3 * n + c]);
       b.hi[c] = std::max(b.hi[c], x[3 * n + c]);
