@@ -114,7 +114,7 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
     for (GId g : d.nodes) {
       const la::LO l = dist.local_node(g);
       if (l < 0) continue;
-      const std::array<double, 3> value = d.field ? d.field(&mesh.x[3 * static_cast<std::size_t>(g)]) : d.values;
+      const std::array<double, 3> value = d.field ? d.field(mesh.coord(g)) : d.values;
       for (int c = 0; c < dim_; ++c) {
         if (!d.components[static_cast<std::size_t>(c)]) continue;
         fh(static_cast<std::size_t>(l) * dim_ + c) = 1;

@@ -6,7 +6,7 @@
 #include <set>
 #include <sstream>
 
-#include "fem/Shape.hpp"
+#include "mesh/MeshPart.hpp"
 
 namespace stentor {
 namespace {
@@ -27,45 +27,11 @@ std::vector<const CellBlock*> boundary_blocks_named(const Mesh& mesh, const std:
   return r;
 }
 
-// Reference unit normal direction (unnormalised) of a facet at its parametric centre,
-// following fem/Geometry.hpp's convention: 2D n = (t_y, -t_x), 3D n = x_xi x x_eta.
-std::array<double, 3> facet_normal(const Mesh& mesh, const CellBlock& b, std::size_t f) {
-  double xi[3] = {0, 0, 0};
-  if (b.type == CellType::Tri3 || b.type == CellType::Tri6) xi[0] = xi[1] = 1.0 / 3.0;
-  double N[kMaxCellNodes], dN[kMaxCellNodes][3];
-  shape_functions(b.type, xi, N, dN);
-  double t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0};
-  for (int a = 0; a < b.nodes_per_cell; ++a) {
-    const double* x = &mesh.x[3 * static_cast<std::size_t>(b.conn[f * b.nodes_per_cell + a])];
-    for (int d = 0; d < 3; ++d) {
-      t1[d] += dN[a][0] * x[d];
-      t2[d] += dN[a][1] * x[d];
-    }
-  }
-  if (mesh.dim == 2) return {t1[1], -t1[0], 0.0};
-  return {t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]};
-}
-
 }  // namespace
 
-NodeCells::NodeCells() = default;
-
-const std::vector<std::pair<int, std::size_t>>& NodeCells::of(const Mesh& mesh, GId node) {
-  if (cells_.empty()) {
-    cells_.resize(mesh.num_nodes());
-    for (std::size_t bi = 0; bi < mesh.volumes.size(); ++bi) {
-      const auto& b = mesh.volumes[bi];
-      for (std::size_t c = 0; c < b.num_cells(); ++c)
-        for (int a = 0; a < b.nodes_per_cell; ++a)
-          cells_[static_cast<std::size_t>(b.conn[c * b.nodes_per_cell + a])].push_back({static_cast<int>(bi), c});
-    }
-  }
-  return cells_[static_cast<std::size_t>(node)];
-}
-
-// gmsh does not orient physical curves/surfaces consistently with the body they bound:
-// each facet is oriented against the centroid of the volume cell that contains it.
-std::vector<OrientedFacets> oriented_facets(const Mesh& mesh, const std::string& group, const std::string& where, NodeCells& node_cells) {
+// Each facet's outward side, from the whole mesh (mesh/MeshPart.hpp facet_sides), or
+// as a rank's part of the mesh carries it (worked out on the whole mesh before it was cut).
+std::vector<OrientedFacets> oriented_facets(const Mesh& mesh, const std::string& group, const std::string& where) {
   std::vector<OrientedFacets> out;
   for (const CellBlock* b : boundary_blocks_named(mesh, group, where)) {
     if (cell_dim(b->type) != mesh.dim - 1)
@@ -75,38 +41,17 @@ std::vector<OrientedFacets> oriented_facets(const Mesh& mesh, const std::string&
     of.type = b->type;
     of.nodes_per_facet = b->nodes_per_cell;
     of.conn = b->conn;
-    const int nv = (mesh.dim == 2) ? 2 : (b->type == CellType::Quad4 || b->type == CellType::Quad8 ? 4 : 3);
+    FacetSides sides;
+    if (mesh.partial) sides = FacetSides{b->side, b->adjacent};
+    else sides = facet_sides(mesh, *b);
     for (std::size_t f = 0; f < b->num_cells(); ++f) {
-      const GId* fn = &b->conn[f * b->nodes_per_cell];
-      // A volume cell containing all vertex nodes of the facet.
-      int cb = -1;
-      std::size_t cc = 0;
-      for (const auto& [bi, c] : node_cells.of(mesh, fn[0])) {
-        const auto& vb = mesh.volumes[static_cast<std::size_t>(bi)];
-        const GId* cn = &vb.conn[c * vb.nodes_per_cell];
-        bool all = true;
-        for (int v = 1; v < nv && all; ++v) all = std::find(cn, cn + vb.nodes_per_cell, fn[v]) != cn + vb.nodes_per_cell;
-        if (all) {
-          cb = bi;
-          cc = c;
-          break;
-        }
-      }
-      if (cb < 0) {
+      if (sides.side[f] == 0) {
         std::ostringstream os;
         os << where << ": facet " << f << " of group '" << group << "' bounds no volume cell of the mesh";
         throw InputError(os.str());
       }
-      const auto& vb = mesh.volumes[static_cast<std::size_t>(cb)];
-      double xc[3] = {0, 0, 0}, xf[3] = {0, 0, 0};
-      for (int a = 0; a < vb.nodes_per_cell; ++a)
-        for (int d = 0; d < 3; ++d) xc[d] += mesh.x[3 * static_cast<std::size_t>(vb.conn[cc * vb.nodes_per_cell + a]) + d] / vb.nodes_per_cell;
-      for (int a = 0; a < b->nodes_per_cell; ++a)
-        for (int d = 0; d < 3; ++d) xf[d] += mesh.x[3 * static_cast<std::size_t>(fn[a]) + d] / b->nodes_per_cell;
-      const auto n = facet_normal(mesh, *b, f);
-      const double s = n[0] * (xf[0] - xc[0]) + n[1] * (xf[1] - xc[1]) + n[2] * (xf[2] - xc[2]);
-      of.orientation.push_back(s >= 0 ? 1.0 : -1.0);
-      of.adjacent_cell.push_back(vb.cell_id[cc]);
+      of.orientation.push_back(sides.side[f]);
+      of.adjacent_cell.push_back(sides.adjacent[f]);
     }
     out.push_back(std::move(of));
   }
@@ -142,7 +87,6 @@ std::vector<int> block_materials(const Config& cfg, const Mesh& mesh) {
 
 Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
   Loads loads;
-  NodeCells node_cells;
   for (const auto& lc : cfg.loads) {
     const std::string where = cfg.deck_path + ": Boundary Conditions->" + lc.name;
     switch (lc.type) {
@@ -165,7 +109,7 @@ Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
       }
       case LoadConfig::Type::Traction:
       case LoadConfig::Type::Pressure: {
-        for (OrientedFacets& of : oriented_facets(mesh, lc.group, where + "->boundary", node_cells)) {
+        for (OrientedFacets& of : oriented_facets(mesh, lc.group, where + "->boundary")) {
           FacetLoad fl;
           fl.type = lc.type;
           fl.name = lc.name;

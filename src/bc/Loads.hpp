@@ -49,16 +49,6 @@ struct Loads {
   std::vector<BodyForce> body_forces;
 };
 
-// Volume cells around each node ((block, cell) pairs), built on first use.
-class NodeCells {
- public:
-  NodeCells();
-  const std::vector<std::pair<int, std::size_t>>& of(const Mesh& mesh, GId node);
-
- private:
-  std::vector<std::vector<std::pair<int, std::size_t>>> cells_;
-};
-
 // The facets of a boundary group, one entry per cell type, each oriented outward.
 struct OrientedFacets {
   CellType type = CellType::Invalid;
@@ -70,7 +60,7 @@ struct OrientedFacets {
 };
 // Throws InputError (prefixed by `where`) when the group is missing, has cells of the
 // wrong dimension, or a facet bounds no volume cell.
-std::vector<OrientedFacets> oriented_facets(const Mesh& mesh, const std::string& group, const std::string& where, NodeCells& node_cells);
+std::vector<OrientedFacets> oriented_facets(const Mesh& mesh, const std::string& group, const std::string& where);
 
 // Throws InputError naming the load and the missing/unsuitable physical group.
 Loads resolve_loads(const Config& cfg, const Mesh& mesh);

@@ -44,7 +44,7 @@ std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group
         double t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0};
         for (int a = 0; a < nn; ++a)
           for (int c = 0; c < 3; ++c) {
-            const double x = mesh.x[3 * static_cast<std::size_t>(b->conn[f * nn + a]) + c];
+            const double x = mesh.coord(b->conn[f * nn + a])[c];
             t1[c] += dN[a][0] * x;
             t2[c] += dN[a][1] * x;
           }
@@ -165,7 +165,7 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
     nd.gid = g;
     auto it = areas.find(g);
     nd.area = it == areas.end() ? 0.0 : it->second;
-    for (int c = 0; c < 3; ++c) nd.X[c] = mesh.x[3 * gi + static_cast<std::size_t>(c)];
+    for (int c = 0; c < 3; ++c) nd.X[c] = mesh.coord(static_cast<GId>(gi))[c];
     for (int c = 0; c < dim_; ++c) nd.col[static_cast<std::size_t>(c)] = colmap->getLocalElement(static_cast<la::GO>(g) * dim_ + c);
     p.nodes.push_back(nd);
   }
@@ -189,7 +189,7 @@ void Contact::setup_master_maps(const Mesh& mesh, const std::vector<char>& is_su
     if (is_surface[g]) {
       master_pos_[g] = static_cast<int>(master_nodes_.size());
       master_nodes_.push_back(static_cast<GId>(g));
-      for (int c = 0; c < 3; ++c) master_X_.push_back(mesh.x[3 * g + static_cast<std::size_t>(c)]);
+      for (int c = 0; c < 3; ++c) master_X_.push_back(mesh.coord(static_cast<GId>(g))[c]);
     }
   for (auto& p : pairs_)
     if (p.master) p.master->index(master_pos_);

@@ -10,8 +10,7 @@
 namespace stentor {
 
 MasterSurface::MasterSurface(const Mesh& mesh, const std::string& group, const std::string& where) {
-  NodeCells node_cells;
-  for (const OrientedFacets& of : oriented_facets(mesh, group, where, node_cells)) {
+  for (const OrientedFacets& of : oriented_facets(mesh, group, where)) {
     if (!facet::supported(of.type))
       throw InputError(where + ": facets of type " + cell_name(of.type) + " in group '" + group +
                        "' are not supported as a master surface (line2, line3, tri3, tri6, quad4 are)");
@@ -33,7 +32,7 @@ MasterSurface::MasterSurface(const Mesh& mesh, const std::string& group, const s
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (int a = 0; a < fc.nn; ++a)
       for (int c = 0; c < 3; ++c) {
-        const double v = mesh.x[3 * static_cast<std::size_t>(fc.gid[a]) + static_cast<std::size_t>(c)];
+        const double v = mesh.coord(fc.gid[a])[c];
         lo[c] = std::min(lo[c], v);
         hi[c] = std::max(hi[c], v);
       }

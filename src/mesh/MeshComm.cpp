@@ -55,6 +55,12 @@ void broadcast_mesh(Mesh& m, MPI_Comm comm, int root) {
 }
 
 Mesh read_mesh_on_root(const MeshConfig& cfg, MPI_Comm comm, bool check, bool verbose, int root) {
+  Mesh m = read_mesh_on_root_only(cfg, comm, check, verbose, root);
+  broadcast_mesh(m, comm, root);
+  return m;
+}
+
+Mesh read_mesh_on_root_only(const MeshConfig& cfg, MPI_Comm comm, bool check, bool verbose, int root) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   Mesh m;
@@ -71,7 +77,6 @@ Mesh read_mesh_on_root(const MeshConfig& cfg, MPI_Comm comm, bool check, bool ve
   }
   bcast_bytes(err, comm, root);
   if (!err.empty()) throw InputError(std::string(err.begin(), err.end()));
-  broadcast_mesh(m, comm, root);
   return m;
 }
 

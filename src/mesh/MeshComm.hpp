@@ -1,4 +1,5 @@
-// Distributing the replicated Mesh and partitioning its cells (METIS).
+// Reading the mesh on one rank, copying it to every rank, and partitioning its cells
+// (METIS). A rank's part of the mesh instead of a copy: mesh/MeshPart.hpp.
 #pragma once
 #include <mpi.h>
 
@@ -17,6 +18,9 @@ void broadcast_mesh(Mesh& m, MPI_Comm comm, int root = 0);
 // rank (so no rank hangs). Collective.
 Mesh read_mesh_on_root(const MeshConfig& cfg, MPI_Comm comm, bool check = true, bool verbose = false,
                        int root = 0);
+// The same without the broadcast: the mesh on root, an empty Mesh elsewhere (for
+// distribute_mesh, mesh/MeshPart.hpp). Collective.
+Mesh read_mesh_on_root_only(const MeshConfig& cfg, MPI_Comm comm, bool check = true, bool verbose = false, int root = 0);
 
 // Part (0..nparts-1) of each global volume cell (index = CellBlock::cell_id),
 // from METIS_PartMeshDual on the vertex nodes (2 shared nodes make neighbours

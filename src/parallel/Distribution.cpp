@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cstdint>
 #include <utility>
 
@@ -51,32 +52,38 @@ void morton_sort(std::vector<T>& items, const Box& box, Xyz xyz) {
 
 Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm)
     : dim_(mesh.dim), rank_(comm->getRank()), nranks_(comm->getSize()), comm_(comm) {
-  const std::size_t nn = mesh.num_nodes();
-  // Rank 0 runs METIS and broadcasts the cells' parts (one METIS run per job: its graph
-  // and work are not repeated on every rank).
-  const std::vector<int> cell_part = partition_cells_on_root(mesh, nranks_, raw_mpi_comm(*comm));
-  const std::vector<int> owner = node_owners(mesh, cell_part);
+  // The part of each cell: a rank's part of the mesh carries them (mesh/MeshPart.hpp); a
+  // whole mesh is partitioned here, rank 0 running METIS and broadcasting the parts (one
+  // METIS run per job).
+  std::vector<int> whole_part;
+  if (!mesh.partial) whole_part = partition_cells_on_root(mesh, nranks_, raw_mpi_comm(*comm));
+  auto part_of = [&](const CellBlock& b, std::size_t c) {
+    return mesh.partial ? b.part[c] : whole_part[static_cast<std::size_t>(b.cell_id[c])];
+  };
 
-  // Nodes touched by this rank's cells, and by any cell (nodes of boundary or point
-  // groups that no volume cell uses carry no dof).
-  std::vector<char> touched(nn, 0), used(nn, 0);
+  // Over the stored nodes (all of a whole mesh): the owner (smallest part among the cells
+  // around, which are all stored for the nodes this rank touches), whether this rank's
+  // cells touch it, whether any cell does (nodes of boundary or point groups that no
+  // volume cell uses carry no dof).
+  const std::size_t ns = mesh.num_stored_nodes();
+  std::vector<int> owner(ns, INT_MAX);
+  std::vector<char> touched(ns, 0);
   for (const auto& b : mesh.volumes)
     for (std::size_t c = 0; c < b.num_cells(); ++c) {
-      const bool mine = cell_part[static_cast<std::size_t>(b.cell_id[c])] == rank_;
+      const int p = part_of(b, c);
       for (int a = 0; a < b.nodes_per_cell; ++a) {
-        const auto g = static_cast<std::size_t>(b.conn[c * b.nodes_per_cell + a]);
-        used[g] = 1;
-        if (mine) touched[g] = 1;
+        const auto i = static_cast<std::size_t>(mesh.stored_index(b.conn[c * b.nodes_per_cell + a]));
+        owner[i] = std::min(owner[i], p);
+        if (p == rank_) touched[i] = 1;
       }
     }
 
   std::vector<GId> owned, ghost;
-  for (std::size_t g = 0; g < nn; ++g) {
-    if (!used[g]) continue;
-    if (owner[g] == rank_)
-      owned.push_back(static_cast<GId>(g));
-    else if (touched[g])
-      ghost.push_back(static_cast<GId>(g));
+  for (std::size_t i = 0; i < ns; ++i) {
+    if (owner[i] == rank_)
+      owned.push_back(mesh.stored_node(i));
+    else if (touched[i])
+      ghost.push_back(mesh.stored_node(i));
   }
   // Local order: owned and ghost nodes each sorted along a Morton (Z-order) curve of
   // their coordinates, so that the nodes of a cell, and therefore the matrix rows an
@@ -84,7 +91,7 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
   // poor locality; this halved the tangent assembly at 200k dofs (docs/performance.md).
   // Global ids (and so all output) are unchanged.
   {
-    auto x = [&mesh](GId g) { return &mesh.x[3 * static_cast<std::size_t>(g)]; };
+    auto x = [&mesh](GId g) { return mesh.coord(g); };
     Box box;
     for (const auto* v : {&owned, &ghost})
       for (GId g : *v) box.add(x(g));
@@ -94,8 +101,13 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
   num_owned_ = static_cast<la::LO>(owned.size());
   local_nodes_ = owned;
   local_nodes_.insert(local_nodes_.end(), ghost.begin(), ghost.end());
-  node_g2l_.assign(nn, -1);
-  for (std::size_t l = 0; l < local_nodes_.size(); ++l) node_g2l_[static_cast<std::size_t>(local_nodes_[l])] = static_cast<la::LO>(l);
+  if (mesh.partial) {  // sized by this rank's nodes, not the mesh's
+    for (std::size_t l = 0; l < local_nodes_.size(); ++l) sparse_g2l_.emplace_back(local_nodes_[l], static_cast<la::LO>(l));
+    std::sort(sparse_g2l_.begin(), sparse_g2l_.end());
+  } else {
+    node_g2l_.assign(ns, -1);
+    for (std::size_t l = 0; l < local_nodes_.size(); ++l) node_g2l_[static_cast<std::size_t>(local_nodes_[l])] = static_cast<la::LO>(l);
+  }
 
   // DOF maps.
   auto dof_gids = [this](const std::vector<GId>& nodes) {
@@ -115,7 +127,7 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
   coords_ = Kokkos::View<double* [3], Kokkos::LayoutRight, la::ExecSpace>("coords", local_nodes_.size());
   auto ch = Kokkos::create_mirror_view(coords_);
   for (std::size_t l = 0; l < local_nodes_.size(); ++l)
-    for (int d = 0; d < 3; ++d) ch(l, d) = mesh.x[3 * static_cast<std::size_t>(local_nodes_[l]) + d];
+    for (int d = 0; d < 3; ++d) ch(l, d) = mesh.coord(local_nodes_[l])[d];
   Kokkos::deep_copy(coords_, ch);
 
   for (std::size_t bi = 0; bi < mesh.volumes.size(); ++bi) {
@@ -129,12 +141,12 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
     std::vector<std::array<double, 3>> centroid(b.num_cells());
     Box box;
     for (std::size_t c = 0; c < b.num_cells(); ++c)
-      if (cell_part[static_cast<std::size_t>(b.cell_id[c])] == rank_) {
+      if (part_of(b, c) == rank_) {
         std::array<double, 3>& xc = centroid[c];
         xc = {0.0, 0.0, 0.0};
         for (int a = 0; a < b.nodes_per_cell; ++a)
           for (int d = 0; d < 3; ++d)
-            xc[static_cast<std::size_t>(d)] += mesh.x[3 * static_cast<std::size_t>(b.conn[c * b.nodes_per_cell + a]) + d] / b.nodes_per_cell;
+            xc[static_cast<std::size_t>(d)] += mesh.coord(b.conn[c * b.nodes_per_cell + a])[d] / b.nodes_per_cell;
         box.add(xc.data());
         mine.push_back(c);
       }
@@ -147,10 +159,16 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
     auto h = Kokkos::create_mirror_view(lb.conn);
     for (std::size_t lc = 0; lc < lb.cell_index.size(); ++lc)
       for (int a = 0; a < b.nodes_per_cell; ++a)
-        h(lc, a) = node_g2l_[static_cast<std::size_t>(b.conn[static_cast<std::size_t>(lb.cell_index[lc]) * b.nodes_per_cell + a])];
+        h(lc, a) = local_node(b.conn[static_cast<std::size_t>(lb.cell_index[lc]) * b.nodes_per_cell + a]);
     Kokkos::deep_copy(lb.conn, h);
     blocks_.push_back(std::move(lb));
   }
+}
+
+la::LO Distribution::local_node(GId g) const {
+  if (sparse_g2l_.empty()) return g >= 0 && static_cast<std::size_t>(g) < node_g2l_.size() ? node_g2l_[static_cast<std::size_t>(g)] : -1;
+  const auto it = std::lower_bound(sparse_g2l_.begin(), sparse_g2l_.end(), std::make_pair(g, la::LO{-1}));
+  return it != sparse_g2l_.end() && it->first == g ? it->second : -1;
 }
 
 std::vector<double> Distribution::owned_coordinates() const {

@@ -1,5 +1,6 @@
 // Who owns what: the element partition (METIS), node ownership, and the Tpetra
-// DOF maps built from them. The mesh is replicated; each rank keeps its cells.
+// DOF maps built from them, from a rank's part of the mesh (the cells' parts come with
+// it) or from a whole mesh (partitioned here); each rank keeps its cells.
 //
 // DOF global id = node * dim + component, independent of the partition, so results
 // gathered for output come out in the same order on any number of ranks.
@@ -32,7 +33,7 @@ class Distribution {
   la::LO num_owned_nodes() const { return num_owned_; }
   la::LO num_local_nodes() const { return static_cast<la::LO>(local_nodes_.size()); }
   // Overlap-local index of a global node, or -1 when this rank does not touch it.
-  la::LO local_node(GId g) const { return node_g2l_[static_cast<std::size_t>(g)]; }
+  la::LO local_node(GId g) const;
   bool owns_node(GId g) const {
     const la::LO l = local_node(g);
     return l >= 0 && l < num_owned_;
@@ -55,7 +56,8 @@ class Distribution {
   int dim_ = 0, rank_ = 0, nranks_ = 1;
   la::LO num_owned_ = 0;
   std::vector<GId> local_nodes_;
-  std::vector<la::LO> node_g2l_;
+  std::vector<la::LO> node_g2l_;                         // a whole mesh: by global node
+  std::vector<std::pair<GId, la::LO>> sparse_g2l_;       // a part: (global, local), sorted
   std::vector<LocalBlock> blocks_;
   la::RCP<const la::Comm> comm_;
   la::RCP<const la::Map> owned_map_, overlap_map_;

@@ -1,11 +1,13 @@
 #include "run/Model.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <sstream>
 #include <string>
 
 #include "mesh/MeshComm.hpp"
+#include "mesh/MeshPart.hpp"
 #include "mesh/MeshQuery.hpp"
 #include "run/Supports.hpp"
 #include "solver/SolverParams.hpp"
@@ -14,20 +16,27 @@ namespace stentor {
 
 namespace {
 
-std::vector<GId> nearest_nodes(const Mesh& mesh, const std::vector<ProbeConfig>& probes) {
+// The mesh node nearest to each probe point (the smallest id among equally near ones),
+// over the nodes stored on each rank. Collective.
+std::vector<GId> nearest_nodes(const Mesh& mesh, const std::vector<ProbeConfig>& probes, MPI_Comm comm) {
   std::vector<GId> nodes;
   for (const auto& p : probes) {
-    GId best = 0;
     double bd = 1e300;
-    for (std::size_t n = 0; n < mesh.num_nodes(); ++n) {
+    for (std::size_t i = 0; i < mesh.num_stored_nodes(); ++i) {
       double d = 0.0;
-      for (int k = 0; k < 3; ++k) d += std::pow(mesh.x[3 * n + k] - p.point[static_cast<std::size_t>(k)], 2);
-      if (d < bd) {
-        bd = d;
-        best = static_cast<GId>(n);
-      }
+      for (int k = 0; k < 3; ++k) d += std::pow(mesh.x[3 * i + static_cast<std::size_t>(k)] - p.point[static_cast<std::size_t>(k)], 2);
+      bd = std::min(bd, d);
     }
-    nodes.push_back(best);
+    double all = bd;
+    MPI_Allreduce(&bd, &all, 1, MPI_DOUBLE, MPI_MIN, comm);
+    long long best = LLONG_MAX, first = LLONG_MAX;
+    for (std::size_t i = 0; i < mesh.num_stored_nodes() && best == LLONG_MAX; ++i) {
+      double d = 0.0;
+      for (int k = 0; k < 3; ++k) d += std::pow(mesh.x[3 * i + static_cast<std::size_t>(k)] - p.point[static_cast<std::size_t>(k)], 2);
+      if (d == all) best = mesh.stored_node(i);
+    }
+    MPI_Allreduce(&best, &first, 1, MPI_LONG_LONG, MPI_MIN, comm);
+    nodes.push_back(static_cast<GId>(first));
   }
   return nodes;
 }
@@ -68,7 +77,14 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
   nranks = comm->getSize();
   {
     Timers::Scope s{timers, "mesh"};
-    mesh = read_mesh_on_root(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
+    // One rank reads (and meshes) the whole mesh; on several ranks it then sends each its
+    // part (cells, their neighbours, the boundary groups: mesh/MeshPart.hpp).
+    if (nranks == 1) {
+      mesh = read_mesh_on_root(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
+    } else {
+      mesh = read_mesh_on_root_only(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
+      distribute_mesh(mesh, MPI_COMM_WORLD);
+    }
   }
   check_vector_dimensions(cfg, mesh.dim);
   block_mat = block_materials(cfg, mesh);
@@ -76,10 +92,10 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
   dim = mesh.dim;
   dynamic = cfg.dynamic_in(0);
   any_dynamic = cfg.any_dynamic();
-  probe_node = nearest_nodes(mesh, cfg.output.probes);
+  probe_node = nearest_nodes(mesh, cfg.output.probes, MPI_COMM_WORLD);
   check_contact_groups(cfg, mesh);
-  warnings = unsupported_bodies(cfg, mesh, loads);
-  if (cfg.any_static()) bodies = connected_bodies(cfg, mesh, loads);
+  warnings = unsupported_bodies(cfg, mesh, loads, MPI_COMM_WORLD);
+  if (cfg.any_static()) bodies = connected_bodies(cfg, mesh, loads, MPI_COMM_WORLD);
   validate_linear_solver(cfg.linear);  // the pass-through lists, before anything runs (and under --check)
 }
 

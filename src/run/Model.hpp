@@ -21,7 +21,8 @@
 namespace stentor {
 
 struct Model {
-  // Reads the mesh (rank 0, then broadcast) and resolves the deck's names against it.
+  // Reads the mesh (rank 0; on several ranks each then gets its part, mesh/MeshPart.hpp)
+  // and resolves the deck's names against it.
   // Throws InputError naming the parameter.
   Model(const Config& cfg, const RunOptions& opts, Timers& timers);
   Model(const Model&) = delete;

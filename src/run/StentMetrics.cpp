@@ -28,7 +28,7 @@ StentMetrics::StentMetrics(const Model& model) : m_(model), c_(model.cfg.output.
   }
   for (Group* g : {&stent_, &lumen_}) {
     g->nodes = boundary_nodes(mesh, g == &stent_ ? c_.stent : c_.lumen);
-    for (GId n : g->nodes) g->z0.push_back(axial_coordinate(&mesh.x[3 * static_cast<std::size_t>(n)]));
+    for (GId n : g->nodes) g->z0.push_back(axial_coordinate(mesh.coord(n)));
   }
   const auto span = std::minmax_element(stent_.z0.begin(), stent_.z0.end());
   z_lo_ = *span.first, z_hi_ = *span.second;
@@ -78,7 +78,7 @@ std::vector<double> StentMetrics::positions(const Group& g, const la::Vector& u)
       for (int k = 0; k < m_.dim; ++k) loc[3 * i + static_cast<std::size_t>(k)] = uh(static_cast<std::size_t>(d.local_node(g.nodes[i]) * m_.dim + k), 0);
   if (!loc.empty()) Teuchos::reduceAll(*m_.comm, Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), x.data());
   for (std::size_t i = 0; i < g.nodes.size(); ++i)
-    for (std::size_t k = 0; k < 3; ++k) x[3 * i + k] += m_.mesh.x[3 * static_cast<std::size_t>(g.nodes[i]) + k];
+    for (std::size_t k = 0; k < 3; ++k) x[3 * i + k] += m_.mesh.coord(g.nodes[i])[k];
   return x;
 }
 
@@ -98,7 +98,7 @@ void StentMetrics::stresses(const la::Vector& u, double& von_mises, double& hoop
       const auto npc = static_cast<std::size_t>(mb.nodes_per_cell);
       const std::size_t first = static_cast<std::size_t>(lb.cell_index[i]) * npc;
       for (std::size_t a = 0; a < npc; ++a)
-        for (std::size_t k = 0; k < 3; ++k) xc[k] += mesh.x[3 * static_cast<std::size_t>(mb.conn[first + a]) + k] / double(npc);
+        for (std::size_t k = 0; k < 3; ++k) xc[k] += mesh.coord(mb.conn[first + a])[k] / double(npc);
       double er[3] = {xc[0] - c_.axis_point[0], xc[1] - c_.axis_point[1], xc[2] - c_.axis_point[2]};
       const double al = dot(er, c_.axis.data());
       for (std::size_t k = 0; k < 3; ++k) er[k] -= al * c_.axis[k];

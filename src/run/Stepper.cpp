@@ -223,7 +223,7 @@ std::string Stepper::free_translation() {
         {
           auto zh = z->getLocalViewHost(Tpetra::Access::ReadWrite);  // a new Vector is zero
           for (la::LO n = 0; n < dist.num_owned_nodes(); ++n)
-            zh(n * m_.dim + c, 0) = cb.body_of_node[static_cast<std::size_t>(dist.global_node(n))] == static_cast<int>(k) ? 1.0 : 0.0;
+            zh(n * m_.dim + c, 0) = cb.body(m_.mesh, dist.global_node(n)) == static_cast<int>(k) ? 1.0 : 0.0;
         }
         translations_.push_back({k, c, z});
       }

@@ -3,6 +3,7 @@
 #include "mesh/MeshQuery.hpp"
 
 #include <algorithm>
+#include <climits>
 #include <numeric>
 
 namespace stentor {
@@ -14,29 +15,45 @@ int find(std::vector<int>& parent, int i) {
   return i;
 }
 
-// Node -> connected body (-1: in no body); `names`: the bodies of each connected body.
-// Bodies sharing nodes are one; so are the two sides of a contact pair with a master
-// surface (contact couples them, it does not hold them).
-std::vector<int> body_components(const Config& cfg, const Mesh& mesh, std::vector<std::vector<std::string>>& names) {
+// Stored node (Mesh::stored_index) -> connected body (-1: in no body); `names`: the bodies
+// of each connected body. Bodies sharing nodes are one; so are the two sides of a contact
+// pair with a master surface (contact couples them, it does not hold them). On a rank's
+// part of the mesh, a node shared by two bodies is seen with both by the ranks whose cells
+// hold it (the ghost layer has every cell around it), and each rank sees only some of a
+// contact pair's nodes: the links found are combined over the ranks. Collective.
+std::vector<int> body_components(const Config& cfg, const Mesh& mesh, MPI_Comm comm, std::vector<std::vector<std::string>>& names) {
   const int nb = static_cast<int>(cfg.bodies.size());
-  std::vector<int> parent(static_cast<std::size_t>(nb)), node_body(mesh.num_nodes(), -1);
+  std::vector<int> parent(static_cast<std::size_t>(nb)), node_body(mesh.num_stored_nodes(), -1);
   std::iota(parent.begin(), parent.end(), 0);
   auto unite = [&](int a, int b) { parent[static_cast<std::size_t>(find(parent, a))] = find(parent, b); };
   for (int b = 0; b < nb; ++b)
     for (const auto& vb : mesh.volumes)
       if (vb.name == cfg.bodies[static_cast<std::size_t>(b)].group)
         for (GId g : vb.conn) {
-          int& nbody = node_body[static_cast<std::size_t>(g)];
+          int& nbody = node_body[static_cast<std::size_t>(mesh.stored_index(g))];
           if (nbody < 0) nbody = b;
           else unite(b, nbody);
         }
+  int nranks = 1;
+  MPI_Comm_size(comm, &nranks);
+  if (nranks > 1) {  // every rank's links on every rank
+    std::vector<int> mine(static_cast<std::size_t>(nb)), all(static_cast<std::size_t>(nb) * static_cast<std::size_t>(nranks));
+    for (int b = 0; b < nb; ++b) mine[static_cast<std::size_t>(b)] = find(parent, b);
+    MPI_Allgather(mine.data(), nb, MPI_INT, all.data(), nb, MPI_INT, comm);
+    for (std::size_t i = 0; i < all.size(); ++i) unite(static_cast<int>(i % static_cast<std::size_t>(nb)), all[i]);
+  }
   for (const auto& c : cfg.contact) {
     if (c.master.empty()) continue;
-    int first = -1;
+    std::vector<int> seen(static_cast<std::size_t>(nb), 0), any(static_cast<std::size_t>(nb), 0);
     for (const std::string& grp : {c.slave, c.master})
       for (GId g : boundary_nodes(mesh, grp)) {
-        const int b = node_body[static_cast<std::size_t>(g)];
-        if (b < 0) continue;
+        const long long i = mesh.stored_index(g);
+        if (i >= 0 && node_body[static_cast<std::size_t>(i)] >= 0) seen[static_cast<std::size_t>(node_body[static_cast<std::size_t>(i)])] = 1;
+      }
+    MPI_Allreduce(seen.data(), any.data(), nb, MPI_INT, MPI_MAX, comm);
+    int first = -1;
+    for (int b = 0; b < nb; ++b)
+      if (any[static_cast<std::size_t>(b)]) {
         if (first < 0) first = b;
         else unite(b, first);
       }
@@ -50,42 +67,59 @@ std::vector<int> body_components(const Config& cfg, const Mesh& mesh, std::vecto
 
 }  // namespace
 
+int ConnectedBodies::body(const Mesh& mesh, GId g) const {
+  const long long i = mesh.stored_index(g);
+  return i < 0 ? -1 : body_of_node[static_cast<std::size_t>(i)];
+}
+
 std::string ConnectedBodies::who(std::size_t k) const {
   std::string w;
   for (const auto& n : names[k]) w += (w.empty() ? "'" : ", '") + n + "'";
   return "Bodies->" + w + (names[k].size() > 1 ? " (connected)" : "");
 }
 
-ConnectedBodies connected_bodies(const Config& cfg, const Mesh& mesh, const Loads& loads) {
+ConnectedBodies connected_bodies(const Config& cfg, const Mesh& mesh, const Loads& loads, MPI_Comm comm) {
   ConnectedBodies cb;
-  cb.body_of_node = body_components(cfg, mesh, cb.names);
+  cb.body_of_node = body_components(cfg, mesh, comm, cb.names);
   const std::size_t nb = cb.names.size();
-  cb.held.assign(nb, {false, false, false});
-  cb.several.assign(nb, 0);
-  std::vector<GId> first(nb, -1);
+  // Per connected body: prescribed directions, and the smallest and largest prescribed
+  // node (more than one node when they differ), over the ranks.
+  std::vector<int> held(3 * nb, 0);
+  std::vector<long long> lo(nb, LLONG_MAX), hi(nb, LLONG_MIN);
   for (const auto& d : loads.dirichlet)
     for (GId g : d.nodes) {
-      const int b = cb.body_of_node[static_cast<std::size_t>(g)];
+      const int b = cb.body(mesh, g);
       if (b < 0) continue;
       const auto k = static_cast<std::size_t>(b);
       for (int c = 0; c < mesh.dim; ++c)
-        cb.held[k][static_cast<std::size_t>(c)] = cb.held[k][static_cast<std::size_t>(c)] || d.components[static_cast<std::size_t>(c)];
-      if (first[k] < 0) first[k] = g;
-      else if (first[k] != g) cb.several[k] = 1;
+        if (d.components[static_cast<std::size_t>(c)]) held[3 * k + static_cast<std::size_t>(c)] = 1;
+      lo[k] = std::min(lo[k], static_cast<long long>(g));
+      hi[k] = std::max(hi[k], static_cast<long long>(g));
     }
+  const int n = static_cast<int>(nb);
+  MPI_Allreduce(MPI_IN_PLACE, held.data(), 3 * n, MPI_INT, MPI_MAX, comm);
+  MPI_Allreduce(MPI_IN_PLACE, lo.data(), n, MPI_LONG_LONG, MPI_MIN, comm);
+  MPI_Allreduce(MPI_IN_PLACE, hi.data(), n, MPI_LONG_LONG, MPI_MAX, comm);
+  cb.held.assign(nb, {false, false, false});
+  cb.several.assign(nb, 0);
+  for (std::size_t k = 0; k < nb; ++k) {
+    for (std::size_t c = 0; c < 3; ++c) cb.held[k][c] = held[3 * k + c] != 0;
+    cb.several[k] = lo[k] < hi[k] ? 1 : 0;
+  }
   return cb;
 }
 
-std::vector<std::string> unsupported_bodies(const Config& cfg, const Mesh& mesh, const Loads& loads) {
+std::vector<std::string> unsupported_bodies(const Config& cfg, const Mesh& mesh, const Loads& loads, MPI_Comm comm) {
   std::vector<std::string> lines;
   if (!cfg.any_static() || cfg.bodies.empty()) return lines;
-  const ConnectedBodies cb = connected_bodies(cfg, mesh, loads);
+  const ConnectedBodies cb = connected_bodies(cfg, mesh, loads, comm);
   const std::size_t nb = cb.names.size();
-  std::vector<char> contact(nb, 0);
+  std::vector<int> contact(nb, 0);
   for (const auto& c : cfg.contact)  // a rigid obstacle may hold the body it touches
     if (c.master.empty())
       for (GId g : boundary_nodes(mesh, c.slave))
-        if (cb.body_of_node[static_cast<std::size_t>(g)] >= 0) contact[static_cast<std::size_t>(cb.body_of_node[static_cast<std::size_t>(g)])] = 1;
+        if (cb.body(mesh, g) >= 0) contact[static_cast<std::size_t>(cb.body(mesh, g))] = 1;
+  MPI_Allreduce(MPI_IN_PLACE, contact.data(), static_cast<int>(nb), MPI_INT, MPI_MAX, comm);
   for (std::size_t k = 0; k < nb; ++k) {
     if (cb.names[k].empty() || contact[k]) continue;
     std::string free_dirs;

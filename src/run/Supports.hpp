@@ -11,6 +11,8 @@
 // A run checks the same bodies' unprescribed directions against each converged step's
 // tangent, contact included (Stepper::free_translation), and stops when one is free.
 #pragma once
+#include <mpi.h>
+
 #include <array>
 #include <string>
 #include <vector>
@@ -23,16 +25,18 @@ namespace stentor {
 
 // Connected bodies as above, and where Dirichlet conditions hold each of them.
 struct ConnectedBodies {
-  std::vector<int> body_of_node;                // connected body of each mesh node (-1: in no body)
+  std::vector<int> body_of_node;                // connected body of each stored mesh node (-1: in no body)
   std::vector<std::vector<std::string>> names;  // its bodies' names (empty: not a connected body's index)
   std::vector<std::array<bool, 3>> held;        // a Dirichlet condition prescribes direction c at some node
   std::vector<char> several;                    // the prescribed nodes are more than one node
   std::string who(std::size_t k) const;         // "Bodies->'a', 'b' (connected)"
+  int body(const Mesh& mesh, GId g) const;      // of global node g (-1: in no body, or not stored here)
 };
-ConnectedBodies connected_bodies(const Config& cfg, const Mesh& mesh, const Loads& loads);
+// Collective over comm (the ranks holding the parts of `mesh`).
+ConnectedBodies connected_bodies(const Config& cfg, const Mesh& mesh, const Loads& loads, MPI_Comm comm);
 
 // One warning line per connected body whose rigid motion is free, naming its bodies and
 // the free directions; none for dynamic analyses.
-std::vector<std::string> unsupported_bodies(const Config& cfg, const Mesh& mesh, const Loads& loads);
+std::vector<std::string> unsupported_bodies(const Config& cfg, const Mesh& mesh, const Loads& loads, MPI_Comm comm);
 
 }  // namespace stentor

@@ -85,15 +85,17 @@ EnergyAudit TimeIntegrator::initialize(la::Vector& u0, double end_time) {
   const auto& ic = cfg_.initial;
   // The body whose own initial velocity / displacement a node takes (the last listed wins
   // on shared nodes), -1: Initial Conditions'.
-  std::vector<int> vel_of(mesh_.num_nodes(), -1), disp_of(mesh_.num_nodes(), -1);
+  // By stored node (a rank's part of the mesh has every cell around its owned nodes).
+  std::vector<int> vel_of(mesh_.num_stored_nodes(), -1), disp_of(mesh_.num_stored_nodes(), -1);
   for (std::size_t b = 0; b < cfg_.bodies.size(); ++b) {
     const BodyConfig& bc = cfg_.bodies[b];
     if (!bc.own_velocity() && !bc.has_displacement) continue;
     for (const auto& vb : mesh_.volumes)
       if (vb.name == bc.group)
         for (GId g : vb.conn) {
-          if (bc.own_velocity()) vel_of[static_cast<std::size_t>(g)] = static_cast<int>(b);
-          if (bc.has_displacement) disp_of[static_cast<std::size_t>(g)] = static_cast<int>(b);
+          const auto i = static_cast<std::size_t>(mesh_.stored_index(g));
+          if (bc.own_velocity()) vel_of[i] = static_cast<int>(b);
+          if (bc.has_displacement) disp_of[i] = static_cast<int>(b);
         }
   }
   // v0 = v + w x (X - c) of the body, or of Initial Conditions.
@@ -108,23 +110,23 @@ EnergyAudit TimeIntegrator::initialize(la::Vector& u0, double end_time) {
     auto uh = u0.getLocalViewHost(Tpetra::Access::ReadWrite);
     auto vh = v_->getLocalViewHost(Tpetra::Access::OverwriteAll);
     for (la::LO n = 0; n < dist_.num_owned_nodes(); ++n) {
-      const auto g = static_cast<std::size_t>(dist_.global_node(n));
-      const double* X = &mesh_.x[3 * g];
+      const auto i = static_cast<std::size_t>(mesh_.stored_index(dist_.global_node(n)));
+      const double* X = &mesh_.x[3 * i];
       double v[3];
-      if (vel_of[g] >= 0) {
-        const BodyConfig& bc = cfg_.bodies[static_cast<std::size_t>(vel_of[g])];
+      if (vel_of[i] >= 0) {
+        const BodyConfig& bc = cfg_.bodies[static_cast<std::size_t>(vel_of[i])];
         rigid(bc.velocity, bc.angular_velocity, bc.center, X, v);
       } else {
         rigid(ic.velocity, ic.angular_velocity, ic.center, X, v);
       }
-      const auto& d = disp_of[g] >= 0 ? cfg_.bodies[static_cast<std::size_t>(disp_of[g])].displacement : ic.displacement;
+      const auto& d = disp_of[i] >= 0 ? cfg_.bodies[static_cast<std::size_t>(disp_of[i])].displacement : ic.displacement;
       for (int c = 0; c < dim; ++c) {
-        const la::LO i = n * dim + c;
-        if (assembler_.is_dirichlet(i)) {
-          vh(i, 0) = 0.0;
+        const la::LO r = n * dim + c;
+        if (assembler_.is_dirichlet(r)) {
+          vh(r, 0) = 0.0;
         } else {
-          uh(i, 0) = d[static_cast<std::size_t>(c)];
-          vh(i, 0) = v[c];
+          uh(r, 0) = d[static_cast<std::size_t>(c)];
+          vh(r, 0) = v[c];
         }
       }
     }
@@ -267,7 +269,7 @@ EnergyAudit TimeIntegrator::audit(const la::Vector& u) const {
   auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
   double loc[6] = {0, 0, 0, 0, 0, 0}, glob[6];
   for (la::LO n = 0; n < dist_.num_owned_nodes(); ++n) {
-    const double* X = &mesh_.x[3 * static_cast<std::size_t>(dist_.global_node(n))];
+    const double* X = mesh_.coord(dist_.global_node(n));
     double x[3] = {X[0], X[1], X[2]}, p[3] = {0, 0, 0};
     for (int c = 0; c < dim; ++c) {
       x[c] += uh(n * dim + c, 0);
