@@ -231,7 +231,6 @@ struct XdmfWriter::Impl {
     const char* topology = nullptr;
     int npc = 0;
     std::size_t ncells = 0;
-    std::size_t offset = 0;    // first cell in the block-ordered cell numbering
     std::string conn_path;     // HDF5 path
   };
   struct Field {
@@ -253,7 +252,7 @@ struct XdmfWriter::Impl {
   int rank = 0;
   bool parallel = false;
   RowRange nodes, cells;  // this rank's rows
-  std::vector<RowRange> block_rows;  // this rank's cells of each block (xdmf_rows)
+  std::vector<RowRange> block_part;  // this rank's cells of each block, within it (xdmf_rows)
   std::vector<Block> blocks;
   // The whole mesh as one topology: /mesh/topology is num_cells x npc when every cell has
   // one type, else the 1-D XDMF "Mixed" list (type id, nodes; topology_size entries).
@@ -398,7 +397,7 @@ struct XdmfWriter::Impl {
 
   // /mesh/topology (every block's cells in block order, one cell type or XDMF "Mixed"),
   // /mesh/cell_block (the block index of each cell) and the block legend. `conn`: this
-  // rank's rows of each block (block_rows), XDMF node order.
+  // rank's rows of each block (block_part), XDMF node order.
   void write_whole_mesh(const std::vector<std::vector<long long>>& conn) {
     std::set<CellType> types;
     for (std::size_t i = 0; i < blocks.size(); ++i) {
@@ -412,7 +411,7 @@ struct XdmfWriter::Impl {
     std::size_t mixed_begin = 0;  // this rank's first entry of a Mixed list
     for (std::size_t i = 0; i < blocks.size(); ++i) {
       const Block& b = blocks[i];
-      const RowRange part = block_rows[i];
+      const RowRange part = block_part[i];
       mixed_begin += part.begin * static_cast<std::size_t>(1 + b.npc);
       cell_block.insert(cell_block.end(), part.size(), static_cast<long long>(i));
       for (std::size_t c = 0; c < part.size(); ++c) {
@@ -492,7 +491,6 @@ struct XdmfWriter::Impl {
       if (!b.topology) fail("volume block '" + xb.name + "' has a cell type without XDMF topology");
       b.npc = cell_num_nodes(xb.type);
       b.ncells = xb.num_cells;
-      b.offset = num_cells;
       num_cells += b.ncells;
       b.grid_name = xb.name.empty() ? "block_" + std::to_string(i) : xb.name;
       if (!used.insert(b.grid_name).second) {
@@ -505,7 +503,7 @@ struct XdmfWriter::Impl {
     const XdmfRows rows = xdmf_rows(mesh, rank, nranks);
     nodes = rows.nodes;
     cells = rows.cells;
-    block_rows = rows.blocks;
+    block_part = rows.blocks;
   }
 
   // This rank's rows of `mesh` match its outline (set_outline).
@@ -514,7 +512,7 @@ struct XdmfWriter::Impl {
       fail("expected " + std::to_string(nodes.size()) + " x 3 coordinates, got " + std::to_string(mesh.x.size()));
     for (std::size_t i = 0; i < blocks.size(); ++i) {
       const XdmfMesh::Block& xb = mesh.blocks[i];
-      if (xb.conn.size() != block_rows[i].size() * static_cast<std::size_t>(blocks[i].npc))
+      if (xb.conn.size() != block_part[i].size() * static_cast<std::size_t>(blocks[i].npc))
         fail("volume block '" + xb.name + "': connectivity size does not match its cell type and rows");
       for (long long n : xb.conn)
         if (n < 0 || static_cast<std::size_t>(n) >= num_nodes)
@@ -549,7 +547,7 @@ struct XdmfWriter::Impl {
       write_string_attr(bg.get(), "topology", b.topology, gname);
       int perm[kMaxCellNodes];
       xdmf_node_permutation(b.type, perm);
-      const RowRange part = block_rows[i];
+      const RowRange part = block_part[i];
       std::vector<long long> conn(part.size() * static_cast<std::size_t>(b.npc));
       for (std::size_t c = 0; c < part.size(); ++c)
         for (int j = 0; j < b.npc; ++j) conn[c * b.npc + j] = gmsh[c * b.npc + perm[j]];

@@ -72,11 +72,16 @@ std::size_t max_nodes_per_cell(const Mesh& mesh) {
   return n;
 }
 
-// The coordinates of this rank's node rows `rows` of n: the owned nodes' routed to them.
-std::vector<double> coordinates_on_rows(const Distribution& dist, MPI_Comm comm, std::size_t n, RowRange rows) {
+// The global ids of this rank's owned nodes, in owned-local order.
+std::vector<long long> owned_nodes(const Distribution& dist) {
   std::vector<long long> ids(static_cast<std::size_t>(dist.num_owned_nodes()));
   for (std::size_t l = 0; l < ids.size(); ++l) ids[l] = static_cast<long long>(dist.global_node(static_cast<la::LO>(l)));
-  const Records got = route_to_rows(comm, n, ids, dist.owned_coordinates(), 3);
+  return ids;
+}
+
+// The coordinates of this rank's node rows `rows` of n: the owned nodes' routed to them.
+std::vector<double> coordinates_on_rows(const Distribution& dist, MPI_Comm comm, std::size_t n, RowRange rows) {
+  const Records got = route_to_rows(comm, n, owned_nodes(dist), dist.owned_coordinates(), 3);
   std::vector<double> x(3 * rows.size(), 0.0);
   for (std::size_t i = 0; i < got.ids.size(); ++i)
     std::copy_n(&got.values[3 * i], 3, &x[3 * (static_cast<std::size_t>(got.ids[i]) - rows.begin)]);
@@ -130,9 +135,7 @@ XdmfMesh xdmf_mesh_on_rows(const Mesh& mesh, const Distribution& dist, MPI_Comm 
 
 NodeRows::NodeRows(const Distribution& dist, std::size_t num_nodes, const la::RCP<const la::Comm>& comm, RowRange rows)
     : rows_(rows), dim_(dist.dim()) {
-  std::vector<long long> owned(static_cast<std::size_t>(dist.num_owned_nodes()));
-  for (std::size_t l = 0; l < owned.size(); ++l) owned[l] = static_cast<long long>(dist.global_node(static_cast<la::LO>(l)));
-  std::vector<long long> used = route_to_rows(raw_mpi_comm(*comm), num_nodes, owned, {}, 0).ids;
+  std::vector<long long> used = route_to_rows(raw_mpi_comm(*comm), num_nodes, owned_nodes(dist), {}, 0).ids;
   std::sort(used.begin(), used.end());  // each node once: it has one owner
   for (long long n : used)
     for (int k = 0; k < dim_; ++k) dofs_.push_back(static_cast<la::GO>(n) * dim_ + k);
