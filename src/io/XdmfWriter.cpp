@@ -176,14 +176,61 @@ RowRange block_rows(std::size_t n, int rank, int nranks) {
   return rows;
 }
 
+XdmfRows xdmf_rows(const XdmfMesh& mesh, int rank, int nranks) {
+  std::size_t num_cells = 0;
+  for (const auto& b : mesh.blocks) num_cells += b.num_cells;
+  XdmfRows r;
+  r.nodes = block_rows(mesh.num_nodes, rank, nranks);
+  r.cells = block_rows(num_cells, rank, nranks);
+  std::size_t offset = 0;  // the block's first cell
+  for (const auto& b : mesh.blocks) {
+    const auto clamp = [&](std::size_t c) { return std::min(std::max(c, offset), offset + b.num_cells) - offset; };
+    r.blocks.push_back(RowRange{clamp(r.cells.begin), clamp(r.cells.end)});
+    offset += b.num_cells;
+  }
+  return r;
+}
+
+XdmfMesh xdmf_mesh(const Mesh& whole, int rank, int nranks) {
+  const auto fail = [&](const std::string& what) { throw std::runtime_error("XdmfWriter: " + what + " (mesh " + whole.source + ")"); };
+  if (whole.partial) fail("a rank's part of a mesh is not a whole mesh");
+  if (whole.x.size() % 3 != 0) fail("mesh coordinates are not 3 per node");
+  XdmfMesh m;
+  m.num_nodes = whole.num_nodes();
+  std::vector<char> used(m.num_nodes, 0);  // the nodes of volume cells
+  for (const CellBlock& cb : whole.volumes) {
+    const int npc = cell_num_nodes(cb.type);
+    if (npc <= 0 || cb.nodes_per_cell != npc || cb.conn.size() % static_cast<std::size_t>(npc) != 0)
+      fail("volume block '" + cb.name + "': connectivity size does not match its cell type");
+    for (GId n : cb.conn) {
+      if (n < 0 || static_cast<std::size_t>(n) >= m.num_nodes)
+        fail("volume block '" + cb.name + "': node " + std::to_string(n) + " out of range");
+      used[static_cast<std::size_t>(n)] = 1;
+    }
+    m.blocks.push_back(XdmfMesh::Block{cb.name, cb.type, cb.num_cells(), {}});
+  }
+  const XdmfRows rows = xdmf_rows(m, rank, nranks);
+  m.x.assign(3 * rows.nodes.size(), 0.0);
+  for (std::size_t n = rows.nodes.begin; n < rows.nodes.end; ++n)
+    if (used[n]) std::copy_n(&whole.x[3 * n], 3, &m.x[3 * (n - rows.nodes.begin)]);
+  for (std::size_t i = 0; i < m.blocks.size(); ++i) {
+    const auto npc = static_cast<std::size_t>(whole.volumes[i].nodes_per_cell);
+    const auto first = whole.volumes[i].conn.begin();
+    m.blocks[i].conn.assign(first + static_cast<std::ptrdiff_t>(rows.blocks[i].begin * npc),
+                            first + static_cast<std::ptrdiff_t>(rows.blocks[i].end * npc));
+  }
+  return m;
+}
+
 struct XdmfWriter::Impl {
   QuietH5Errors quiet;  // first: restored after the handles below are closed
   struct Block {
+    std::string name;          // physical group (the "name" attribute)
     std::string grid_name;     // unique within a step
+    CellType type = CellType::Invalid;
     const char* topology = nullptr;
     int npc = 0;
     std::size_t ncells = 0;
-    std::size_t offset = 0;    // first cell in the block-ordered cell numbering
     std::string conn_path;     // HDF5 path
   };
   struct Field {
@@ -205,6 +252,7 @@ struct XdmfWriter::Impl {
   int rank = 0;
   bool parallel = false;
   RowRange nodes, cells;  // this rank's rows
+  std::vector<RowRange> block_part;  // this rank's cells of each block, within it (xdmf_rows)
   std::vector<Block> blocks;
   // The whole mesh as one topology: /mesh/topology is num_cells x npc when every cell has
   // one type, else the 1-D XDMF "Mixed" list (type id, nodes; topology_size entries).
@@ -347,19 +395,13 @@ struct XdmfWriter::Impl {
     return o.str();
   }
 
-  // This rank's rows of block i (of its own cells), clamped to the block.
-  RowRange block_part(const Block& b) const {
-    const auto clamp = [&](std::size_t c) { return std::min(std::max(c, b.offset), b.offset + b.ncells) - b.offset; };
-    return RowRange{clamp(cells.begin), clamp(cells.end)};
-  }
-
   // /mesh/topology (every block's cells in block order, one cell type or XDMF "Mixed"),
   // /mesh/cell_block (the block index of each cell) and the block legend. `conn`: this
   // rank's rows of each block (block_part), XDMF node order.
-  void write_whole_mesh(const Mesh& mesh, const std::vector<std::vector<long long>>& conn) {
+  void write_whole_mesh(const std::vector<std::vector<long long>>& conn) {
     std::set<CellType> types;
     for (std::size_t i = 0; i < blocks.size(); ++i) {
-      if (blocks[i].ncells > 0) types.insert(mesh.volumes[i].type);
+      if (blocks[i].ncells > 0) types.insert(blocks[i].type);
       block_legend += (i ? "; " : "") + std::to_string(i) + ": " + blocks[i].grid_name;
     }
     mixed = types.size() != 1;
@@ -369,11 +411,11 @@ struct XdmfWriter::Impl {
     std::size_t mixed_begin = 0;  // this rank's first entry of a Mixed list
     for (std::size_t i = 0; i < blocks.size(); ++i) {
       const Block& b = blocks[i];
-      const RowRange part = block_part(b);
+      const RowRange part = block_part[i];
       mixed_begin += part.begin * static_cast<std::size_t>(1 + b.npc);
       cell_block.insert(cell_block.end(), part.size(), static_cast<long long>(i));
       for (std::size_t c = 0; c < part.size(); ++c) {
-        if (mixed) topo.push_back(xdmf_mixed_type_id(mesh.volumes[i].type));
+        if (mixed) topo.push_back(xdmf_mixed_type_id(b.type));
         topo.insert(topo.end(), conn[i].begin() + static_cast<std::ptrdiff_t>(c * b.npc),
                     conn[i].begin() + static_cast<std::ptrdiff_t>((c + 1) * b.npc));
       }
@@ -436,6 +478,48 @@ struct XdmfWriter::Impl {
     return o.str();
   }
 
+  // The blocks, counts and this rank's rows of the outline of `mesh` (rank of nranks).
+  void set_outline(const XdmfMesh& mesh, int nranks) {
+    num_nodes = mesh.num_nodes;
+    std::set<std::string> used;
+    for (std::size_t i = 0; i < mesh.blocks.size(); ++i) {
+      const XdmfMesh::Block& xb = mesh.blocks[i];
+      Block b;
+      b.name = xb.name;
+      b.type = xb.type;
+      b.topology = xdmf_topology_name(xb.type);
+      if (!b.topology) fail("volume block '" + xb.name + "' has a cell type without XDMF topology");
+      b.npc = cell_num_nodes(xb.type);
+      b.ncells = xb.num_cells;
+      num_cells += b.ncells;
+      b.grid_name = xb.name.empty() ? "block_" + std::to_string(i) : xb.name;
+      if (!used.insert(b.grid_name).second) {
+        b.grid_name += "_" + std::to_string(i);
+        used.insert(b.grid_name);
+      }
+      b.conn_path = "/mesh/block_" + std::to_string(i) + "/connectivity";
+      blocks.push_back(std::move(b));
+    }
+    const XdmfRows rows = xdmf_rows(mesh, rank, nranks);
+    nodes = rows.nodes;
+    cells = rows.cells;
+    block_part = rows.blocks;
+  }
+
+  // This rank's rows of `mesh` match its outline (set_outline).
+  void check_rows(const XdmfMesh& mesh) const {
+    if (mesh.x.size() != 3 * nodes.size())
+      fail("expected " + std::to_string(nodes.size()) + " x 3 coordinates, got " + std::to_string(mesh.x.size()));
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
+      const XdmfMesh::Block& xb = mesh.blocks[i];
+      if (xb.conn.size() != block_part[i].size() * static_cast<std::size_t>(blocks[i].npc))
+        fail("volume block '" + xb.name + "': connectivity size does not match its cell type and rows");
+      for (long long n : xb.conn)
+        if (n < 0 || static_cast<std::size_t>(n) >= num_nodes)
+          fail("volume block '" + xb.name + "': node " + std::to_string(n) + " out of range");
+    }
+  }
+
   // The .h5 (MPI-IO in parallel).
   void create_file() {
     H5Id fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
@@ -445,34 +529,33 @@ struct XdmfWriter::Impl {
   }
 
   // /mesh: this rank's rows of the coordinates, of every block's connectivity and of the
-  // whole mesh's topology.
-  void write_mesh(const Mesh& mesh) {
+  // whole mesh's topology (`mesh`: this rank's rows, checked by check_rows).
+  void write_mesh(const XdmfMesh& mesh) {
     H5Id g(check(H5Gcreate2(file.get(), "/mesh", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "creating group /mesh"),
            H5Gclose);
     hsize_t dims[2] = {static_cast<hsize_t>(num_nodes), 3};
-    write_dataset(g.get(), "coordinates", H5T_NATIVE_DOUBLE, 2, dims, mesh.x.data() + 3 * nodes.begin,
-                  "/mesh/coordinates", nodes);
+    write_dataset(g.get(), "coordinates", H5T_NATIVE_DOUBLE, 2, dims, mesh.x.data(), "/mesh/coordinates", nodes);
     std::vector<std::vector<long long>> block_conn;  // this rank's rows, XDMF node order
-    for (std::size_t i = 0; i < mesh.volumes.size(); ++i) {
-      const CellBlock& cb = mesh.volumes[i];
+    for (std::size_t i = 0; i < blocks.size(); ++i) {
       const Block& b = blocks[i];
+      const std::vector<long long>& gmsh = mesh.blocks[i].conn;
       const std::string gname = "/mesh/block_" + std::to_string(i);
       H5Id bg(check(H5Gcreate2(file.get(), gname.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                     "creating group " + gname),
               H5Gclose);
-      write_string_attr(bg.get(), "name", cb.name, gname);
+      write_string_attr(bg.get(), "name", b.name, gname);
       write_string_attr(bg.get(), "topology", b.topology, gname);
       int perm[kMaxCellNodes];
-      xdmf_node_permutation(cb.type, perm);
-      const RowRange part = block_part(b);
+      xdmf_node_permutation(b.type, perm);
+      const RowRange part = block_part[i];
       std::vector<long long> conn(part.size() * static_cast<std::size_t>(b.npc));
       for (std::size_t c = 0; c < part.size(); ++c)
-        for (int j = 0; j < b.npc; ++j) conn[c * b.npc + j] = cb.conn[(part.begin + c) * b.npc + perm[j]];
+        for (int j = 0; j < b.npc; ++j) conn[c * b.npc + j] = gmsh[c * b.npc + perm[j]];
       hsize_t cd[2] = {static_cast<hsize_t>(b.ncells), static_cast<hsize_t>(b.npc)};
       write_dataset(bg.get(), "connectivity", H5T_NATIVE_LLONG, 2, cd, conn.data(), b.conn_path, part);
       block_conn.push_back(std::move(conn));
     }
-    write_whole_mesh(mesh, block_conn);
+    write_whole_mesh(block_conn);
     check_status(H5Fflush(file.get(), H5F_SCOPE_GLOBAL), "H5Fflush");
   }
 
@@ -493,9 +576,25 @@ struct XdmfWriter::Impl {
 };
 
 XdmfWriter::XdmfWriter(const std::string& dir, const std::string& basename, const Mesh& mesh)
-    : XdmfWriter(dir, basename, mesh, MPI_COMM_NULL) {}
+    : XdmfWriter(dir, basename, xdmf_mesh(mesh, 0, 1), MPI_COMM_NULL) {}
+
+namespace {
+int comm_rank(MPI_Comm comm) {
+  int r = 0;
+  if (comm != MPI_COMM_NULL) MPI_Comm_rank(comm, &r);
+  return r;
+}
+int comm_size(MPI_Comm comm) {
+  int n = 1;
+  if (comm != MPI_COMM_NULL) MPI_Comm_size(comm, &n);
+  return n;
+}
+}  // namespace
 
 XdmfWriter::XdmfWriter(const std::string& dir, const std::string& basename, const Mesh& mesh, MPI_Comm comm)
+    : XdmfWriter(dir, basename, xdmf_mesh(mesh, comm_rank(comm), comm_size(comm)), comm) {}
+
+XdmfWriter::XdmfWriter(const std::string& dir, const std::string& basename, const XdmfMesh& mesh, MPI_Comm comm)
     : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   if (basename.empty() || basename.find_first_of("/: \t\r\n") != std::string::npos)
@@ -503,43 +602,21 @@ XdmfWriter::XdmfWriter(const std::string& dir, const std::string& basename, cons
   m.h5_name = basename + ".h5";
   m.h5_path = (fs::path(dir) / m.h5_name).string();
   m.xdmf_path = (fs::path(dir) / (basename + ".xdmf")).string();
-  if (mesh.x.size() % 3 != 0) m.fail("mesh coordinates are not 3 per node");
-  m.num_nodes = mesh.num_nodes();
-  int nranks = 1;
-  if (comm != MPI_COMM_NULL) {
-    MPI_Comm_size(comm, &nranks);
-    MPI_Comm_rank(comm, &m.rank);
-  }
+  const int nranks = comm_size(comm);
+  m.rank = comm_rank(comm);
   m.parallel = nranks > 1;
   if (m.parallel) m.comm = comm;
-
-  // Validate blocks before creating anything.
-  std::set<std::string> used;
-  for (std::size_t i = 0; i < mesh.volumes.size(); ++i) {
-    const CellBlock& cb = mesh.volumes[i];
-    Impl::Block b;
-    b.topology = xdmf_topology_name(cb.type);
-    if (!b.topology)
-      m.fail("volume block '" + cb.name + "' has a cell type without XDMF topology");
-    b.npc = cell_num_nodes(cb.type);
-    if (cb.nodes_per_cell != b.npc || cb.conn.size() % b.npc != 0)
-      m.fail("volume block '" + cb.name + "': connectivity size does not match its cell type");
-    b.ncells = cb.num_cells();
-    b.offset = m.num_cells;
-    m.num_cells += b.ncells;
-    for (GId n : cb.conn)
-      if (n < 0 || static_cast<std::size_t>(n) >= m.num_nodes)
-        m.fail("volume block '" + cb.name + "': node " + std::to_string(n) + " out of range");
-    b.grid_name = cb.name.empty() ? "block_" + std::to_string(i) : cb.name;
-    if (!used.insert(b.grid_name).second) {
-      b.grid_name += "_" + std::to_string(i);
-      used.insert(b.grid_name);
-    }
-    b.conn_path = "/mesh/block_" + std::to_string(i) + "/connectivity";
-    m.blocks.push_back(std::move(b));
+  // Check the rows before creating anything; every rank throws when any rank's are wrong.
+  std::string error;
+  try {
+    m.set_outline(mesh, nranks);
+    m.check_rows(mesh);
+  } catch (const std::runtime_error& e) {
+    error = e.what();
   }
-  m.nodes = block_rows(m.num_nodes, m.rank, nranks);
-  m.cells = block_rows(m.num_cells, m.rank, nranks);
+  int bad = error.empty() ? 0 : 1, any = bad;
+  if (m.parallel) MPI_Allreduce(&bad, &any, 1, MPI_INT, MPI_MAX, comm);
+  if (any) throw std::runtime_error(bad ? error : "XdmfWriter: another rank's mesh rows are invalid (file " + m.h5_path + ")");
   m.create_file();
   m.write_mesh(mesh);
 }

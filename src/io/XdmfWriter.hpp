@@ -4,16 +4,23 @@
 // Serial or parallel. Serial (the constructor without a communicator, or a communicator
 // of one rank): the HDF5 file is opened with the default (sec2) driver and the caller
 // passes whole datasets. Parallel (a communicator of several ranks): every rank of it
-// creates the writer with the same (replicated) mesh and makes every call, in the same
-// order; the file is opened with MPI-IO (H5Pset_fapl_mpio), datasets and attributes are
-// created collectively, and each rank writes one contiguous block of rows of each dataset
-// (collective H5Dwrite): node datasets rows node_rows(), cell datasets (and /mesh/topology,
-// /mesh/cell_block, the blocks' connectivity) rows cell_rows() of the block-ordered cells,
-// both block_rows() of the row count. Rank 0 alone writes the .xdmf. The file's datasets
-// are the same whatever the number of ranks.
+// creates the writer and makes every call, in the same order; the file is opened with
+// MPI-IO (H5Pset_fapl_mpio), datasets and attributes are created collectively, and each
+// rank writes one contiguous block of rows of each dataset (collective H5Dwrite): node
+// datasets rows node_rows(), cell datasets (and /mesh/topology, /mesh/cell_block, the
+// blocks' connectivity) rows cell_rows() of the block-ordered cells, both block_rows() of
+// the row count. Rank 0 alone writes the .xdmf. The file's datasets are the same whatever
+// the number of ranks.
+// The mesh comes as an XdmfMesh: the whole mesh's outline (node count, blocks and their
+// cell counts; the same on every rank) and this rank's rows of the coordinates and of the
+// blocks' connectivity only (xdmf_rows says which; run/OutputRows.hpp xdmf_mesh_on_rows
+// builds them from what a rank of a distributed run holds), or as a whole Mesh (xdmf_mesh
+// takes the rows out of it). The writer reads nothing else of the mesh.
 //
 // <dir>/<basename>.h5
-//   /mesh/coordinates            num_nodes x 3 doubles (z = 0 in 2D)
+//   /mesh/coordinates            num_nodes x 3 doubles (z = 0 in 2D; 0 for the nodes of no
+//                                volume cell: no cell refers to them, and a rank of a
+//                                distributed run does not have them)
 //   /mesh/topology               every volume cell, blocks in order, XDMF/VTK node order
 //                                (= meshio's; gmsh tet10 differs: its nodes 8 and 9 are
 //                                swapped): num_cells x nodes_per_cell int64 when all cells
@@ -91,13 +98,51 @@ struct RowRange {
 // order, the first n % nranks ranks one row more (Tpetra's uniform contiguous map).
 RowRange block_rows(std::size_t n, int rank, int nranks);
 
+// The mesh as the writer takes it (only volume blocks are written): the whole mesh's
+// outline, the same on every rank, and this rank's rows of its data (xdmf_rows).
+struct XdmfMesh {
+  struct Block {
+    std::string name;                   // physical group
+    CellType type = CellType::Invalid;  // must have an XDMF topology
+    std::size_t num_cells = 0;          // in the whole mesh
+    // The block's cells among this rank's cell rows (XdmfRows::blocks), in order:
+    // cell_num_nodes(type) node ids each, gmsh node order.
+    std::vector<long long> conn;
+  };
+  std::size_t num_nodes = 0;  // in the whole mesh
+  std::vector<Block> blocks;  // Mesh::volumes order
+  std::vector<double> x;      // this rank's node rows: 3 coordinates each (see /mesh/coordinates)
+};
+
+// Rank `rank`'s rows (of `nranks`) of the datasets of a mesh with the outline of `mesh`
+// (num_nodes, the blocks' num_cells; nothing else is read): the node rows, the cell rows
+// (blocks in order), and per block its cells among the cell rows, numbered within the
+// block (empty ranges for blocks outside them).
+struct XdmfRows {
+  RowRange nodes, cells;
+  std::vector<RowRange> blocks;
+};
+XdmfRows xdmf_rows(const XdmfMesh& mesh, int rank, int nranks);
+
+// A whole mesh as XdmfMesh for rank `rank` of `nranks` (its rows read from the mesh).
+// Throws std::runtime_error when the mesh is a part (Mesh::partial), its coordinates are
+// not 3 per node, a block's connectivity does not match its cell type or names a node out
+// of range.
+XdmfMesh xdmf_mesh(const Mesh& whole, int rank, int nranks);
+
 class XdmfWriter {
  public:
   // Writes <dir>/<basename>.h5 with the mesh (dir must exist). Only mesh.volumes are
-  // written; their cell types must have an XDMF topology. Serial.
+  // written; their cell types must have an XDMF topology. Serial; a whole mesh.
   XdmfWriter(const std::string& dir, const std::string& basename, const Mesh& mesh);
-  // Collective over `comm` (see above; serial when it has one rank).
+  // Collective over `comm` (see above; serial when it has one rank); a whole mesh on
+  // every rank (xdmf_mesh).
   XdmfWriter(const std::string& dir, const std::string& basename, const Mesh& mesh, MPI_Comm comm);
+  // Collective over `comm`: `mesh` holds this rank's rows, xdmf_rows(mesh, rank, nranks)
+  // of comm (MPI_COMM_NULL: serial, all rows). Throws std::runtime_error on every rank
+  // when the rows of any rank do not match the outline (sizes, node ids out of range, a
+  // cell type without XDMF topology).
+  XdmfWriter(const std::string& dir, const std::string& basename, const XdmfMesh& mesh, MPI_Comm comm);
   ~XdmfWriter();
   XdmfWriter(const XdmfWriter&) = delete;
   XdmfWriter& operator=(const XdmfWriter&) = delete;

@@ -17,12 +17,27 @@ namespace stentor {
 std::vector<double> recover_at_nodes(const Mesh& mesh, const std::vector<double>& cell_values, int k,
                                      const std::vector<double>& volume);
 
-// The same values on the nodes [begin, end) only, from the cells listed in `cells` (global
-// ids), k values and one volume each in the list's order (a partitioned mesh: each rank
-// its rows of the nodes, from the cells that touch them). Every cell with a node in the
-// range must be listed; with the cells in ascending id order (= block order, the order
-// recover_at_nodes sums in), the result equals recover_at_nodes' bitwise.
-std::vector<double> recover_at_node_rows(const Mesh& mesh, std::size_t begin, std::size_t end, const std::vector<GId>& cells,
+// Cells given with their nodes (what a rank receives of other ranks' cells): cell j is of
+// volume block block[j] (Mesh::volumes index) and has the nodes nodes[first[j] ..
+// first[j+1]) (gmsh order; `first` has one entry more than there are cells).
+struct CellNodes {
+  std::vector<int> block;
+  std::vector<std::size_t> first{0};
+  std::vector<GId> nodes;
+  std::size_t size() const { return block.size(); }
+  void add(int b, const GId* cell_nodes, std::size_t count) {
+    block.push_back(b);
+    nodes.insert(nodes.end(), cell_nodes, cell_nodes + count);
+    first.push_back(nodes.size());
+  }
+};
+
+// The same values on the nodes [begin, end) only, from the cells `cells`, k values and one
+// volume each in their order (a partitioned mesh: each rank its rows of the nodes, from
+// the cells that touch them; no mesh is read). Every cell with a node in the range must be
+// given; with the cells in ascending id order (= block order, the order recover_at_nodes
+// sums in), the result equals recover_at_nodes' bitwise.
+std::vector<double> recover_at_node_rows(std::size_t begin, std::size_t end, const CellNodes& cells,
                                          const std::vector<double>& cell_values, int k, const std::vector<double>& volume);
 
 }  // namespace stentor

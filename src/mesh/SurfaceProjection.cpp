@@ -25,7 +25,7 @@ double area_element(const Mesh& mesh, const CellBlock& b, std::size_t f, const d
   double t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0};
   for (int a = 0; a < nn; ++a)
     for (int c = 0; c < 3; ++c) {
-      const double x = mesh.coord(b.conn[f * nn + a])[c];
+      const double x = mesh.coord(b.conn[f * nn + a])[c];  // a boundary node: stored in any part
       t1[c] += dN[a][0] * x;
       t2[c] += dN[a][1] * x;
     }

@@ -1,7 +1,10 @@
 // The distributed side of the field output (Reporter::write_fields): values held by the
 // ranks that own the nodes or cells, moved to the rows of the HDF5 datasets each rank
 // writes (io/XdmfWriter.hpp: block_rows of the nodes and of the block-ordered cells). No
-// rank holds a whole field.
+// rank holds a whole field, and nothing here reads more of the mesh than a rank's part of
+// it has (mesh/Mesh.hpp): the whole mesh's counts and the blocks' names and types, the
+// connectivity of this rank's own cells; everything else comes from the Distribution
+// (owned nodes and their coordinates, own cells) and travels to the rows' ranks.
 #pragma once
 #include <mpi.h>
 
@@ -34,11 +37,19 @@ Records exchange_records(MPI_Comm comm, const std::vector<int>& dest, const std:
 Records route_to_rows(MPI_Comm comm, std::size_t n, const std::vector<long long>& ids, const std::vector<double>& values,
                       int k);
 
-// A vector of the dof map (u, v: dof = node * dim + component) on this rank's node rows,
-// 3 values per node (0 for the nodes of no volume cell, z = 0 in 2D).
+// The mesh for the writer (io/XdmfWriter.hpp XdmfMesh): the outline from the mesh's
+// counts (num_nodes, block_cells) and blocks; this rank's rows (xdmf_rows over `comm`)
+// of the coordinates from the owned nodes' (0 for the nodes of no volume cell: no rank
+// owns them) and of the connectivity from the own cells', each routed to its row's rank.
+// Collective.
+XdmfMesh xdmf_mesh_on_rows(const Mesh& mesh, const Distribution& dist, MPI_Comm comm);
+
+// A vector of the dof map (u, v: dof = node * dim + component) on this rank's node rows
+// `rows` of the `num_nodes` nodes, 3 values per node (0 for the nodes of no volume cell,
+// z = 0 in 2D). The rows' nodes with dofs are the owned nodes routed to them. Collective.
 class NodeRows {
  public:
-  NodeRows(const Mesh& mesh, const Distribution& dist, const la::RCP<const la::Comm>& comm, RowRange rows);
+  NodeRows(const Distribution& dist, std::size_t num_nodes, const la::RCP<const la::Comm>& comm, RowRange rows);
   std::vector<double> values(const la::Vector& u);  // collective
 
  private:
@@ -51,9 +62,10 @@ class NodeRows {
 };
 
 // Nodal recovery (mesh/NodalRecovery.hpp) on this rank's node rows `rows` of the cell
-// values of each column (k values per local cell each) of this rank's cells `ids` with
-// volumes `volume`: every cell goes to the ranks whose rows its nodes are in, which sum
-// in the serial order (equal to recover_at_nodes bitwise). Collective.
+// values of each column (k values per local cell each) of this rank's own cells `ids`
+// with volumes `volume`: every cell goes, with its block and nodes (read from `mesh` for
+// these cells only), to the ranks whose rows its nodes are in, which sum in the serial
+// order (equal to recover_at_nodes bitwise). Collective.
 std::vector<std::vector<double>> recover_on_rows(const Mesh& mesh, MPI_Comm comm, RowRange rows, const std::vector<GId>& ids,
                                                  const std::vector<const std::vector<double>*>& columns,
                                                  const std::vector<int>& k, const std::vector<double>& volume);

@@ -37,17 +37,17 @@ std::string fmt_time(double v) {
   return buf;
 }
 
-// Records (a global id and k values each) of every rank, gathered on rank 0 (empty
-// elsewhere); `from` is the rank each record came from.
+// Records (a global id and k values each) of every rank of comm (`nranks` of them),
+// gathered on rank 0 (empty elsewhere); `from` is the rank each record came from.
 struct Gathered {
   std::vector<long long> ids;
   std::vector<double> values;
   std::vector<int> from;
 };
-Gathered gather_on_root(const std::vector<long long>& ids, const std::vector<double>& values, int k, int nranks) {
+Gathered gather_on_root(MPI_Comm comm, const std::vector<long long>& ids, const std::vector<double>& values, int k, int nranks) {
   const int n = static_cast<int>(ids.size());
   std::vector<int> counts(static_cast<std::size_t>(nranks)), displs(static_cast<std::size_t>(nranks));
-  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm);
   int total = 0;
   for (int r = 0; r < nranks; ++r) {
     displs[static_cast<std::size_t>(r)] = total;
@@ -56,11 +56,11 @@ Gathered gather_on_root(const std::vector<long long>& ids, const std::vector<dou
   Gathered g;
   g.ids.resize(static_cast<std::size_t>(total));
   g.values.resize(static_cast<std::size_t>(total) * static_cast<std::size_t>(k));
-  MPI_Gatherv(ids.data(), n, MPI_LONG_LONG, g.ids.data(), counts.data(), displs.data(), MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  MPI_Gatherv(ids.data(), n, MPI_LONG_LONG, g.ids.data(), counts.data(), displs.data(), MPI_LONG_LONG, 0, comm);
   std::vector<int> counts_k(counts), displs_k(displs);
   for (auto& c : counts_k) c *= k;
   for (auto& d : displs_k) d *= k;
-  MPI_Gatherv(values.data(), k * n, MPI_DOUBLE, g.values.data(), counts_k.data(), displs_k.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  MPI_Gatherv(values.data(), k * n, MPI_DOUBLE, g.values.data(), counts_k.data(), displs_k.data(), MPI_DOUBLE, 0, comm);
   for (int r = 0; r < nranks; ++r) g.from.insert(g.from.end(), static_cast<std::size_t>(counts[static_cast<std::size_t>(r)]), r);
   return g;
 }
@@ -167,7 +167,7 @@ void Reporter::print_model() {
        << "  mesh     " << mesh.source << ": " << m_.dim << "D, " << mesh.num_nodes() << " nodes, " << mesh.num_volume_cells()
        << " cells (";
   for (std::size_t b = 0; b < mesh.volumes.size(); ++b)
-    out_ << (b ? ", " : "") << mesh.volumes[b].name << ": " << mesh.volumes[b].num_cells() << " " << cell_name(mesh.volumes[b].type);
+    out_ << (b ? ", " : "") << mesh.volumes[b].name << ": " << mesh.block_cells(b) << " " << cell_name(mesh.volumes[b].type);
   out_ << ")\n";
   out_ << "  parallel " << m_.nranks << " MPI rank(s), Kokkos " << la::ExecSpace::name() << " x " << la::ExecSpace().concurrency()
        << " thread(s), " << cfg_.problem.assembly << " assembly\n";
@@ -286,10 +286,11 @@ void Reporter::open_fields() {
   dir.resize(static_cast<std::size_t>(n));
   Teuchos::broadcast(*m_.comm, 0, n, dir.data());
   const MPI_Comm comm = raw_mpi_comm(*m_.comm);
+  const XdmfMesh rows = xdmf_mesh_on_rows(m_.mesh, *m_.dist, comm);  // collective
   std::string local;
   int code = 0;
   try {
-    xdmf_ = std::make_unique<XdmfWriter>(dir, cfg_.output.basename, m_.mesh, comm);
+    xdmf_ = std::make_unique<XdmfWriter>(dir, cfg_.output.basename, rows, comm);
   } catch (const WriteError& e) {
     code = 2, local = e.what();
   } catch (const std::exception& e) {
@@ -303,7 +304,7 @@ void Reporter::open_fields() {
     if (worst == 2) throw WriteError(what);
     throw InputError(what);
   }
-  node_rows_ = std::make_unique<NodeRows>(m_.mesh, *m_.dist, m_.comm, xdmf_->node_rows());
+  node_rows_ = std::make_unique<NodeRows>(*m_.dist, m_.mesh.num_nodes(), m_.comm, xdmf_->node_rows());
   master_traction_ = false;
   for (const ContactPairConfig& c : cfg_.contact) master_traction_ = master_traction_ || !c.master.empty();
 }
@@ -408,7 +409,7 @@ void Reporter::write_contact(MPI_Comm comm) {
   const Contact::NodalFields nf = m_.contact->nodal_fields();
   const Records slaves = route_to_rows(comm, m_.mesh.num_nodes(), nf.nodes, nf.values, Contact::kNodalValues);
   const Contact::NodalFields mf = m_.contact->master_fields();
-  const Gathered masters = gather_on_root(mf.nodes, mf.values, Contact::kMasterValues, m_.nranks);
+  const Gathered masters = gather_on_root(comm, mf.nodes, mf.values, Contact::kMasterValues, m_.nranks);
   const bool traction = master_traction_ && m_.contact->has_master_surfaces() && cfg_.output.wants("contact_master_traction");
   Records t;
   if (traction) {
@@ -550,15 +551,13 @@ void Reporter::cutback_line(const RunState& s, double t_new, const NewtonResult&
 }
 
 std::vector<double> Reporter::displacement_on_root(const la::Vector& u) {
-  if (!gather_) {  // every used dof on rank 0, in mesh node order
-    if (m_.rank == 0) {
-      std::vector<char> used(m_.mesh.num_nodes(), 0);
-      for (const auto& b : m_.mesh.volumes)
-        for (GId n : b.conn) used[static_cast<std::size_t>(n)] = 1;
-      for (std::size_t n = 0; n < m_.mesh.num_nodes(); ++n)
-        if (used[n])
-          for (int k = 0; k < m_.dim; ++k) all_dofs_.push_back(static_cast<la::GO>(n) * m_.dim + k);
-    }
+  if (!gather_) {  // every dof (each owned once) on rank 0, in dof (= mesh node) order
+    std::vector<long long> owned;  // the owned map's dofs
+    for (la::LO l = 0; l < m_.dist->num_owned_nodes(); ++l)
+      for (int k = 0; k < m_.dim; ++k) owned.push_back(static_cast<long long>(m_.dist->global_node(l)) * m_.dim + k);
+    const Gathered all = gather_on_root(raw_mpi_comm(*m_.comm), owned, {}, 0, m_.nranks);
+    all_dofs_.assign(all.ids.begin(), all.ids.end());
+    std::sort(all_dofs_.begin(), all_dofs_.end());
     gather_map_ = Teuchos::rcp(new la::Map(Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid(),
                                            Teuchos::ArrayView<const la::GO>(all_dofs_), 0, m_.comm));
     gather_ = Teuchos::rcp(new la::Import(m_.dist->owned_map(), gather_map_));

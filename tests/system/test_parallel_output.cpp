@@ -5,6 +5,10 @@
 // order). The mesh: two bodies, quadrilaterals and triangles (a "Mixed" topology), sharing
 // the nodes of x = 4, and a node of no cell. On one rank (ctest's default) the parallel
 // path is the serial one; tests/cli runs this file on 2 and 3 ranks (mpi.parallel_output.*).
+// The output built from a Distribution (xdmf_mesh_on_rows, NodeRows, recover_on_rows)
+// reads no mesh data a rank's part of the mesh will not have: given a mesh whose other
+// nodes' coordinates are NaN and whose other cells' nodes are wrong, its file is still
+// bitwise the serial one.
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <mpi.h>
@@ -15,8 +19,12 @@
 #include <map>
 #include <sstream>
 
+#include <Tpetra_Core.hpp>
+#include <limits>
+
 #include "io/XdmfWriter.hpp"
 #include "mesh/NodalRecovery.hpp"
+#include "parallel/Distribution.hpp"
 #include "run/OutputRows.hpp"
 
 using namespace stentor;
@@ -122,19 +130,58 @@ void write_steps(XdmfWriter& w, const Mesh& m) {
   }
 }
 
-}  // namespace
+// Rank 0 compares the .h5 and .xdmf of <dir>/serial and <dir>/parallel.
+void expect_same_files(const std::string& dir) {
+  const auto a = contents(dir + "/serial/out.h5"), b = contents(dir + "/parallel/out.h5");
+  EXPECT_GT(a.size(), 15u);
+  ASSERT_EQ(a.size(), b.size());
+  for (const auto& [path, bytes] : a) {
+    ASSERT_TRUE(b.count(path)) << path;
+    EXPECT_TRUE(b.at(path) == bytes) << path << " differs";
+  }
+  EXPECT_EQ(text(dir + "/serial/out.xdmf"), text(dir + "/parallel/out.xdmf"));
+}
 
-TEST(ParallelOutput, FileEqualsTheSerialWritersBitwise) {
-  int rank = 0, size = 1;
-  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &size);
-  const std::string dir = std::string(STENTOR_BINARY_DIR) + "/test_parallel_output." + std::to_string(size);
+// A fresh <binary dir>/<name>.<ranks> with empty serial/ and parallel/ folders.
+std::string fresh_dirs(const std::string& name, int rank, int size) {
+  const std::string dir = std::string(STENTOR_BINARY_DIR) + "/" + name + "." + std::to_string(size);
   if (rank == 0) {
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir + "/serial");
     std::filesystem::create_directories(dir + "/parallel");
   }
   MPI_Barrier(MPI_COMM_WORLD);
+  return dir;
+}
+
+// `m` with what a rank's part of it would lack spoilt: the coordinates of the nodes this
+// rank does not own are NaN, the nodes of the cells that are not its own are wrong (valid
+// ids, shifted).
+Mesh spoilt(const Mesh& m, const Distribution& dist) {
+  Mesh p = m;
+  for (std::size_t g = 0; g < m.num_nodes(); ++g)
+    if (!dist.owns_node(static_cast<GId>(g)))
+      for (int k = 0; k < 3; ++k) p.x[3 * g + k] = std::numeric_limits<double>::quiet_NaN();
+  for (std::size_t b = 0; b < m.volumes.size(); ++b) {
+    std::vector<char> own(m.volumes[b].num_cells(), 0);
+    for (const LocalBlock& lb : dist.blocks())
+      if (lb.volume_block == static_cast<int>(b))
+        for (GId i : lb.cell_index) own[static_cast<std::size_t>(i)] = 1;
+    CellBlock& cb = p.volumes[b];
+    const auto npc = static_cast<std::size_t>(cb.nodes_per_cell);
+    for (std::size_t c = 0; c < own.size(); ++c)
+      for (std::size_t a = 0; a < npc && !own[c]; ++a) cb.conn[c * npc + a] = (cb.conn[c * npc + a] + 5) % GId(m.num_nodes());
+  }
+  return p;
+}
+
+}  // namespace
+
+TEST(ParallelOutput, FileEqualsTheSerialWritersBitwise) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const std::string dir = fresh_dirs("test_parallel_output", rank, size);
   const Mesh m = two_bodies(5);
   {
     XdmfWriter w(dir + "/parallel", "out", m, MPI_COMM_WORLD);
@@ -150,15 +197,9 @@ TEST(ParallelOutput, FileEqualsTheSerialWritersBitwise) {
       XdmfWriter w(dir + "/serial", "out", m);
       write_steps(w, m);
     }
-    const auto a = contents(dir + "/serial/out.h5"), b = contents(dir + "/parallel/out.h5");
-    EXPECT_GT(a.size(), 15u);
-    ASSERT_EQ(a.size(), b.size());
-    for (const auto& [path, bytes] : a) {
-      ASSERT_TRUE(b.count(path)) << path;
-      EXPECT_TRUE(b.at(path) == bytes) << path << " differs";
-    }
+    expect_same_files(dir);
+    const auto a = contents(dir + "/serial/out.h5");
     EXPECT_TRUE(a.count("mesh/topology@topology") && a.count("step_1@time") && a.count("mesh/block_1@name"));
-    EXPECT_EQ(text(dir + "/serial/out.xdmf"), text(dir + "/parallel/out.xdmf"));
     EXPECT_NE(text(dir + "/parallel/out.xdmf").find("TopologyType=\"Mixed\""), std::string::npos);
   }
   MPI_Barrier(MPI_COMM_WORLD);
@@ -217,4 +258,54 @@ TEST(ParallelOutput, RouteToRows) {
     EXPECT_EQ(got.ids[i], static_cast<long long>(mine.begin + i % mine.size()));
     EXPECT_EQ(got.values[i], 100.0 * from + double(got.ids[i]));
   }
+}
+
+// The writer's mesh, the dof vectors on the node rows and the nodal recovery from a
+// Distribution read only what a rank has (spoilt): the file is the serial one bitwise.
+TEST(ParallelOutput, FromTheDistributionReadsOnlyWhatARankHas) {
+  int rank = 0, size = 1;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  const std::string dir = fresh_dirs("test_parallel_output_dist", rank, size);
+  const Mesh m = two_bodies(5);
+  const auto comm = Tpetra::getDefaultComm();
+  const Distribution dist(m, comm);
+  const Mesh part = spoilt(m, dist);
+  const std::size_t nn = m.num_nodes(), nc = m.num_volume_cells();
+  {
+    XdmfWriter w(dir + "/parallel", "out", xdmf_mesh_on_rows(part, dist, MPI_COMM_WORLD), MPI_COMM_WORLD);
+    write_steps(w, m);
+    // A dof vector on the rows: 3 per node, 0 on the node of no cell (the last).
+    NodeRows rows(dist, part.num_nodes(), comm, w.node_rows());
+    la::Vector u(dist.owned_map());
+    auto uh = u.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (la::LO l = 0; l < dist.num_owned_nodes(); ++l)
+      for (std::size_t k = 0; k < 2; ++k)
+        uh(static_cast<std::size_t>(l) * 2 + k, 0) = value(static_cast<std::size_t>(dist.global_node(l)) * 2 + k, 5);
+    std::vector<double> expect(3 * nn, 0.0);
+    for (std::size_t g = 0; g + 1 < nn; ++g)
+      for (std::size_t k = 0; k < 2; ++k) expect[3 * g + k] = value(2 * g + k, 5);
+    EXPECT_EQ(rows.values(u), rows_of(expect, w.node_rows(), 3));
+    // The recovery from this rank's own cells.
+    std::vector<double> all(nc), volume(nc), mine, vol;
+    std::vector<GId> ids;
+    for (std::size_t c = 0; c < nc; ++c) all[c] = value(c, 17), volume[c] = 1.0 + 0.5 * value(c, 19);
+    for (const LocalBlock& lb : dist.blocks())
+      for (GId id : lb.cell_ids) {
+        ids.push_back(id);
+        mine.push_back(all[static_cast<std::size_t>(id)]);
+        vol.push_back(volume[static_cast<std::size_t>(id)]);
+      }
+    const auto got = recover_on_rows(part, MPI_COMM_WORLD, w.node_rows(), ids, {&mine}, {1}, vol);
+    ASSERT_EQ(got.size(), 1u);
+    EXPECT_EQ(got[0], rows_of(recover_at_nodes(m, all, 1, volume), w.node_rows(), 1));  // bitwise
+  }
+  if (rank == 0) {
+    {
+      XdmfWriter w(dir + "/serial", "out", m);
+      write_steps(w, m);
+    }
+    expect_same_files(dir);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
 }
