@@ -80,13 +80,15 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
   mixed_analysis_ = cfg.any_dynamic() && cfg.any_static();
 
   // Master surfaces first: their nodes may not be slaves of any pair.
-  std::vector<char> is_master(mesh.num_nodes(), 0);
+  // Node sets below are sorted lists of the surfaces' nodes, not flags per mesh node: a
+  // rank holds only its part of the mesh (mesh/Mesh.hpp).
+  std::vector<GId> master_set;
   for (const auto& pc : cfg.contact) {
     Pair p;
     p.cfg = pc;
     if (!pc.master.empty()) {
       p.master = std::make_unique<MasterSurface>(mesh, pc.master, "'Contact->" + pc.name + "->master'");
-      for (GId g : p.master->nodes()) is_master[static_cast<std::size_t>(g)] = 1;
+      master_set.insert(master_set.end(), p.master->nodes().begin(), p.master->nodes().end());
       has_master_ = true;
     }
     pairs_.push_back(std::move(p));
@@ -94,16 +96,22 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
   // The surface whose positions ranks import (ContactGhosts.cpp: only the part near their
   // slave nodes): master nodes, and the slave nodes of mortar pairs (a mortar node's
   // conditions read its neighbours' positions).
-  std::vector<char> is_surface = is_master;
+  auto sort_unique = [](std::vector<GId>& v) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  };
+  sort_unique(master_set);
+  std::vector<GId> surface_set = master_set;
   for (auto& p : pairs_)
     if (p.master && p.cfg.discretization == "mortar") {
       p.mortar = true;
       p.slave_faces = std::make_unique<MasterSurface>(mesh, p.cfg.slave, "'Contact->" + p.cfg.name + "->slave'");
-      for (GId g : p.slave_faces->nodes()) is_surface[static_cast<std::size_t>(g)] = 1;
+      surface_set.insert(surface_set.end(), p.slave_faces->nodes().begin(), p.slave_faces->nodes().end());
     }
-  std::vector<int> slave_of(mesh.num_nodes(), -1);
-  for (std::size_t ip = 0; ip < pairs_.size(); ++ip) setup_slaves(ip, cfg, mesh, assembler, is_master, slave_of);
-  if (has_master_) setup_master_maps(mesh, is_surface, assembler);
+  sort_unique(surface_set);
+  std::map<GId, int> slave_of;
+  for (std::size_t ip = 0; ip < pairs_.size(); ++ip) setup_slaves(ip, cfg, mesh, assembler, master_set, slave_of);
+  if (has_master_) setup_master_maps(mesh, surface_set, assembler);
   for (auto& p : pairs_)
     if (p.mortar) setup_mortar(p);
   if (has_master_) {
@@ -114,8 +122,8 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
 
 // Pair ip's slave nodes owned here (checks: the mesh dimension of an obstacle, a node in
 // one pair only and not on a master surface, at least one usable node over all ranks).
-void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, const Assembler& assembler, const std::vector<char>& is_master,
-                           std::vector<int>& slave_of) {
+void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, const Assembler& assembler, const std::vector<GId>& master_set,
+                           std::map<GId, int>& slave_of) {
   const Distribution& dist = dist_;
   const auto& colmap = assembler.matrix()->getColMap();
   Pair& p = pairs_[ip];
@@ -138,8 +146,7 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
   p.surface = std::make_unique<SurfaceProjection>(mesh, std::vector<std::string>{pc.slave});
   long excluded = 0, partial = 0;
   for (GId g : nodes) {
-    const auto gi = static_cast<std::size_t>(g);
-    if (is_master[gi]) {
+    if (std::binary_search(master_set.begin(), master_set.end(), g)) {
       std::string of;  // the pairs whose master surface holds the node
       for (const Pair& q : pairs_)
         if (q.master && std::binary_search(q.master->nodes().begin(), q.master->nodes().end(), g))
@@ -147,10 +154,10 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
       throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' also lies on the master surface of " + of +
                        "; a node may be a slave or a master node, not both (two-pass and self-contact are not implemented)");
     }
-    if (slave_of[gi] >= 0)
+    const auto [at, fresh] = slave_of.emplace(g, static_cast<int>(ip));
+    if (!fresh)
       throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' is also a slave node of 'Contact->" +
-                       pairs_[static_cast<std::size_t>(slave_of[gi])].cfg.name + "'; a node may belong to one contact pair only");
-    slave_of[gi] = static_cast<int>(ip);
+                       pairs_[static_cast<std::size_t>(at->second)].cfg.name + "'; a node may belong to one contact pair only");
     if (!dist.owns_node(g)) continue;
     const la::LO l = dist.local_node(g);
     Slave nd;
@@ -165,7 +172,7 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
     nd.gid = g;
     auto it = areas.find(g);
     nd.area = it == areas.end() ? 0.0 : it->second;
-    for (int c = 0; c < 3; ++c) nd.X[c] = mesh.coord(static_cast<GId>(gi))[c];
+    for (int c = 0; c < 3; ++c) nd.X[c] = mesh.coord(g)[c];
     for (int c = 0; c < dim_; ++c) nd.col[static_cast<std::size_t>(c)] = colmap->getLocalElement(static_cast<la::GO>(g) * dim_ + c);
     p.nodes.push_back(nd);
   }
@@ -179,25 +186,21 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
                      "' can touch anything: every one has all its components prescribed by a Dirichlet condition");
 }
 
-// The surface nodes' numbering (master_pos_), reference positions, prescribed dofs,
+// The surface nodes' numbering (master_pos), reference positions, prescribed dofs,
 // tributary areas and the ghosting margin; rebuild_ghosts() makes the import/export.
-void Contact::setup_master_maps(const Mesh& mesh, const std::vector<char>& is_surface, const Assembler& assembler) {
+void Contact::setup_master_maps(const Mesh& mesh, const std::vector<GId>& surface_set, const Assembler& assembler) {
   const Distribution& dist = dist_;
 
-  master_pos_.assign(mesh.num_nodes(), -1);
-  for (std::size_t g = 0; g < mesh.num_nodes(); ++g)
-    if (is_surface[g]) {
-      master_pos_[g] = static_cast<int>(master_nodes_.size());
-      master_nodes_.push_back(static_cast<GId>(g));
-      for (int c = 0; c < 3; ++c) master_X_.push_back(mesh.coord(static_cast<GId>(g))[c]);
-    }
+  master_nodes_ = surface_set;  // sorted: master_pos() searches it
+  for (GId g : master_nodes_)
+    for (int c = 0; c < 3; ++c) master_X_.push_back(mesh.coord(g)[c]);
   for (auto& p : pairs_)
-    if (p.master) p.master->index(master_pos_);
+    if (p.master) p.master->index([this](GId g) { return master_pos(g); });
   // Prescribed master dofs keep their identity rows: the reaction goes to the support.
   master_fixed_.assign(master_nodes_.size() * static_cast<std::size_t>(dim_), 0);
   for (const auto& d : assembler.dirichlet_sets())
     for (GId g : d.nodes) {
-      const int pos = master_pos_[static_cast<std::size_t>(g)];
+      const int pos = master_pos(g);
       if (pos < 0) continue;
       for (int c = 0; c < dim_; ++c)
         if (d.components[static_cast<std::size_t>(c)]) master_fixed_[static_cast<std::size_t>(pos * dim_ + c)] = 1;
@@ -214,11 +217,16 @@ void Contact::setup_master_maps(const Mesh& mesh, const std::vector<char>& is_su
   for (const auto& p : pairs_)
     if (p.master)
       for (const auto& [g, a] : tributary_areas(mesh, p.cfg.master)) {
-        const int pos = master_pos_[static_cast<std::size_t>(g)];
+        const int pos = master_pos(g);
         if (pos >= 0) master_area_[static_cast<std::size_t>(pos)] = a;
       }
 }
 
+
+int Contact::master_pos(GId g) const {
+  const auto it = std::lower_bound(master_nodes_.begin(), master_nodes_.end(), g);
+  return it != master_nodes_.end() && *it == g ? static_cast<int>(it - master_nodes_.begin()) : -1;
+}
 
 std::string Contact::description() const {
   std::ostringstream os;

@@ -174,9 +174,10 @@ class Contact {
     long partial = 0;                       // slave nodes with some prescribed components (kept), global
     bool active = true;                     // set_active_pairs()
   };
-  void setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, const Assembler& assembler, const std::vector<char>& is_master,
-                    std::vector<int>& slave_of);
-  void setup_master_maps(const Mesh& mesh, const std::vector<char>& is_surface, const Assembler& assembler);
+  void setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, const Assembler& assembler, const std::vector<GId>& master_set,
+                    std::map<GId, int>& slave_of);
+  void setup_master_maps(const Mesh& mesh, const std::vector<GId>& surface_set, const Assembler& assembler);
+  int master_pos(GId g) const;  // index of node g in master_nodes_, or -1
   contact::Obstacle obstacle(const Pair& p, double t) const;
   std::array<double, 3> translation(const Pair& p, double t) const;
   // Positions of the master nodes at u (3 per master node; imports u's master dofs).
@@ -230,7 +231,6 @@ class Contact {
   bool has_master_ = false;
   bool mixed_analysis_ = false;  // static and dynamic stages: `auto` pairs switch (set_analysis)
   std::vector<GId> master_nodes_;          // sorted
-  std::vector<int> master_pos_;            // per mesh node: index in master_nodes_, or -1
   std::vector<double> master_X_;           // reference coordinates, 3 per master node
   std::vector<double> master_area_;        // tributary reference area per master node
   std::vector<double> master_x_, master_xn_;  // current / start-of-step positions, 3 per master node

@@ -77,7 +77,7 @@ void Contact::rebuild_ghosts(const la::Vector& u) {
   std::vector<long long> rbuf(static_cast<std::size_t>(total));
   MPI_Alltoallv(sbuf.data(), scount.data(), sdispl.data(), MPI_LONG_LONG, rbuf.data(), rcount.data(), rdispl.data(), MPI_LONG_LONG, mc);
   std::vector<int> pos;
-  for (long long g : rbuf) pos.push_back(master_pos_[static_cast<std::size_t>(g)]);
+  for (long long g : rbuf) pos.push_back(master_pos(static_cast<GId>(g)));
   std::sort(pos.begin(), pos.end());
   pos.erase(std::unique(pos.begin(), pos.end()), pos.end());
   long changed = (pos != ghost_pos_ || master_map_.is_null()) ? 1 : 0, any = 0;

@@ -49,13 +49,13 @@ void Contact::setup_mortar(Pair& p) {
   };
   check(*p.master, p.cfg.master);
   check(*p.slave_faces, p.cfg.slave);
-  p.slave_faces->index(master_pos_);
+  p.slave_faces->index([this](GId g) { return master_pos(g); });
   std::map<int, std::vector<int>> faces_of;  // surface position -> slave facets
   const auto& sf = p.slave_faces->facets();
   for (std::size_t e = 0; e < sf.size(); ++e)
     for (int a = 0; a < sf[e].nn; ++a) faces_of[sf[e].node[a]].push_back(static_cast<int>(e));
   p.node_faces.assign(p.nodes.size(), {});
-  for (std::size_t i = 0; i < p.nodes.size(); ++i) p.node_faces[i] = faces_of[master_pos_[static_cast<std::size_t>(p.nodes[i].gid)]];
+  for (std::size_t i = 0; i < p.nodes.size(); ++i) p.node_faces[i] = faces_of[master_pos(p.nodes[i].gid)];
   p.mortar_out.assign(p.nodes.size(), contact::MortarRows{});
 }
 
@@ -297,7 +297,7 @@ int mortar_law(int dim, const bool fixed[3], const double r[3], const LawParams&
 int Contact::mortar_node(Pair& p, std::size_t i, const std::vector<std::vector<FaceCoupling>>& cpl, const contact::LawParams* law,
                          double* dout, double* nout, double* relout) {
   const Slave& nd = p.nodes[i];
-  const int j = master_pos_[static_cast<std::size_t>(nd.gid)];
+  const int j = master_pos(nd.gid);
   const auto& faces = p.node_faces[i];
   contact::Stencil st = contact::gather_stencil(dim_, j, faces, p.slave_faces->facets(), p.master->facets(), cpl);
   const contact::MortarPoint mp = contact::mortar_point(st, master_x_, master_xn_);

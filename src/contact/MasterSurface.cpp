@@ -40,9 +40,9 @@ MasterSurface::MasterSurface(const Mesh& mesh, const std::string& group, const s
   }
 }
 
-void MasterSurface::index(const std::vector<int>& node_pos) {
+void MasterSurface::index(const std::function<int(GId)>& node_pos) {
   for (auto& f : facets_)
-    for (int a = 0; a < f.nn; ++a) f.node[a] = node_pos[static_cast<std::size_t>(f.gid[a])];
+    for (int a = 0; a < f.nn; ++a) f.node[a] = node_pos(f.gid[a]);
 }
 
 long long MasterSurface::key(const long long* i) {

@@ -14,6 +14,7 @@
 // equally distant facets to the lower index) do not depend on which facets a rank holds,
 // so any partition finds the same facets.
 #pragma once
+#include <functional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -30,7 +31,7 @@ class MasterSurface {
   MasterSurface(const Mesh& mesh, const std::string& group, const std::string& where);
   // `node_pos` maps a mesh node to its index among the master nodes (positions are passed
   // as 3 values per master node).
-  void index(const std::vector<int>& node_pos);
+  void index(const std::function<int(GId)>& node_pos);
 
   struct Facet {
     CellType type = CellType::Invalid;
