@@ -84,6 +84,12 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
     } else {
       mesh = read_mesh_on_root_only(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
       distribute_mesh(mesh, MPI_COMM_WORLD);
+      // The largest part's share of the whole mesh (own cells, ghost layer and boundaries).
+      std::size_t cells = 0;
+      for (const auto& b : mesh.volumes) cells += b.num_cells();
+      double share[2] = {static_cast<double>(cells) / static_cast<double>(mesh.num_volume_cells()),
+                         static_cast<double>(mesh.num_stored_nodes()) / static_cast<double>(mesh.num_nodes())};
+      MPI_Allreduce(share, largest_part, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
     }
   }
   check_vector_dimensions(cfg, mesh.dim);

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <cstdio>
 #include <iomanip>
+#include <sstream>
 #include <iostream>
 #include <limits>
 
@@ -171,6 +172,12 @@ void Reporter::print_model() {
   out_ << ")\n";
   out_ << "  parallel " << m_.nranks << " MPI rank(s), Kokkos " << la::ExecSpace::name() << " x " << la::ExecSpace().concurrency()
        << " thread(s), " << cfg_.problem.assembly << " assembly\n";
+  if (m_.nranks > 1) {
+    std::ostringstream os;
+    os << std::fixed << std::setprecision(1) << "  parts    each rank holds its cells, their neighbours and the boundary groups: at most "
+       << 100.0 * m_.largest_part[0] << " % of the cells, " << 100.0 * m_.largest_part[1] << " % of the nodes\n";
+    out_ << os.str();
+  }
   for (const std::string& w : m_.warnings) out_ << "  " << w << "\n";
 }
 

@@ -22,7 +22,7 @@ struct RunOptions {
 
 // What a run leaves in memory, for tests and programs that embed Stentor.
 struct RunResult {
-  Mesh mesh;                          // as read (replicated)
+  Mesh mesh;                          // as read: whole on one rank, this rank's part on several (mesh/Mesh.hpp)
   std::vector<double> displacement;   // final state, 3 per mesh node (z = 0 in 2D), on every rank
   std::vector<std::array<double, 3>> reactions;  // final, per Dirichlet set (deck order)
   double energy = 0.0;                // final stored energy
