@@ -166,6 +166,14 @@ const double* Mesh::coord(GId g) const {
   return &x[3 * static_cast<std::size_t>(i)];
 }
 
+std::size_t Mesh::bytes() const {
+  std::size_t n = x.size() * sizeof(double) + node_ids.size() * sizeof(GId);
+  for (const auto* blocks : {&volumes, &boundaries})
+    for (const CellBlock& b : *blocks)
+      n += (b.conn.size() + b.cell_id.size() + b.adjacent.size()) * sizeof(GId) + b.part.size() * sizeof(int) + b.side.size();
+  return n;
+}
+
 Mesh::Box Mesh::bounding_box() const {
   if (partial) return whole_box;
   Box b{{1e300, 1e300, 1e300}, {-1e300, -1e300, -1e300}};

@@ -73,6 +73,8 @@ struct Mesh {
   long long stored_index(GId g) const;
   // Reference coordinates (3) of global node g; throws std::logic_error when g is not stored.
   const double* coord(GId g) const;
+  // Bytes of the arrays held (coordinates, node ids, every block's cells and facet data).
+  std::size_t bytes() const;
   // Names of the physical groups present (volumes and boundaries), for error messages.
   std::vector<std::string> volume_group_names() const;
   std::vector<std::string> boundary_group_names() const;

@@ -83,13 +83,17 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
       mesh = read_mesh_on_root(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
     } else {
       mesh = read_mesh_on_root_only(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
+      double whole_mb = static_cast<double>(mesh.bytes()) / 1e6;
+      MPI_Bcast(&whole_mb, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
       distribute_mesh(mesh, MPI_COMM_WORLD);
       // The largest part's share of the whole mesh (own cells, ghost layer and boundaries).
       std::size_t cells = 0;
       for (const auto& b : mesh.volumes) cells += b.num_cells();
-      double share[2] = {static_cast<double>(cells) / static_cast<double>(mesh.num_volume_cells()),
-                         static_cast<double>(mesh.num_stored_nodes()) / static_cast<double>(mesh.num_nodes())};
-      MPI_Allreduce(share, largest_part, 2, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+      double share[3] = {static_cast<double>(cells) / static_cast<double>(mesh.num_volume_cells()),
+                         static_cast<double>(mesh.num_stored_nodes()) / static_cast<double>(mesh.num_nodes()),
+                         static_cast<double>(mesh.bytes()) / 1e6};
+      MPI_Allreduce(share, largest_part, 3, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+      largest_part[3] = whole_mb;
     }
   }
   check_vector_dimensions(cfg, mesh.dim);

@@ -54,7 +54,9 @@ struct Model {
   Loads loads;
   std::vector<std::string> warnings;  // found reading the model (unsupported static bodies), printed with it
   std::vector<GId> probe_node;    // nearest mesh node of each Output->Probes entry
-  double largest_part[2] = {1.0, 1.0};  // several ranks: the largest share of the cells, of the nodes a rank holds
+  // Several ranks: the largest share of the cells and of the nodes a rank's part of the
+  // mesh holds, its largest size [MB], and the whole mesh's [MB].
+  double largest_part[4] = {1.0, 1.0, 0.0, 0.0};
   ConnectedBodies bodies;         // bodies connected by shared nodes or master-surface contact, and their supports
 
   std::unique_ptr<Distribution> dist;

@@ -175,7 +175,8 @@ void Reporter::print_model() {
   if (m_.nranks > 1) {
     std::ostringstream os;
     os << std::fixed << std::setprecision(1) << "  parts    each rank holds its cells, their neighbours and the boundary groups: at most "
-       << 100.0 * m_.largest_part[0] << " % of the cells, " << 100.0 * m_.largest_part[1] << " % of the nodes\n";
+       << 100.0 * m_.largest_part[0] << " % of the cells, " << 100.0 * m_.largest_part[1] << " % of the nodes, " << m_.largest_part[2]
+       << " MB (the whole mesh: " << m_.largest_part[3] << " MB)\n";
     out_ << os.str();
   }
   for (const std::string& w : m_.warnings) out_ << "  " << w << "\n";
