@@ -45,9 +45,13 @@ std::vector<OrientedFacets> oriented_facets(const Mesh& mesh, const std::string&
     if (mesh.partial) sides = FacetSides{b->side, b->adjacent};
     else sides = facet_sides(mesh, *b);
     for (std::size_t f = 0; f < b->num_cells(); ++f) {
-      if (sides.side[f] == 0) {
+      if (sides.side[f] == 0) {  // named by its centre: the same on every rank's part of the mesh
+        double xc[3] = {0, 0, 0};
+        for (int a = 0; a < b->nodes_per_cell; ++a)
+          for (int d = 0; d < 3; ++d) xc[d] += mesh.coord(b->conn[f * static_cast<std::size_t>(b->nodes_per_cell) + static_cast<std::size_t>(a)])[d] / b->nodes_per_cell;
         std::ostringstream os;
-        os << where << ": facet " << f << " of group '" << group << "' bounds no volume cell of the mesh";
+        os << where << ": the facet of group '" << group << "' centred at (" << xc[0] << ", " << xc[1] << ", " << xc[2]
+           << ") bounds no volume cell of the mesh";
         throw InputError(os.str());
       }
       of.orientation.push_back(sides.side[f]);

@@ -205,6 +205,11 @@ void Contact::setup_master_maps(const Mesh& mesh, const std::vector<GId>& surfac
       for (int c = 0; c < dim_; ++c)
         if (d.components[static_cast<std::size_t>(c)]) master_fixed_[static_cast<std::size_t>(pos * dim_ + c)] = 1;
     }
+  {  // a rank's part of the mesh has of a Dirichlet group only the facets near its cells
+    std::vector<int> mine(master_fixed_.begin(), master_fixed_.end()), any(mine.size(), 0);
+    Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_MAX, static_cast<int>(mine.size()), mine.data(), any.data());
+    for (std::size_t k = 0; k < any.size(); ++k) master_fixed_[k] = static_cast<char>(any[k]);
+  }
   master_x_ = master_X_;
   master_xn_ = master_X_;
   double h = 0.0;

@@ -1,13 +1,14 @@
 // The mesh: a plain, Trilinos-free description, either whole (as read, and on one rank)
-// or one rank's part of it (mesh/MeshComm.hpp distribute_mesh). Nodes are numbered
+// or one rank's part of it (mesh/MeshPart.hpp distribute_mesh). Nodes are numbered
 // 0..num_nodes()-1 (compact renumbering of gmsh's node tags); this index is the node's
 // global id everywhere in Stentor (dof gid = node*dim + c), in both forms.
 //
 // A rank's part holds: its volume cells and the cells that share a node with them (the
-// ghost layer: every cell around a node of its cells is there), each with its part; every
-// boundary block whole (surfaces are small, and contact, loads and metrics need whole
-// groups), with each facet's outward side and adjacent volume cell worked out on the
-// whole mesh; and the coordinates of the nodes of all these cells only. Code that reads
+// ghost layer: every cell around a node of its cells is there), each with its part; the
+// boundary groups that contact and the stent metrics read whole, and of the others the
+// cells on its volume cells (what loads and supports of its nodes need), with each
+// facet's outward side and adjacent volume cell worked out on the whole mesh; and the
+// coordinates of the nodes of all these cells only. Code that reads
 // coordinates uses coord(g); code that visits nodes visits the stored ones
 // (num_stored_nodes / stored_node); counts of the whole mesh are num_nodes(),
 // num_volume_cells() and block_cells(b).

@@ -95,6 +95,23 @@ void rethrow_everywhere(std::string err, MPI_Comm comm, int root) {
   throw std::runtime_error(err.substr(1));
 }
 
+// A block with b's name, tag and cell type, and no cells.
+CellBlock empty_like(const CellBlock& b) {
+  CellBlock q;
+  q.name = b.name;
+  q.physical_tag = b.physical_tag;
+  q.type = b.type;
+  q.nodes_per_cell = b.nodes_per_cell;
+  return q;
+}
+
+// Appends cell c of b (nodes and id) to q.
+void append_cell(const CellBlock& b, std::size_t c, CellBlock& q) {
+  const auto npc = static_cast<std::size_t>(b.nodes_per_cell);
+  q.conn.insert(q.conn.end(), b.conn.begin() + static_cast<std::ptrdiff_t>(c * npc), b.conn.begin() + static_cast<std::ptrdiff_t>((c + 1) * npc));
+  if (!b.cell_id.empty()) q.cell_id.push_back(b.cell_id[c]);
+}
+
 }  // namespace
 
 FacetSides facet_sides(const Mesh& m, const CellBlock& facets) {
@@ -135,9 +152,9 @@ FacetSides facet_sides(const Mesh& m, const CellBlock& facets) {
   return out;
 }
 
-Mesh mesh_part(const Mesh& m, const std::vector<int>& cell_part, int r) {
+Mesh mesh_part(const Mesh& m, const std::vector<int>& cell_part, int r, const std::vector<std::string>& whole_groups) {
   const std::size_t nn = m.num_nodes();
-  std::vector<char> touched(nn, 0), stored(nn, 0);  // root only: the whole mesh is here anyway
+  std::vector<char> touched(nn, 0), on_cells(nn, 0), stored(nn, 0);  // root only: the whole mesh is here anyway
   for (const auto& b : m.volumes)
     for (std::size_t c = 0; c < b.num_cells(); ++c)
       if (cell_part[static_cast<std::size_t>(b.cell_id[c])] == r)
@@ -149,11 +166,7 @@ Mesh mesh_part(const Mesh& m, const std::vector<int>& cell_part, int r) {
   p.whole_nodes = nn;
   p.whole_box = m.bounding_box();
   for (const auto& b : m.volumes) {
-    CellBlock q;
-    q.name = b.name;
-    q.physical_tag = b.physical_tag;
-    q.type = b.type;
-    q.nodes_per_cell = b.nodes_per_cell;
+    CellBlock q = empty_like(b);
     q.whole_cells = b.num_cells();
     const auto npc = static_cast<std::size_t>(b.nodes_per_cell);
     for (std::size_t c = 0; c < b.num_cells(); ++c) {
@@ -161,16 +174,35 @@ Mesh mesh_part(const Mesh& m, const std::vector<int>& cell_part, int r) {
       bool keep = owner == r;
       for (std::size_t a = 0; a < npc && !keep; ++a) keep = touched[static_cast<std::size_t>(b.conn[c * npc + a])] != 0;
       if (!keep) continue;
-      q.conn.insert(q.conn.end(), b.conn.begin() + static_cast<std::ptrdiff_t>(c * npc), b.conn.begin() + static_cast<std::ptrdiff_t>((c + 1) * npc));
-      q.cell_id.push_back(b.cell_id[c]);
+      append_cell(b, c, q);
       q.part.push_back(owner);
-      for (std::size_t a = 0; a < npc; ++a) stored[static_cast<std::size_t>(b.conn[c * npc + a])] = 1;
+      for (std::size_t a = 0; a < npc; ++a) on_cells[static_cast<std::size_t>(b.conn[c * npc + a])] = 1;
     }
     p.volumes.push_back(std::move(q));
   }
-  p.boundaries = m.boundaries;
-  for (const auto& b : m.boundaries)
-    for (GId g : b.conn) stored[static_cast<std::size_t>(g)] = 1;
+  stored = on_cells;
+  for (const auto& b : m.boundaries) {
+    const bool whole = std::find(whole_groups.begin(), whole_groups.end(), b.name) != whole_groups.end();
+    CellBlock q = empty_like(b);
+    const auto npc = static_cast<std::size_t>(b.nodes_per_cell);
+    for (std::size_t c = 0; c < b.num_cells(); ++c) {
+      // Whole groups and facets that bound no volume cell (every rank reports those alike)
+      // are kept; other cells when all their nodes lie on this part's volume cells.
+      bool keep = whole || (!b.side.empty() && b.side[c] == 0);
+      if (!keep) {
+        keep = true;
+        for (std::size_t a = 0; a < npc && keep; ++a) keep = on_cells[static_cast<std::size_t>(b.conn[c * npc + a])] != 0;
+      }
+      if (!keep) continue;
+      append_cell(b, c, q);
+      if (!b.side.empty()) {
+        q.side.push_back(b.side[c]);
+        q.adjacent.push_back(b.adjacent[c]);
+      }
+      for (std::size_t a = 0; a < npc; ++a) stored[static_cast<std::size_t>(b.conn[c * npc + a])] = 1;
+    }
+    p.boundaries.push_back(std::move(q));
+  }
   for (std::size_t g = 0; g < nn; ++g)
     if (stored[g]) {
       p.node_ids.push_back(static_cast<GId>(g));
@@ -179,7 +211,7 @@ Mesh mesh_part(const Mesh& m, const std::vector<int>& cell_part, int r) {
   return p;
 }
 
-void distribute_mesh(Mesh& m, MPI_Comm comm, int root) {
+void distribute_mesh(Mesh& m, MPI_Comm comm, const std::vector<std::string>& whole_groups, int root) {
   int rank = 0, nranks = 1;
   MPI_Comm_rank(comm, &rank);
   MPI_Comm_size(comm, &nranks);
@@ -207,8 +239,8 @@ void distribute_mesh(Mesh& m, MPI_Comm comm, int root) {
     return;
   }
   for (int r = 0; r < nranks; ++r)
-    if (r != root) send_bytes(serialize_mesh(mesh_part(m, cell_part, r)), r, comm);
-  m = mesh_part(m, cell_part, root);
+    if (r != root) send_bytes(serialize_mesh(mesh_part(m, cell_part, r, whole_groups)), r, comm);
+  m = mesh_part(m, cell_part, root, whole_groups);
 }
 
 }  // namespace stentor

@@ -85,7 +85,11 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
       mesh = read_mesh_on_root_only(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
       double whole_mb = static_cast<double>(mesh.bytes()) / 1e6;
       MPI_Bcast(&whole_mb, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
-      distribute_mesh(mesh, MPI_COMM_WORLD);
+      // Boundary groups read whole on every rank: contact surfaces, the stent metrics' groups.
+      std::vector<std::string> whole_groups;
+      for (const auto& c : cfg.contact) whole_groups.insert(whole_groups.end(), {c.slave, c.master});
+      if (cfg.output.metrics.enabled) whole_groups.insert(whole_groups.end(), {cfg.output.metrics.stent, cfg.output.metrics.lumen});
+      distribute_mesh(mesh, MPI_COMM_WORLD, whole_groups);
       // The largest part's share of the whole mesh (own cells, ghost layer and boundaries).
       std::size_t cells = 0;
       for (const auto& b : mesh.volumes) cells += b.num_cells();

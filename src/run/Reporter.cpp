@@ -174,7 +174,7 @@ void Reporter::print_model() {
        << " thread(s), " << cfg_.problem.assembly << " assembly\n";
   if (m_.nranks > 1) {
     std::ostringstream os;
-    os << std::fixed << std::setprecision(1) << "  parts    each rank holds its cells, their neighbours and the boundary groups: at most "
+    os << std::fixed << std::setprecision(1) << "  parts    each rank holds its cells, their neighbours and the surfaces it needs: at most "
        << 100.0 * m_.largest_part[0] << " % of the cells, " << 100.0 * m_.largest_part[1] << " % of the nodes, " << m_.largest_part[2]
        << " MB (the whole mesh: " << m_.largest_part[3] << " MB)\n";
     out_ << os.str();

@@ -32,12 +32,15 @@ std::set<GId> cell_nodes(const CellBlock& b, std::size_t c) {
   return std::set<GId>(b.conn.begin() + static_cast<std::ptrdiff_t>(c * npc), b.conn.begin() + static_cast<std::ptrdiff_t>((c + 1) * npc));
 }
 
-void expect_part_of(const Mesh& whole, const std::vector<int>& cell_part, int r, const Mesh& p) {
+// `sided`: the whole mesh with its facets' sides; `whole_groups` as given to mesh_part.
+void expect_part_of(const Mesh& sided, const std::vector<int>& cell_part, int r, const std::vector<std::string>& whole_groups,
+                    const Mesh& p) {
+  const Mesh& whole = sided;
   ASSERT_TRUE(p.partial);
   EXPECT_EQ(p.num_nodes(), whole.num_nodes());
   EXPECT_EQ(p.num_volume_cells(), whole.num_volume_cells());
   EXPECT_EQ(p.bounding_box().diagonal(), whole.bounding_box().diagonal());
-  std::set<GId> touched, expect_nodes;
+  std::set<GId> touched, on_cells;
   for (const auto& b : whole.volumes)
     for (std::size_t c = 0; c < b.num_cells(); ++c)
       if (cell_part[static_cast<std::size_t>(b.cell_id[c])] == r)
@@ -59,15 +62,34 @@ void expect_part_of(const Mesh& whole, const std::vector<int>& cell_part, int r,
       EXPECT_EQ(q.part[k], cell_part[static_cast<std::size_t>(w.cell_id[c])]);
       EXPECT_EQ(cell_nodes(q, k), nodes);
       EXPECT_EQ(locate_cell(p, w.cell_id[c]), std::make_pair(bi, k));
-      expect_nodes.insert(nodes.begin(), nodes.end());
+      on_cells.insert(nodes.begin(), nodes.end());
       ++k;
     }
     EXPECT_EQ(k, q.num_cells());
   }
+  // Boundary groups: whole ones whole, of the others the cells on this part's cells (and
+  // facets bounding no cell), in order, with the whole mesh's sides.
+  std::set<GId> expect_nodes = on_cells;
   ASSERT_EQ(p.boundaries.size(), whole.boundaries.size());
   for (std::size_t bi = 0; bi < whole.boundaries.size(); ++bi) {
-    EXPECT_EQ(p.boundaries[bi].conn, whole.boundaries[bi].conn);
-    expect_nodes.insert(whole.boundaries[bi].conn.begin(), whole.boundaries[bi].conn.end());
+    const CellBlock &w = whole.boundaries[bi], &q = p.boundaries[bi];
+    const bool all = std::find(whole_groups.begin(), whole_groups.end(), w.name) != whole_groups.end();
+    std::size_t k = 0;
+    for (std::size_t c = 0; c < w.num_cells(); ++c) {
+      const std::set<GId> nodes = cell_nodes(w, c);
+      const bool on = std::all_of(nodes.begin(), nodes.end(), [&](GId g) { return on_cells.count(g) > 0; });
+      if (!all && !on && (w.side.empty() || w.side[c] != 0)) continue;
+      ASSERT_LT(k, q.num_cells()) << w.name;
+      EXPECT_EQ(cell_nodes(q, k), nodes);
+      if (!w.side.empty()) {
+        EXPECT_EQ(q.side[k], w.side[c]);
+        EXPECT_EQ(q.adjacent[k], w.adjacent[c]);
+      }
+      expect_nodes.insert(nodes.begin(), nodes.end());
+      ++k;
+    }
+    EXPECT_EQ(k, q.num_cells()) << w.name;
+    if (all) EXPECT_EQ(q.conn, w.conn);
   }
   EXPECT_EQ(std::vector<GId>(expect_nodes.begin(), expect_nodes.end()), p.node_ids);
   for (GId g : p.node_ids)
@@ -78,8 +100,8 @@ void expect_part_of(const Mesh& whole, const std::vector<int>& cell_part, int r,
 }  // namespace
 
 // Parts 0..2 of a 2D mesh with curves (line3 facets) and points: cells, ghost layer,
-// nodes, whole boundaries with the facets' sides as the whole mesh gives them; the
-// serialized part comes back equal.
+// nodes, boundary groups whole or cut with the facets' sides as the whole mesh gives
+// them; the serialized part comes back equal.
 TEST(MeshPart, HoldsItsCellsTheirNeighboursAndTheWholeBoundaries) {
   const Mesh whole = read_mesh(config("s4_ring_section.geo", 0.4, 2));
   const std::vector<int> cell_part = partition_cells(whole, 3);
@@ -90,16 +112,22 @@ TEST(MeshPart, HoldsItsCellsTheirNeighboursAndTheWholeBoundaries) {
       b.side = s.side;
       b.adjacent = s.adjacent;
     }
+  const std::vector<std::string> whole_groups{"lumen", "stent_out"};
   for (int r = 0; r < 3; ++r) {
     SCOPED_TRACE("part " + std::to_string(r));
-    const Mesh p = mesh_part(sided, cell_part, r);
-    expect_part_of(whole, cell_part, r, p);
-    for (const std::string g : {"lumen", "adventitia", "stent_in"}) {  // as oriented on the whole mesh
+    const Mesh p = mesh_part(sided, cell_part, r, whole_groups);
+    expect_part_of(sided, cell_part, r, whole_groups, p);
+    for (const std::string g : {"lumen", "adventitia", "stent_in"}) {  // oriented as on the whole mesh
       const auto a = oriented_facets(whole, g, "test"), b = oriented_facets(p, g, "test");
       ASSERT_EQ(a.size(), b.size());
+      const CellBlock* pb = nullptr;
+      for (const auto& blk : p.boundaries)
+        if (blk.name == g) pb = &blk;
+      ASSERT_TRUE(pb);
       for (std::size_t i = 0; i < a.size(); ++i) {
-        EXPECT_EQ(a[i].orientation, b[i].orientation);
-        EXPECT_EQ(a[i].adjacent_cell, b[i].adjacent_cell);
+        EXPECT_EQ(b[i].orientation, std::vector<double>(pb->side.begin(), pb->side.end()));
+        EXPECT_EQ(b[i].adjacent_cell, pb->adjacent);
+        if (g == "lumen") EXPECT_EQ(a[i].orientation, b[i].orientation);
       }
     }
     const Mesh back = deserialize_mesh(serialize_mesh(p));
@@ -119,7 +147,7 @@ TEST(MeshPart, DistributionFromPartsEqualsDistributionFromTheWholeMesh) {
   const MeshConfig cfg = config("block3d.geo", 0.25, 2);
   const Mesh whole = read_mesh_on_root(cfg, MPI_COMM_WORLD);
   Mesh part = read_mesh_on_root_only(cfg, MPI_COMM_WORLD);
-  distribute_mesh(part, MPI_COMM_WORLD);
+  distribute_mesh(part, MPI_COMM_WORLD, {"left"});
   const auto comm = Tpetra::getDefaultComm();
   const Distribution a(whole, comm), b(part, comm);
   if (comm->getSize() > 1) {
