@@ -109,7 +109,8 @@ bool Stepper::lift(RunState& s, double t_new, NewtonResult& lifted) {
   s.u.update(1.0, du, 1.0);
   lifted.iterations = 1;
   lifted.linear_iterations = lr.iterations;
-  if (newton_log_) *newton_log_ << "    lifting  |g_{n+1} - g_n| " << inc.norm2() << "  linear " << lr.iterations << "\n";
+  const double inc_norm = inc.norm2();  // collective: on every rank, though only rank 0 logs
+  if (newton_log_) *newton_log_ << "    lifting  |g_{n+1} - g_n| " << inc_norm << "  linear " << lr.iterations << "\n";
   return true;
 }
 
