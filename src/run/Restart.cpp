@@ -4,6 +4,7 @@
 
 #include <Teuchos_CommHelpers.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -153,25 +154,83 @@ void agree(const Model& m, std::string err) {
   throw InputError(err);
 }
 
-// Rank 0 reads the file; every rank gets the data (or the same error).
-CheckpointData read_everywhere(const Model& m, const std::string& path) {
-  std::vector<char> bytes;
-  std::string err;
-  if (m.rank == 0) {
-    try {
-      bytes = pack_checkpoint(read_checkpoint_file(path));
-    } catch (const std::exception& e) {
-      err = std::string("cannot restart from ") + e.what();
-    }
-  }
-  agree(m, err);
+// Bytes from rank 0 to every rank, in chunks below MPI's int count limit.
+void broadcast_bytes(const Model& m, std::vector<char>& bytes) {
   long long n = static_cast<long long>(bytes.size());
   Teuchos::broadcast(*m.comm, 0, &n);
   bytes.resize(static_cast<std::size_t>(n));
   const long long chunk = 1LL << 30;
   for (long long off = 0; off < n; off += chunk)
     MPI_Bcast(bytes.data() + off, static_cast<int>(std::min(chunk, n - off)), MPI_CHAR, 0, MPI_COMM_WORLD);
-  return unpack_checkpoint(bytes);
+}
+
+// Whether this rank keeps row `id` of table `name`: node tables the rows of its owned
+// nodes (restore_vector), Gauss-point tables those of its cells (restore_gauss_points),
+// contact tables all of them (a surface's worth).
+struct RowFilter {
+  std::vector<long long> cells;  // this rank's cells, sorted
+  explicit RowFilter(const Model& m) {
+    for (const auto& b : m.dist->blocks()) cells.insert(cells.end(), b.cell_ids.begin(), b.cell_ids.end());
+    std::sort(cells.begin(), cells.end());
+  }
+  bool keep(const Model& m, const std::string& name, long long id) const {
+    if (name.rfind("contact_", 0) == 0) return true;
+    if (name.rfind("gauss_points_", 0) == 0) return std::binary_search(cells.begin(), cells.end(), id);
+    return m.dist->owns_node(static_cast<GId>(id));
+  }
+};
+
+// Rank 0 reads the file; every rank gets the scalars and, of each table, the rows it needs
+// (RowFilter), or the same error. The tables go out in chunks of rows, so that no rank but
+// 0 holds a whole table of the model's size.
+CheckpointData read_everywhere(const Model& m, const std::string& path) {
+  CheckpointData whole;
+  std::string err;
+  if (m.rank == 0) {
+    try {
+      whole = read_checkpoint_file(path);
+    } catch (const std::exception& e) {
+      err = std::string("cannot restart from ") + e.what();
+    }
+  }
+  agree(m, err);
+  CheckpointData outline = whole;  // the scalars, and each table's columns without rows
+  std::vector<long long> rows;
+  for (auto& [name, t] : outline.tables) {
+    rows.push_back(static_cast<long long>(t.ids.size()));
+    t.ids.clear();
+    t.values.clear();
+  }
+  std::vector<char> bytes = m.rank == 0 ? pack_checkpoint(outline) : std::vector<char>{};
+  broadcast_bytes(m, bytes);
+  CheckpointData d = unpack_checkpoint(bytes);
+  rows.resize(d.tables.size());
+  Teuchos::broadcast(*m.comm, 0, static_cast<int>(rows.size()), rows.data());
+  const RowFilter filter(m);
+  const long long chunk = 1 << 20;
+  std::size_t k = 0;
+  for (auto& [name, t] : d.tables) {
+    const auto nc = static_cast<std::size_t>(t.ncols);
+    const CheckpointTable* src = m.rank == 0 ? &whole.tables.at(name) : nullptr;
+    for (long long first = 0; first < rows[k]; first += chunk) {
+      const auto n = static_cast<std::size_t>(std::min(chunk, rows[k] - first)), at = static_cast<std::size_t>(first);
+      std::vector<long long> ids(n);
+      std::vector<double> values(n * nc);
+      if (src) {
+        std::copy_n(src->ids.begin() + static_cast<std::ptrdiff_t>(at), n, ids.begin());
+        std::copy_n(src->values.begin() + static_cast<std::ptrdiff_t>(at * nc), n * nc, values.begin());
+      }
+      MPI_Bcast(ids.data(), static_cast<int>(n), MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+      MPI_Bcast(values.data(), static_cast<int>(n * nc), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+      for (std::size_t i = 0; i < n; ++i)
+        if (filter.keep(m, name, ids[i])) {
+          t.ids.push_back(ids[i]);
+          t.values.insert(t.values.end(), values.begin() + static_cast<std::ptrdiff_t>(i * nc), values.begin() + static_cast<std::ptrdiff_t>((i + 1) * nc));
+        }
+    }
+    ++k;
+  }
+  return d;
 }
 
 // Gauss-point values per cell of mesh volume block b on this rank (0: no history here).
