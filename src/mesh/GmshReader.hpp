@@ -1,6 +1,7 @@
 // Reading a mesh through the gmsh C++ API (.msh 4.1/2.2 ascii or binary, or a
 // .geo meshed on the fly). Call on one rank only (gmsh is a process-wide
-// singleton; not thread-safe) and broadcast_mesh() the result.
+// singleton; not thread-safe), then broadcast_mesh() the result or send each rank its
+// part (mesh/MeshPart.hpp distribute_mesh).
 #pragma once
 #include "deck/Config.hpp"
 #include "mesh/Mesh.hpp"
