@@ -48,56 +48,74 @@ void morton_sort(std::vector<T>& items, const Box& box, Xyz xyz) {
   for (std::size_t i = 0; i < items.size(); ++i) items[i] = key[i].second;
 }
 
-}  // namespace
+// The part of each stored cell, block by block: a rank's part of the mesh carries them
+// (mesh/MeshPart.hpp); a whole mesh is partitioned here, rank 0 running METIS and
+// broadcasting the parts (one METIS run per job). Collective.
+std::vector<std::vector<int>> cell_parts(const Mesh& mesh, int nranks, MPI_Comm comm) {
+  std::vector<std::vector<int>> parts;
+  if (mesh.partial) {
+    for (const auto& b : mesh.volumes) parts.push_back(b.part);
+    return parts;
+  }
+  const std::vector<int> whole = partition_cells_on_root(mesh, nranks, comm);
+  for (const auto& b : mesh.volumes) {
+    parts.emplace_back();
+    for (GId id : b.cell_id) parts.back().push_back(whole[static_cast<std::size_t>(id)]);
+  }
+  return parts;
+}
 
-Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm)
-    : dim_(mesh.dim), rank_(comm->getRank()), nranks_(comm->getSize()), comm_(comm) {
-  // The part of each cell: a rank's part of the mesh carries them (mesh/MeshPart.hpp); a
-  // whole mesh is partitioned here, rank 0 running METIS and broadcasting the parts (one
-  // METIS run per job).
-  std::vector<int> whole_part;
-  if (!mesh.partial) whole_part = partition_cells_on_root(mesh, nranks_, raw_mpi_comm(*comm));
-  auto part_of = [&](const CellBlock& b, std::size_t c) {
-    return mesh.partial ? b.part[c] : whole_part[static_cast<std::size_t>(b.cell_id[c])];
-  };
-
-  // Over the stored nodes (all of a whole mesh): the owner (smallest part among the cells
-  // around, which are all stored for the nodes this rank touches), whether this rank's
-  // cells touch it, whether any cell does (nodes of boundary or point groups that no
-  // volume cell uses carry no dof).
+// This rank's owned and ghost nodes, each in the Morton (Z-order) curve of their
+// coordinates, so that the nodes of a cell, and therefore the matrix rows an element
+// kernel touches, are close in memory (gmsh numbers large Delaunay meshes with poor
+// locality; this halved the tangent assembly at 200k dofs, docs/performance.md). A node's
+// owner is the smallest part among the cells around it, which are all stored for the
+// nodes this rank's cells touch; nodes of no volume cell (of boundary or point groups
+// only) carry no dof.
+void split_nodes(const Mesh& mesh, const std::vector<std::vector<int>>& parts, int rank, std::vector<GId>& owned,
+                 std::vector<GId>& ghost) {
   const std::size_t ns = mesh.num_stored_nodes();
   std::vector<int> owner(ns, INT_MAX);
   std::vector<char> touched(ns, 0);
-  for (const auto& b : mesh.volumes)
+  for (std::size_t bi = 0; bi < mesh.volumes.size(); ++bi) {
+    const CellBlock& b = mesh.volumes[bi];
     for (std::size_t c = 0; c < b.num_cells(); ++c) {
-      const int p = part_of(b, c);
+      const int p = parts[bi][c];
       for (int a = 0; a < b.nodes_per_cell; ++a) {
         const auto i = static_cast<std::size_t>(mesh.stored_index(b.conn[c * b.nodes_per_cell + a]));
         owner[i] = std::min(owner[i], p);
-        if (p == rank_) touched[i] = 1;
+        if (p == rank) touched[i] = 1;
       }
     }
-
-  std::vector<GId> owned, ghost;
+  }
   for (std::size_t i = 0; i < ns; ++i) {
-    if (owner[i] == rank_)
+    if (owner[i] == rank)
       owned.push_back(mesh.stored_node(i));
     else if (touched[i])
       ghost.push_back(mesh.stored_node(i));
   }
-  // Local order: owned and ghost nodes each sorted along a Morton (Z-order) curve of
-  // their coordinates, so that the nodes of a cell, and therefore the matrix rows an
-  // element kernel touches, are close in memory. gmsh numbers large Delaunay meshes with
-  // poor locality; this halved the tangent assembly at 200k dofs (docs/performance.md).
-  // Global ids (and so all output) are unchanged.
-  {
-    auto x = [&mesh](GId g) { return mesh.coord(g); };
-    Box box;
-    for (const auto* v : {&owned, &ghost})
-      for (GId g : *v) box.add(x(g));
-    morton_sort(owned, box, x);
-    morton_sort(ghost, box, x);
-  }
+  auto x = [&mesh](GId g) { return mesh.coord(g); };
+  Box box;
+  for (const auto* v : {&owned, &ghost})
+    for (GId g : *v) box.add(x(g));
+  morton_sort(owned, box, x);
+  morton_sort(ghost, box, x);
+}
+
+}  // namespace
+
+Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm)
+    : dim_(mesh.dim), rank_(comm->getRank()), nranks_(comm->getSize()), comm_(comm) {
+  const std::vector<std::vector<int>> parts = cell_parts(mesh, nranks_, raw_mpi_comm(*comm));
+  std::vector<GId> owned, ghost;
+  split_nodes(mesh, parts, rank_, owned, ghost);
+  set_local_nodes(mesh, owned, ghost);
+  for (std::size_t bi = 0; bi < mesh.volumes.size(); ++bi) blocks_.push_back(local_block(mesh, bi, parts[bi]));
+}
+
+// Local numbering (owned first: Tpetra's FE assembly needs owned rows to be a prefix of
+// the overlap map), the lookup from global ids, the DOF maps and the coordinates.
+void Distribution::set_local_nodes(const Mesh& mesh, const std::vector<GId>& owned, const std::vector<GId>& ghost) {
   num_owned_ = static_cast<la::LO>(owned.size());
   local_nodes_ = owned;
   local_nodes_.insert(local_nodes_.end(), ghost.begin(), ghost.end());
@@ -105,11 +123,9 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
     for (std::size_t l = 0; l < local_nodes_.size(); ++l) sparse_g2l_.emplace_back(local_nodes_[l], static_cast<la::LO>(l));
     std::sort(sparse_g2l_.begin(), sparse_g2l_.end());
   } else {
-    node_g2l_.assign(ns, -1);
+    node_g2l_.assign(mesh.num_stored_nodes(), -1);
     for (std::size_t l = 0; l < local_nodes_.size(); ++l) node_g2l_[static_cast<std::size_t>(local_nodes_[l])] = static_cast<la::LO>(l);
   }
-
-  // DOF maps.
   auto dof_gids = [this](const std::vector<GId>& nodes) {
     std::vector<la::GO> g;
     g.reserve(nodes.size() * dim_);
@@ -129,40 +145,41 @@ Distribution::Distribution(const Mesh& mesh, const la::RCP<const la::Comm>& comm
   for (std::size_t l = 0; l < local_nodes_.size(); ++l)
     for (int d = 0; d < 3; ++d) ch(l, d) = mesh.coord(local_nodes_[l])[d];
   Kokkos::deep_copy(coords_, ch);
+}
 
-  for (std::size_t bi = 0; bi < mesh.volumes.size(); ++bi) {
-    const CellBlock& b = mesh.volumes[bi];
-    LocalBlock lb;
-    lb.volume_block = static_cast<int>(bi);
-    lb.type = b.type;
-    lb.nodes_per_cell = b.nodes_per_cell;
-    // This rank's cells, in the Morton order of their centroids (same reason as the nodes).
-    std::vector<std::size_t> mine;
-    std::vector<std::array<double, 3>> centroid(b.num_cells());
-    Box box;
-    for (std::size_t c = 0; c < b.num_cells(); ++c)
-      if (part_of(b, c) == rank_) {
-        std::array<double, 3>& xc = centroid[c];
-        xc = {0.0, 0.0, 0.0};
-        for (int a = 0; a < b.nodes_per_cell; ++a)
-          for (int d = 0; d < 3; ++d)
-            xc[static_cast<std::size_t>(d)] += mesh.coord(b.conn[c * b.nodes_per_cell + a])[d] / b.nodes_per_cell;
-        box.add(xc.data());
-        mine.push_back(c);
-      }
-    morton_sort(mine, box, [&centroid](std::size_t c) { return centroid[c].data(); });
-    for (std::size_t c : mine) {
-      lb.cell_ids.push_back(b.cell_id[c]);
-      lb.cell_index.push_back(static_cast<GId>(c));
-    }
-    lb.conn = Kokkos::View<int**, Kokkos::LayoutRight, la::ExecSpace>("conn", lb.cell_ids.size(), b.nodes_per_cell);
-    auto h = Kokkos::create_mirror_view(lb.conn);
-    for (std::size_t lc = 0; lc < lb.cell_index.size(); ++lc)
+// This rank's cells of volume block bi, in the Morton order of their centroids (same
+// reason as the nodes), with their local connectivity.
+LocalBlock Distribution::local_block(const Mesh& mesh, std::size_t bi, const std::vector<int>& part) const {
+  const CellBlock& b = mesh.volumes[bi];
+  LocalBlock lb;
+  lb.volume_block = static_cast<int>(bi);
+  lb.type = b.type;
+  lb.nodes_per_cell = b.nodes_per_cell;
+  std::vector<std::size_t> mine;
+  std::vector<std::array<double, 3>> centroid(b.num_cells());
+  Box box;
+  for (std::size_t c = 0; c < b.num_cells(); ++c)
+    if (part[c] == rank_) {
+      std::array<double, 3>& xc = centroid[c];
+      xc = {0.0, 0.0, 0.0};
       for (int a = 0; a < b.nodes_per_cell; ++a)
-        h(lc, a) = local_node(b.conn[static_cast<std::size_t>(lb.cell_index[lc]) * b.nodes_per_cell + a]);
-    Kokkos::deep_copy(lb.conn, h);
-    blocks_.push_back(std::move(lb));
+        for (int d = 0; d < 3; ++d)
+          xc[static_cast<std::size_t>(d)] += mesh.coord(b.conn[c * b.nodes_per_cell + a])[d] / b.nodes_per_cell;
+      box.add(xc.data());
+      mine.push_back(c);
+    }
+  morton_sort(mine, box, [&centroid](std::size_t c) { return centroid[c].data(); });
+  for (std::size_t c : mine) {
+    lb.cell_ids.push_back(b.cell_id[c]);
+    lb.cell_index.push_back(static_cast<GId>(c));
   }
+  lb.conn = Kokkos::View<int**, Kokkos::LayoutRight, la::ExecSpace>("conn", lb.cell_ids.size(), b.nodes_per_cell);
+  auto h = Kokkos::create_mirror_view(lb.conn);
+  for (std::size_t lc = 0; lc < lb.cell_index.size(); ++lc)
+    for (int a = 0; a < b.nodes_per_cell; ++a)
+      h(lc, a) = local_node(b.conn[static_cast<std::size_t>(lb.cell_index[lc]) * b.nodes_per_cell + a]);
+  Kokkos::deep_copy(lb.conn, h);
+  return lb;
 }
 
 la::LO Distribution::local_node(GId g) const {

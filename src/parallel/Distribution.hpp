@@ -4,8 +4,9 @@
 //
 // DOF global id = node * dim + component, independent of the partition, so results
 // gathered for output come out in the same order on any number of ranks.
-// Local (overlap) node numbering: owned nodes first (sorted by gid), then ghosts
-// (sorted) -- Tpetra's FE assembly needs owned rows to be a prefix of the overlap map.
+// Local (overlap) node numbering: owned nodes first, then ghosts, each along a Morton
+// curve of their coordinates -- Tpetra's FE assembly needs owned rows to be a prefix of
+// the overlap map.
 #pragma once
 #include <vector>
 
@@ -53,6 +54,9 @@ class Distribution {
   std::vector<double> owned_coordinates() const;
 
  private:
+  void set_local_nodes(const Mesh& mesh, const std::vector<GId>& owned, const std::vector<GId>& ghost);
+  LocalBlock local_block(const Mesh& mesh, std::size_t volume_block, const std::vector<int>& part) const;
+
   int dim_ = 0, rank_ = 0, nranks_ = 1;
   la::LO num_owned_ = 0;
   std::vector<GId> local_nodes_;
