@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <climits>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -61,20 +62,50 @@ void write_string_attr(hid_t loc, const std::string& name, const std::string& va
   write_attr(loc, name, type.get(), v.data(), file);
 }
 
-void write_dataset(hid_t loc, const char* name, hid_t type, int rank, const hsize_t* dims, const void* data, const std::string& file) {
+// Where this rank's rows go in a table written by several ranks: its first row and the
+// table's row count (serial: 0 and its own count). Collective when comm is not null.
+struct RowSpan {
+  hsize_t first = 0, total = 0;
+};
+RowSpan row_span(std::size_t mine, MPI_Comm comm) {
+  unsigned long long n = mine, first = 0, total = mine;
+  if (comm != MPI_COMM_NULL) {
+    MPI_Exscan(&n, &first, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    if (rank == 0) first = 0;  // MPI_Exscan leaves rank 0's result undefined
+    MPI_Allreduce(&n, &total, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, comm);
+  }
+  return {first, total};
+}
+
+// Dataset `name` of `span.total` rows of `cols` columns (1: a vector), this rank's `n` rows
+// from `span.first`; collective when `dxpl` is a collective MPI-IO transfer list.
+void write_dataset(hid_t loc, const char* name, hid_t type, hsize_t cols, RowSpan span, std::size_t n, const void* data, hid_t dxpl,
+                   const std::string& file) {
+  const int rank = cols > 1 ? 2 : 1;
+  const hsize_t dims[2] = {span.total, cols}, start[2] = {span.first, 0}, count[2] = {n, cols};
   H5 space(H5Screate_simple(rank, dims, nullptr), H5Sclose, "H5Screate_simple", file);
   H5 dset(H5Dcreate2(loc, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
           std::string("dataset ") + name, file);
-  if (dims[0] > 0) check(H5Dwrite(dset.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), std::string("writing ") + name, file);
+  if (span.total == 0) return;
+  H5 mem(H5Screate_simple(rank, count, nullptr), H5Sclose, "H5Screate_simple", file);
+  if (n > 0) {
+    check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr), "selecting rows", file);
+  } else {
+    check(H5Sselect_none(space.get()), "H5Sselect_none", file);
+    check(H5Sselect_none(mem.get()), "H5Sselect_none", file);
+  }
+  check(H5Dwrite(dset.get(), type, mem.get(), space.get(), dxpl, n > 0 ? data : nullptr), std::string("writing ") + name, file);
 }
 
-void write_tables(hid_t root, const CheckpointData& d, const std::string& file) {
+void write_tables(hid_t root, const CheckpointData& d, MPI_Comm comm, hid_t dxpl, const std::string& file) {
   H5 tables(H5Gcreate2(root, "tables", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "group tables", file);
   for (const auto& [name, t] : d.tables) {
     H5 g(H5Gcreate2(tables.get(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "group " + name, file);
-    const hsize_t n = t.ids.size(), dims[2] = {n, static_cast<hsize_t>(t.ncols)};
-    write_dataset(g.get(), "ids", H5T_NATIVE_LLONG, 1, &n, t.ids.data(), file);
-    write_dataset(g.get(), "values", H5T_NATIVE_DOUBLE, 2, dims, t.values.data(), file);
+    const RowSpan span = row_span(t.ids.size(), comm);
+    write_dataset(g.get(), "ids", H5T_NATIVE_LLONG, 1, span, t.ids.size(), t.ids.data(), dxpl, file);
+    write_dataset(g.get(), "values", H5T_NATIVE_DOUBLE, static_cast<hsize_t>(t.ncols), span, t.ids.size(), t.values.data(), dxpl, file);
   }
 }
 
@@ -86,8 +117,15 @@ void test_kill_hook() {
   if (v && *v && std::atoi(v) == count) std::raise(SIGKILL);
 }
 
-void write_file(const std::string& tmp, const CheckpointData& d) {
-  H5 f(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose, "creating the file", tmp);
+// comm: MPI_COMM_NULL (serial) or the communicator of the ranks writing their rows.
+void write_file(const std::string& tmp, const CheckpointData& d, MPI_Comm comm) {
+  H5 fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate", tmp);
+  H5 dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "H5Pcreate", tmp);
+  if (comm != MPI_COMM_NULL) {
+    check(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL), "H5Pset_fapl_mpio", tmp);
+    check(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio", tmp);
+  }
+  H5 f(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose, "creating the file", tmp);
   write_string_attr(f.get(), "format", kFormat, tmp);
   write_attr(f.get(), "version", H5T_NATIVE_LLONG, &kVersion, tmp);
   {
@@ -102,7 +140,7 @@ void write_file(const std::string& tmp, const CheckpointData& d) {
     H5 g(H5Gcreate2(f.get(), "strings", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "group strings", tmp);
     for (const auto& [k, v] : d.strings) write_string_attr(g.get(), k, v, tmp);
   }
-  write_tables(f.get(), d, tmp);
+  write_tables(f.get(), d, comm, dxpl.get(), tmp);
   test_kill_hook();
   check(H5Fflush(f.get(), H5F_SCOPE_GLOBAL), "H5Fflush", tmp);
   f.close(tmp);
@@ -302,9 +340,10 @@ std::string previous_checkpoint_path(const std::string& path) {
   return (p.parent_path() / (p.stem().string() + ".prev" + p.extension().string())).string();
 }
 
-void write_checkpoint_file(const std::string& path, const CheckpointData& data) {
-  const std::string tmp = path + ".tmp";
-  write_file(tmp, data);
+namespace {
+
+// The written temporary file into place, keeping the checkpoint it replaces (see the header).
+void replace_checkpoint(const std::string& tmp, const std::string& path) {
   fsync_path(tmp, false);
   std::error_code ec;
   if (fs::exists(path, ec)) {
@@ -319,6 +358,49 @@ void write_checkpoint_file(const std::string& path, const CheckpointData& data) 
   fs::rename(tmp, path, ec);
   if (ec) throw std::runtime_error(path + ": cannot rename " + tmp + " to it: " + ec.message());
   fsync_path(fs::path(path).parent_path().empty() ? "." : fs::path(path).parent_path().string(), true);
+}
+
+// The lowest failing rank's message on every rank, thrown there. Collective.
+void throw_if_any_failed(std::string err, MPI_Comm comm) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  int mine = err.empty() ? INT_MAX : rank, who = INT_MAX;
+  MPI_Allreduce(&mine, &who, 1, MPI_INT, MPI_MIN, comm);
+  if (who == INT_MAX) return;
+  unsigned long long n = err.size();
+  MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, who, comm);
+  err.resize(n);
+  MPI_Bcast(err.data(), static_cast<int>(n), MPI_CHAR, who, comm);
+  throw std::runtime_error(err);
+}
+
+}  // namespace
+
+void write_checkpoint_file(const std::string& path, const CheckpointData& data) {
+  const std::string tmp = path + ".tmp";
+  write_file(tmp, data, MPI_COMM_NULL);
+  replace_checkpoint(tmp, path);
+}
+
+void write_checkpoint_file(const std::string& path, const CheckpointData& mine, MPI_Comm comm) {
+  int nranks = 1, rank = 0;
+  MPI_Comm_size(comm, &nranks);
+  MPI_Comm_rank(comm, &rank);
+  if (nranks == 1) return write_checkpoint_file(path, mine);
+  const std::string tmp = path + ".tmp";
+  std::string err;
+  try {
+    write_file(tmp, mine, comm);
+  } catch (const std::exception& e) {
+    err = e.what();
+  }
+  throw_if_any_failed(err, comm);
+  if (rank == 0) try {
+      replace_checkpoint(tmp, path);
+    } catch (const std::exception& e) {
+      err = e.what();
+    }
+  throw_if_any_failed(err, comm);
 }
 
 CheckpointData read_checkpoint_file(const std::string& path) {

@@ -13,8 +13,11 @@
 // Writing is atomic: the file is written as <file>.tmp, flushed to disk, and renamed over
 // <file>; the file it replaces is kept as <stem>.prev.h5 (hard link + rename), so at every
 // instant <file> is either absent (before the first checkpoint) or complete.
-// Serial: use on one rank (the caller gathers and broadcasts).
+// Writing: serial, or on several ranks each writing its rows (MPI-IO). Reading: serial
+// (the caller sends the rows on).
 #pragma once
+#include <mpi.h>
+
 #include <map>
 #include <string>
 #include <vector>
@@ -49,6 +52,13 @@ struct CheckpointData {
 // itself with SIGKILL in the middle of writing its N-th checkpoint (after the tables, before
 // the temporary file is closed and renamed), as a crash or `kill -9` would.
 void write_checkpoint_file(const std::string& path, const CheckpointData& data);
+// The same, collective over `comm`: every rank passes the same scalars and the same tables
+// (names, columns), each table holding this rank's rows, which follow those of the lower
+// ranks in the file (so the caller hands rank r the r-th range of ids, each sorted). The
+// file is written with MPI-IO, each rank its rows; rank 0 renames it into place. Throws
+// std::runtime_error on every rank, with the first failing rank's message, when any rank
+// failed. One rank: the serial write.
+void write_checkpoint_file(const std::string& path, const CheckpointData& mine, MPI_Comm comm);
 // Reads a checkpoint file. Throws std::runtime_error (starting with `path`) when the file
 // is missing, unreadable or not a Stentor checkpoint.
 CheckpointData read_checkpoint_file(const std::string& path);

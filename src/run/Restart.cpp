@@ -11,6 +11,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "parallel/RawComm.hpp"
+#include "run/OutputRows.hpp"
 #include "run/Reporter.hpp"
 #include "run/RunState.hpp"
 #include "run/Stepper.hpp"
@@ -45,24 +47,20 @@ std::string scheme_name(const Model& m) {
   return all;
 }
 
-// Records of every rank gathered on rank 0 into one table sorted by id (ncols: the largest
-// over the ranks, so that ranks without such records may pass 0). Collective.
-CheckpointTable gather_table(const Model& m, const std::vector<long long>& ids, const std::vector<double>& values, int ncols) {
+// Records of every rank as one table sorted by id, spread over the ranks: rank r gets the
+// r-th range of the ids 0..id_space-1 (block_rows), sorted, which is how the parallel
+// checkpoint writer takes them (io/Checkpoint.hpp). ncols: the largest over the ranks, so
+// that ranks without such records may pass 0. Collective.
+CheckpointTable rows_table(const Model& m, const std::vector<long long>& ids, const std::vector<double>& values, int ncols,
+                           std::size_t id_space) {
   int k = 0;
   Teuchos::reduceAll(*m.comm, Teuchos::REDUCE_MAX, 1, &ncols, &k);
-  const int n = static_cast<int>(ids.size()), nr = m.nranks;
-  std::vector<int> counts(static_cast<std::size_t>(nr)), displs(static_cast<std::size_t>(nr));
-  MPI_Gather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-  int total = 0;
-  for (int r = 0; r < nr; ++r) displs[static_cast<std::size_t>(r)] = total, total += counts[static_cast<std::size_t>(r)];
+  const Records got = route_to_rows(raw_mpi_comm(*m.comm), id_space, ids, values, k);
   CheckpointTable t;
   t.ncols = k;
-  t.ids.resize(static_cast<std::size_t>(m.rank == 0 ? total : 0));
-  t.values.resize(t.ids.size() * static_cast<std::size_t>(k));
-  MPI_Gatherv(ids.data(), n, MPI_LONG_LONG, t.ids.data(), counts.data(), displs.data(), MPI_LONG_LONG, 0, MPI_COMM_WORLD);
-  for (int r = 0; r < nr; ++r) counts[static_cast<std::size_t>(r)] *= k, displs[static_cast<std::size_t>(r)] *= k;
-  MPI_Gatherv(values.data(), n * k, MPI_DOUBLE, t.values.data(), counts.data(), displs.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
-  if (m.rank == 0) t.sort_rows();
+  t.ids = got.ids;
+  t.values = got.values;
+  t.sort_rows();
   return t;
 }
 
@@ -76,7 +74,7 @@ CheckpointTable node_table(const Model& m, const la::Vector& v) {
     ids.push_back(d.global_node(n));
     for (int c = 0; c < m.dim; ++c) vals.push_back(h(n * m.dim + c, 0));
   }
-  return gather_table(m, ids, vals, m.dim);
+  return rows_table(m, ids, vals, m.dim, m.mesh.num_nodes());
 }
 
 // The committed Gauss-point state of mesh volume block b: rows (cell id, ngp x nhist values).
@@ -99,7 +97,7 @@ CheckpointTable history_table(const Model& m, std::size_t b) {
       vals.insert(vals.end(), row, row + per_cell);
     }
   }
-  return gather_table(m, ids, vals, ncols);
+  return rows_table(m, ids, vals, ncols, m.mesh.num_volume_cells());
 }
 
 void put_scalars(const Model& m, const Stepper& st, const RunState& s, CheckpointData& d) {
@@ -120,7 +118,8 @@ void put_scalars(const Model& m, const Stepper& st, const RunState& s, Checkpoin
   if (m.contact) d.reals["contact_dt_last"] = m.contact->last_step();
 }
 
-// Every rank's part of the state, complete on rank 0. Collective.
+// The state to checkpoint: the scalars on every rank, each table's rows spread over the
+// ranks in id order (rows_table). Collective.
 CheckpointData collect(const Model& m, const Stepper& st, const RunState& s) {
   CheckpointData d;
   put_scalars(m, st, s, d);
@@ -131,7 +130,7 @@ CheckpointData collect(const Model& m, const Stepper& st, const RunState& s) {
   if (m.contact)
     for (std::size_t p = 0; p < m.contact->num_pairs(); ++p) {
       const Contact::NodalFields h = m.contact->step_history(p);
-      d.tables["contact_" + m.contact->pair_name(p)] = gather_table(m, h.nodes, h.values, Contact::kHistoryValues);
+      d.tables["contact_" + m.contact->pair_name(p)] = rows_table(m, h.nodes, h.values, Contact::kHistoryValues, m.mesh.num_nodes());
     }
   // A rank without cells of a plastic block has no history views: decide together.
   int local = m.assembler->has_history() ? 1 : 0, any = 0;
@@ -352,9 +351,13 @@ std::string checkpoint_path(const Reporter& reporter, const Model& model) {
 
 bool write_checkpoint(const Model& model, const Stepper& stepper, const RunState& s, const std::string& path, std::ostream& log) {
   const CheckpointData d = collect(model, stepper, s);
-  if (model.rank != 0) return true;
-  try {
-    write_checkpoint_file(path, d);
+  std::string file = path;  // rank 0's: the other ranks are given ""
+  unsigned long long n = file.size();
+  MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, raw_mpi_comm(*model.comm));
+  file.resize(n);
+  MPI_Bcast(file.data(), static_cast<int>(n), MPI_CHAR, 0, raw_mpi_comm(*model.comm));
+  try {  // every rank writes its rows; a failure anywhere is thrown on every rank
+    write_checkpoint_file(file, d, raw_mpi_comm(*model.comm));
     return true;
   } catch (const std::exception& e) {
     log << "warning: checkpoint at step " << s.step << " not written: " << e.what() << " (the previous one stays)\n" << std::flush;

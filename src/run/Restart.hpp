@@ -26,9 +26,9 @@ class Stepper;
 // `<staging folder>/<basename>_checkpoint.h5` on rank 0 (after Reporter::open()), "" elsewhere.
 std::string checkpoint_path(const Reporter& reporter, const Model& model);
 
-// Gathers the state after an accepted step on rank 0 and writes it to `path` atomically
-// (collective; `path` matters on rank 0 only). False (rank 0 having printed a warning to
-// `log`) when the file could not be written: the previous checkpoint stays.
+// Writes the state after an accepted step to `path` atomically, every rank its rows
+// (collective; `path` matters on rank 0 only). False on every rank (rank 0 having printed
+// a warning to `log`) when the file could not be written: the previous checkpoint stays.
 bool write_checkpoint(const Model& model, const Stepper& stepper, const RunState& s, const std::string& path, std::ostream& log);
 
 // A checkpoint read for a restart, on every rank.
