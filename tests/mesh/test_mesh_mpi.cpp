@@ -7,18 +7,11 @@
 #include "mesh/GmshReader.hpp"
 #include "mesh/MeshCheck.hpp"
 #include "mesh/MeshComm.hpp"
+#include "InputMesh.hpp"
 
 using namespace stentor;
 
 namespace {
-
-MeshConfig config(const std::string& name, double size, int order) {
-  MeshConfig c;
-  c.file = std::string(STENTOR_SOURCE_DIR) + "/inputs/" + name;
-  c.size = size;
-  c.order = order;
-  return c;
-}
 
 void expect_same(const Mesh& a, const Mesh& b) {
   EXPECT_EQ(a.dim, b.dim);
@@ -53,7 +46,7 @@ TEST(MeshMpi, BroadcastGivesEveryRankTheRootMesh) {
     return s;
   }();
   const int root = size_of_world - 1;  // also a non-zero root when run on several ranks
-  const MeshConfig cfg = config("cylinder.geo", 0.2, 2);
+  const MeshConfig cfg = input_mesh("cylinder.geo", 0.2, 2);
   Mesh m;
   if (rank_of(MPI_COMM_WORLD) == root) m = read_mesh(cfg);
   else m.source = "stale";  // replaced
@@ -64,7 +57,7 @@ TEST(MeshMpi, BroadcastGivesEveryRankTheRootMesh) {
 }
 
 TEST(MeshMpi, ReadOnRootBroadcastsMeshOrError) {
-  const MeshConfig cfg = config("block3d.geo", 0.5, 1);
+  const MeshConfig cfg = input_mesh("block3d.geo", 0.5, 1);
   const Mesh m = read_mesh_on_root(cfg, MPI_COMM_WORLD);
   expect_same(read_mesh(cfg), m);
 

@@ -13,18 +13,11 @@
 #include "mesh/MeshComm.hpp"
 #include "mesh/MeshPart.hpp"
 #include "parallel/Distribution.hpp"
+#include "../mesh/InputMesh.hpp"
 
 using namespace stentor;
 
 namespace {
-
-MeshConfig config(const std::string& name, double size, int order) {
-  MeshConfig c;
-  c.file = std::string(STENTOR_SOURCE_DIR) + "/inputs/" + name;
-  c.size = size;
-  c.order = order;
-  return c;
-}
 
 // Global node ids of whole-mesh cell c of block b.
 std::set<GId> cell_nodes(const CellBlock& b, std::size_t c) {
@@ -103,7 +96,7 @@ void expect_part_of(const Mesh& sided, const std::vector<int>& cell_part, int r,
 // nodes, boundary groups whole or cut with the facets' sides as the whole mesh gives
 // them; the serialized part comes back equal.
 TEST(MeshPart, HoldsItsCellsTheirNeighboursAndTheWholeBoundaries) {
-  const Mesh whole = read_mesh(config("s4_ring_section.geo", 0.4, 2));
+  const Mesh whole = read_mesh(input_mesh("s4_ring_section.geo", 0.4, 2));
   const std::vector<int> cell_part = partition_cells(whole, 3);
   Mesh sided = whole;
   for (auto& b : sided.boundaries)
@@ -144,7 +137,7 @@ TEST(MeshPart, HoldsItsCellsTheirNeighboursAndTheWholeBoundaries) {
 // rank's cells and their local connectivity) from the parts that distribute_mesh sends
 // equals the one from the whole mesh on every rank; the part holds only a share.
 TEST(MeshPart, DistributionFromPartsEqualsDistributionFromTheWholeMesh) {
-  const MeshConfig cfg = config("block3d.geo", 0.25, 2);
+  const MeshConfig cfg = input_mesh("block3d.geo", 0.25, 2);
   const Mesh whole = read_mesh_on_root(cfg, MPI_COMM_WORLD);
   Mesh part = read_mesh_on_root_only(cfg, MPI_COMM_WORLD);
   distribute_mesh(part, MPI_COMM_WORLD, {"left"});
