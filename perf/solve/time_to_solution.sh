@@ -14,7 +14,10 @@
 # predictor (Stepping), forcing (Newton), reuse (Linear Solver->preconditioner reuse),
 # preconditioner (Linear Solver), smoother (Linear Solver->MueLu->smoother: type), fields
 # (Output->fields, true|false)), BUILD (default build), OUT (default /tmp/stentor-tts),
-# MPIFLAGS (mpirun options, default --bind-to none), PY (a python3 with the standard library).
+# MPIFLAGS (mpirun options; default: --bind-to core where the ranks fit the cores, as
+# docs/deck.md advises and Open MPI does at up to 2 ranks, else --bind-to none; on a
+# machine shared with other jobs set MPIFLAGS="--bind-to none"), PY (a python3 with the
+# standard library).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=$(cd "${BUILD:-$root/build}" && pwd)
@@ -24,7 +27,8 @@ RANKS=${RANKS:-1}
 VARIANTS=${VARIANTS:-"before:predictor=none default:predictor=auto ew:forcing=eisenstat-walker ew+reuse:forcing=eisenstat-walker,reuse=5"}
 OUT=${OUT:-/tmp/stentor-tts}
 PY=${PY:-/usr/bin/python3}
-MPIFLAGS=${MPIFLAGS:---bind-to none}
+MPIFLAGS=${MPIFLAGS:-}
+ncores=$(getconf _NPROCESSORS_ONLN)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 [ -x "$STENTOR" ] || { echo "time_to_solution: $STENTOR not found (build first, or set BUILD)" >&2; exit 2; }
 mkdir -p "$OUT"
@@ -55,7 +59,9 @@ for c in $CASES; do
       # the default preconditioner (auto) unless a variant sets it
       $PY "$root/perf/solve/solvelib.py" deck "$root/perf/decks/$deck.xml" "$xml" --remove "Linear Solver/preconditioner" "${sets[@]}"
       log=$OUT/$tag.log
-      (cd "$OUT" && /usr/bin/time -f "TIME %e %U %S %M" mpirun -np "$r" $MPIFLAGS "$STENTOR" "$xml") >"$log" 2>&1 || true
+      flags=$MPIFLAGS
+      if [ -z "$flags" ]; then if [ "$r" -le "$ncores" ]; then flags="--bind-to core"; else flags="--bind-to none"; fi; fi
+      (cd "$OUT" && /usr/bin/time -f "TIME %e %U %S %M" mpirun -np "$r" $flags "$STENTOR" "$xml") >"$log" 2>&1 || true
       $PY "$root/perf/solve/solvelib.py" parse "$log" --history "$OUT/results/$tag/${tag}_history.csv" --column reaction_pull_x \
         --label "deck=$deck" --label "h=$h" --label "r=$r" --label "name=$name" \
         --row "| {deck} h={h} | {dofs} | {r} | {name} | {newton} | {linear} | {wall} | {cpu} | {setup} | {solve} | {rss} | {column} |"
