@@ -6,6 +6,7 @@
 #include <climits>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -14,17 +15,6 @@
 
 namespace stentor {
 namespace {
-
-void bcast_bytes(std::vector<char>& buf, MPI_Comm comm, int root) {
-  std::uint64_t n = buf.size();
-  MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm);
-  buf.resize(n);
-  const std::uint64_t chunk = 1u << 30;
-  for (std::uint64_t off = 0; off < n; off += chunk) {
-    const int len = static_cast<int>(std::min(chunk, n - off));
-    MPI_Bcast(buf.data() + off, len, MPI_CHAR, root, comm);
-  }
-}
 
 int num_vertices(CellType t) {
   switch (t) {
@@ -44,12 +34,44 @@ int num_vertices(CellType t) {
 
 }  // namespace
 
+void broadcast_bytes(std::vector<char>& buf, MPI_Comm comm, int root) {
+  std::uint64_t n = buf.size();
+  MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm);
+  buf.resize(n);
+  const std::uint64_t chunk = 1u << 30;
+  for (std::uint64_t off = 0; off < n; off += chunk) {
+    const int len = static_cast<int>(std::min(chunk, n - off));
+    MPI_Bcast(buf.data() + off, len, MPI_CHAR, root, comm);
+  }
+}
+
+void on_root(const std::function<void()>& work, MPI_Comm comm, int root) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  std::string err;  // first byte: 'I' (InputError) or 'R' (other), then the message
+  if (rank == root) {
+    try {
+      work();
+    } catch (const InputError& e) {
+      err = std::string("I") + e.what();
+    } catch (const std::exception& e) {
+      err = std::string("R") + e.what();
+    }
+  }
+  std::vector<char> buf(err.begin(), err.end());
+  broadcast_bytes(buf, comm, root);
+  if (buf.empty()) return;
+  const std::string msg(buf.begin() + 1, buf.end());
+  if (buf[0] == 'I') throw InputError(msg);
+  throw std::runtime_error(msg);
+}
+
 void broadcast_mesh(Mesh& m, MPI_Comm comm, int root) {
   int rank = 0;
   MPI_Comm_rank(comm, &rank);
   std::vector<char> buf;
   if (rank == root) buf = serialize_mesh(m);
-  bcast_bytes(buf, comm, root);
+  broadcast_bytes(buf, comm, root);
   if (rank == root) return;
   m = deserialize_mesh(buf);
 }
@@ -75,33 +97,14 @@ Mesh read_mesh_on_root_only(const MeshConfig& cfg, MPI_Comm comm, bool check, bo
       if (err.empty()) err.push_back('?');
     }
   }
-  bcast_bytes(err, comm, root);
+  broadcast_bytes(err, comm, root);
   if (!err.empty()) throw InputError(std::string(err.begin(), err.end()));
   return m;
 }
 
 std::vector<int> partition_cells_on_root(const Mesh& m, int nparts, MPI_Comm comm, int root) {
-  int rank = 0;
-  MPI_Comm_rank(comm, &rank);
   std::vector<int> part;
-  std::vector<char> err;  // first byte: 'I' (InputError) or 'R' (other), then the message
-  if (rank == root) {
-    try {
-      part = partition_cells(m, nparts);
-    } catch (const InputError& e) {
-      const std::string s = std::string("I") + e.what();
-      err.assign(s.begin(), s.end());
-    } catch (const std::exception& e) {
-      const std::string s = std::string("R") + e.what();
-      err.assign(s.begin(), s.end());
-    }
-  }
-  bcast_bytes(err, comm, root);
-  if (!err.empty()) {
-    const std::string msg(err.begin() + 1, err.end());
-    if (err[0] == 'I') throw InputError(msg);
-    throw std::runtime_error(msg);
-  }
+  on_root([&] { part = partition_cells(m, nparts); }, comm, root);
   part.resize(m.num_volume_cells());
   MPI_Bcast(part.data(), static_cast<int>(part.size()), MPI_INT, root, comm);
   return part;

@@ -3,12 +3,22 @@
 #pragma once
 #include <mpi.h>
 
+#include <functional>
 #include <vector>
 
 #include "deck/Config.hpp"
 #include "mesh/Mesh.hpp"
 
 namespace stentor {
+
+// Root's bytes on every rank of comm (sent in chunks below MPI's int count limit).
+// Collective.
+void broadcast_bytes(std::vector<char>& buf, MPI_Comm comm, int root = 0);
+
+// Runs `work` on root only; an InputError it throws is rethrown with the same message on
+// every rank, any other exception as std::runtime_error, so that no rank waits for root in
+// vain. Collective.
+void on_root(const std::function<void()>& work, MPI_Comm comm, int root = 0);
 
 // Copies root's mesh to every rank of comm (all fields; other ranks' m is replaced).
 void broadcast_mesh(Mesh& m, MPI_Comm comm, int root = 0);

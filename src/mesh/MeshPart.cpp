@@ -84,17 +84,6 @@ std::vector<char> recv_bytes(int from, MPI_Comm comm) {
   return buf;
 }
 
-// Root's error message (prefixed 'I' for an InputError, 'R' for any other) on every rank.
-void rethrow_everywhere(std::string err, MPI_Comm comm, int root) {
-  std::uint64_t n = err.size();
-  MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm);
-  if (n == 0) return;
-  err.resize(n);
-  MPI_Bcast(err.data(), static_cast<int>(n), MPI_CHAR, root, comm);
-  if (err[0] == 'I') throw InputError(err.substr(1));
-  throw std::runtime_error(err.substr(1));
-}
-
 // A block with b's name, tag and cell type, and no cells.
 CellBlock empty_like(const CellBlock& b) {
   CellBlock q;
@@ -217,23 +206,17 @@ void distribute_mesh(Mesh& m, MPI_Comm comm, const std::vector<std::string>& who
   MPI_Comm_size(comm, &nranks);
   if (nranks == 1) return;
   std::vector<int> cell_part;
-  std::string err;
-  if (rank == root) {
-    try {
-      cell_part = partition_cells(m, nranks);
-      for (auto& b : m.boundaries)
-        if (cell_dim(b.type) == m.dim - 1) {
-          FacetSides s = facet_sides(m, b);
-          b.side = std::move(s.side);
-          b.adjacent = std::move(s.adjacent);
-        }
-    } catch (const InputError& e) {
-      err = std::string("I") + e.what();
-    } catch (const std::exception& e) {
-      err = std::string("R") + e.what();
-    }
-  }
-  rethrow_everywhere(err, comm, root);
+  on_root(
+      [&] {
+        cell_part = partition_cells(m, nranks);
+        for (auto& b : m.boundaries)
+          if (cell_dim(b.type) == m.dim - 1) {
+            FacetSides s = facet_sides(m, b);
+            b.side = std::move(s.side);
+            b.adjacent = std::move(s.adjacent);
+          }
+      },
+      comm, root);
   if (rank != root) {
     m = deserialize_mesh(recv_bytes(root, comm));
     return;

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "mesh/MeshComm.hpp"
 #include "parallel/RawComm.hpp"
 #include "run/OutputRows.hpp"
 #include "run/Reporter.hpp"
@@ -153,16 +154,6 @@ void agree(const Model& m, std::string err) {
   throw InputError(err);
 }
 
-// Bytes from rank 0 to every rank, in chunks below MPI's int count limit.
-void broadcast_bytes(const Model& m, std::vector<char>& bytes) {
-  long long n = static_cast<long long>(bytes.size());
-  Teuchos::broadcast(*m.comm, 0, &n);
-  bytes.resize(static_cast<std::size_t>(n));
-  const long long chunk = 1LL << 30;
-  for (long long off = 0; off < n; off += chunk)
-    MPI_Bcast(bytes.data() + off, static_cast<int>(std::min(chunk, n - off)), MPI_CHAR, 0, MPI_COMM_WORLD);
-}
-
 // Whether this rank keeps row `id` of table `name`: node tables the rows of its owned
 // nodes (restore_vector), Gauss-point tables those of its cells (restore_gauss_points),
 // contact tables all of them (a surface's worth).
@@ -193,15 +184,15 @@ CheckpointData read_everywhere(const Model& m, const std::string& path) {
     }
   }
   agree(m, err);
-  CheckpointData outline = whole;  // the scalars, and each table's columns without rows
+  CheckpointData outline;  // the scalars, and each table's columns without rows
+  outline.reals = whole.reals, outline.ints = whole.ints, outline.strings = whole.strings;
   std::vector<long long> rows;
-  for (auto& [name, t] : outline.tables) {
+  for (const auto& [name, t] : whole.tables) {
+    outline.tables[name].ncols = t.ncols;
     rows.push_back(static_cast<long long>(t.ids.size()));
-    t.ids.clear();
-    t.values.clear();
   }
   std::vector<char> bytes = m.rank == 0 ? pack_checkpoint(outline) : std::vector<char>{};
-  broadcast_bytes(m, bytes);
+  broadcast_bytes(bytes, raw_mpi_comm(*m.comm));
   CheckpointData d = unpack_checkpoint(bytes);
   rows.resize(d.tables.size());
   Teuchos::broadcast(*m.comm, 0, static_cast<int>(rows.size()), rows.data());
