@@ -15,6 +15,7 @@
 
 #include "io/LogCopy.hpp"
 #include "parallel/Agreement.hpp"
+#include "mesh/MeshComm.hpp"
 #include "run/OutputRows.hpp"
 
 namespace stentor {
@@ -282,17 +283,18 @@ void Reporter::open() {
     if (m_.rank == 0) throw InputError("cannot create output in '" + out_dir_ + "': " + io_message);
     throw InputError("cannot create output");
   }
-
+  {  // rank 0's staging folder on every rank (the field writer and checkpoints open files there)
+    const std::string here = staging_ ? staging_->path() : std::string();
+    std::vector<char> dir(here.begin(), here.end());
+    broadcast_bytes(dir, raw_mpi_comm(*m_.comm));
+    staging_dir_.assign(dir.begin(), dir.end());
+  }
   if (cfg_.output.fields) open_fields();
 }
 
 // The HDF5/XDMF writer, on every rank (collective), in rank 0's staging folder.
 void Reporter::open_fields() {
-  std::string dir = staging_ ? staging_->path() : std::string();
-  int n = static_cast<int>(dir.size());
-  Teuchos::broadcast(*m_.comm, 0, &n);
-  dir.resize(static_cast<std::size_t>(n));
-  Teuchos::broadcast(*m_.comm, 0, n, dir.data());
+  const std::string& dir = staging_dir_;
   const MPI_Comm comm = raw_mpi_comm(*m_.comm);
   const XdmfMesh rows = xdmf_mesh_on_rows(m_.mesh, *m_.dist, comm);  // collective
   std::string local;

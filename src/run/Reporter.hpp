@@ -72,9 +72,10 @@ class Reporter {
   // Success: plots, then <dir>.partial -> <dir>. Failure: says where the partial results are.
   void finish(bool failed);
 
-  // Restart (run/Restart.cpp), rank 0 after open(): the staging folder and the CSV files
-  // (null elsewhere; the energy file in dynamics only).
-  std::string staging_path() const { return staging_ ? staging_->path() : std::string(); }
+  // After open(): rank 0's staging folder, on every rank ("" without one).
+  const std::string& staging_path() const { return staging_dir_; }
+  // Restart (run/Restart.cpp), rank 0 after open(): the CSV files (null elsewhere; the
+  // energy file in dynamics only).
   const std::string& basename() const { return cfg_.output.basename; }
   CsvWriter* history_csv() { return history_.get(); }
   CsvWriter* energy_csv() { return energy_csv_.get(); }
@@ -99,6 +100,7 @@ class Reporter {
   std::chrono::steady_clock::time_point interval_start_;  // begin_interval()
   double interval_t0_ = 0.0, interval_t1_ = 1.0;
   std::unique_ptr<OutputDir> staging_;
+  std::string staging_dir_;  // staging_'s path, on every rank (open())
   std::unique_ptr<XdmfWriter> xdmf_;
   std::unique_ptr<CsvWriter> history_, energy_csv_;
   std::unique_ptr<MetricsReport> metrics_;  // null without Output->Stent Metrics

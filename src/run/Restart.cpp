@@ -342,13 +342,8 @@ std::string checkpoint_path(const Reporter& reporter, const Model& model) {
 
 bool write_checkpoint(const Model& model, const Stepper& stepper, const RunState& s, const std::string& path, std::ostream& log) {
   const CheckpointData d = collect(model, stepper, s);
-  std::string file = path;  // rank 0's: the other ranks are given ""
-  unsigned long long n = file.size();
-  MPI_Bcast(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, raw_mpi_comm(*model.comm));
-  file.resize(n);
-  MPI_Bcast(file.data(), static_cast<int>(n), MPI_CHAR, 0, raw_mpi_comm(*model.comm));
   try {  // every rank writes its rows; a failure anywhere is thrown on every rank
-    write_checkpoint_file(file, d, raw_mpi_comm(*model.comm));
+    write_checkpoint_file(path, d, raw_mpi_comm(*model.comm));
     return true;
   } catch (const std::exception& e) {
     log << "warning: checkpoint at step " << s.step << " not written: " << e.what() << " (the previous one stays)\n" << std::flush;

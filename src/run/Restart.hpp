@@ -23,11 +23,11 @@ struct RunState;
 class Reporter;
 class Stepper;
 
-// `<staging folder>/<basename>_checkpoint.h5` on rank 0 (after Reporter::open()), "" elsewhere.
+// `<staging folder>/<basename>_checkpoint.h5`, on every rank (after Reporter::open()).
 std::string checkpoint_path(const Reporter& reporter, const Model& model);
 
 // Writes the state after an accepted step to `path` atomically, every rank its rows
-// (collective; `path` matters on rank 0 only). False on every rank (rank 0 having printed
+// (collective; the same `path` on every rank). False on every rank (rank 0 having printed
 // a warning to `log`) when the file could not be written: the previous checkpoint stays.
 bool write_checkpoint(const Model& model, const Stepper& stepper, const RunState& s, const std::string& path, std::ostream& log);
 

@@ -34,7 +34,7 @@ struct Run {
   Reporter& reporter;
   RunState& state;
   Timers& timers;
-  std::string checkpoint;  // rank 0: the checkpoint file ("" elsewhere)
+  std::string checkpoint;  // the checkpoint file (the same on every rank)
 };
 
 void checkpoint(Run& r) {
