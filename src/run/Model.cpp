@@ -22,19 +22,15 @@ std::vector<GId> nearest_nodes(const Mesh& mesh, const std::vector<ProbeConfig>&
   std::vector<GId> nodes;
   for (const auto& p : probes) {
     double bd = 1e300;
+    long long best = LLONG_MAX, first = LLONG_MAX;  // the first stored node (smallest id) at bd
     for (std::size_t i = 0; i < mesh.num_stored_nodes(); ++i) {
       double d = 0.0;
       for (int k = 0; k < 3; ++k) d += std::pow(mesh.x[3 * i + static_cast<std::size_t>(k)] - p.point[static_cast<std::size_t>(k)], 2);
-      bd = std::min(bd, d);
+      if (d < bd) bd = d, best = mesh.stored_node(i);
     }
     double all = bd;
     MPI_Allreduce(&bd, &all, 1, MPI_DOUBLE, MPI_MIN, comm);
-    long long best = LLONG_MAX, first = LLONG_MAX;
-    for (std::size_t i = 0; i < mesh.num_stored_nodes() && best == LLONG_MAX; ++i) {
-      double d = 0.0;
-      for (int k = 0; k < 3; ++k) d += std::pow(mesh.x[3 * i + static_cast<std::size_t>(k)] - p.point[static_cast<std::size_t>(k)], 2);
-      if (d == all) best = mesh.stored_node(i);
-    }
+    if (bd != all) best = LLONG_MAX;  // another rank has a nearer node
     MPI_Allreduce(&best, &first, 1, MPI_LONG_LONG, MPI_MIN, comm);
     nodes.push_back(static_cast<GId>(first));
   }
