@@ -17,7 +17,15 @@
 # MPIFLAGS (mpirun options; default: --bind-to core where the ranks fit the cores, as
 # docs/deck.md advises and Open MPI does at up to 2 ranks, else --bind-to none; on a
 # machine shared with other jobs set MPIFLAGS="--bind-to none"), PY (a python3 with the
-# standard library).
+# standard library), FEBIO (the FEBio 4 executable; default: febio4 on the PATH).
+#
+# FEBio, the yardstick (issue 14): where FEBIO is found, each cube case (cube_p1, cube_p2)
+# is also written as an FEBio 4 input from the same gmsh mesh (perf/solve/feb.py: .feb,
+# gmsh on the PATH) and run with FEBio on as many OpenMP threads as each row of RANKS has
+# ranks (OMP_NUM_THREADS = MKL_NUM_THREADS = r): rows "FEBio" in the same table, with
+# FEBio's equilibrium iterations as Newton, "direct" for its default linear solver
+# (PARDISO), its "time in linear solver" as lin. solve, and the sum of Rx over the pulled
+# face's nodes at the last step. Without FEBio one line says so and only Stentor runs.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 BUILD=$(cd "${BUILD:-$root/build}" && pwd)
@@ -28,11 +36,14 @@ VARIANTS=${VARIANTS:-"before:predictor=none default:predictor=auto ew:forcing=ei
 OUT=${OUT:-/tmp/stentor-tts}
 PY=${PY:-/usr/bin/python3}
 MPIFLAGS=${MPIFLAGS:-}
+FEBIO=${FEBIO:-febio4}
+febio=$(command -v "$FEBIO" 2>/dev/null || true)
 ncores=$(getconf _NPROCESSORS_ONLN)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 [ -x "$STENTOR" ] || { echo "time_to_solution: $STENTOR not found (build first, or set BUILD)" >&2; exit 2; }
 mkdir -p "$OUT"
 echo "machine: $(getconf _NPROCESSORS_ONLN) cores, load $(cut -d' ' -f1-3 /proc/loadavg), $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo "no git")"
+[ -n "$febio" ] || echo "FEBio: '$FEBIO' not found (set FEBIO to the FEBio 4 executable for its rows): Stentor only"
 echo "| case | DOF | ranks | variant | Newton | GMRES | wall [s] | CPU [s] | lin. set-up [s] | lin. solve [s] | peak RSS/rank [MB] | reaction x [N] |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
 for c in $CASES; do
@@ -67,4 +78,20 @@ for c in $CASES; do
         --row "| {deck} h={h} | {dofs} | {r} | {name} | {newton} | {linear} | {wall} | {cpu} | {setup} | {solve} | {rss} | {column} |"
     done
   done
+  # FEBio on the same mesh and problem (perf/solve/feb.py), r threads for each r of RANKS.
+  if [ -n "$febio" ] && [[ $deck == cube_p* ]]; then
+    ftag=${deck}_h${h}_febio
+    if $PY "$root/perf/solve/feb.py" write "$root/perf/decks/$deck.xml" "$OUT/$ftag.feb" --size "$h" >"$OUT/$ftag.write.log" 2>&1; then
+      for r in $RANKS; do
+        dir=$OUT/${ftag}_t$r log=$OUT/${ftag}_t$r.log
+        rm -rf "$dir" && mkdir -p "$dir" && cp "$OUT/$ftag.feb" "$dir/"
+        (cd "$dir" && OMP_NUM_THREADS=$r MKL_NUM_THREADS=$r /usr/bin/time -f "TIME %e %U %S %M" \
+          "$febio" -i "$ftag.feb" -o "$ftag.log" -nosplash </dev/null) >"$log" 2>&1 || true
+        $PY "$root/perf/solve/feb.py" parse "$dir/$ftag.feb" "$log" --label "deck=$deck" --label "h=$h" --label "r=$r" \
+          --row "| {deck} h={h} | {dofs} | {r} | FEBio | {newton} | {linear} | {wall} | {cpu} | {setup} | {solve} | {rss} | {column} |"
+      done
+    else
+      echo "| $deck h=$h | ? | - | FEBio | .feb not written: $(tail -n 1 "$OUT/$ftag.write.log") | | | | | | | |"
+    fi
+  fi
 done
