@@ -1367,6 +1367,7 @@ void DeckReader::read_linear(const ParameterList& pl) {
   l.subdomain_solver = get_string(pl, ls, "subdomain solver");
   l.fill_level = get_int(pl, ls, "fill level");
   l.preconditioner_reuse = get_int(pl, ls, "preconditioner reuse");
+  l.preconditioner_rebuild_cost = get_double(pl, ls, "preconditioner rebuild cost");
 #ifndef STENTOR_HAVE_MUELU
   if (l.preconditioner == "muelu")
     fail("'Linear Solver->preconditioner' = muelu needs Trilinos with MueLu, which this build lacks; use schwarz");

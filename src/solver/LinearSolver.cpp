@@ -15,6 +15,7 @@
 
 #include "parallel/Agreement.hpp"
 #include "solver/MueLuPreconditioner.hpp"
+#include "solver/ReusePolicy.hpp"
 #include "solver/SolverParams.hpp"
 #include <Teuchos_DefaultMpiComm.hpp>
 #include <Teuchos_XMLParameterListHelpers.hpp>
@@ -108,17 +109,13 @@ struct LinearSolver::Impl {
 #endif
   Teuchos::RCP<Teuchos::ParameterList> belos_params;
   LinearSolver::Times times;
-  // Preconditioner reuse (cfg.preconditioner_reuse): setups since the last build, the
-  // iterations of the first solve after it (-1: none yet) and the last solve's outcome.
-  int age = 0, first_iterations = -1, last_iterations = 0;
+  // Preconditioner reuse (Linear Solver->preconditioner reuse, ->preconditioner rebuild
+  // cost): when a kept preconditioner is rebuilt (solver/ReusePolicy.hpp).
+  ReusePolicy reuse;
   bool fresh = false;  // the last setup built the preconditioner (not reused)
-  bool last_converged = true;
   bool keep_preconditioner() {
     const bool built = !prec.is_null() || !mg.is_null();
-    if (!built || age >= cfg.preconditioner_reuse || !last_converged) return false;
-    if (first_iterations >= 0 && last_iterations > 2 * first_iterations + 10) return false;
-    ++age;
-    return true;
+    return built && reuse.keep();
   }
   int dim = 0;
   std::vector<double> coords;  // owned nodes, 3 each (for multigrid null spaces)
@@ -158,6 +155,8 @@ Teuchos::ParameterList schwarz_parameters(const LinearSolverConfig& cfg) {
 LinearSolver::LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la::Comm>& comm) : impl_(new Impl) {
   impl_->cfg = cfg;
   impl_->comm = comm;
+  impl_->reuse.max_age = cfg.preconditioner_reuse;
+  impl_->reuse.build_cost = cfg.preconditioner_rebuild_cost;
   if (cfg.preconditioner == "auto") {
     // The default: multigrid where this Trilinos has MueLu. Its GMRES iteration counts stay
     // flat under mesh refinement and weak scaling, one-level Schwarz's grow
@@ -251,9 +250,7 @@ bool LinearSolver::fall_back(const std::string& why) {
 #ifdef STENTOR_HAVE_AMESOS2
   m.direct = Teuchos::null;
 #endif
-  m.age = 0;
-  m.first_iterations = -1;
-  m.last_converged = true;
+  m.reuse.built();
   ++m.times.fallbacks;
   if (m.comm->getRank() == 0)
     std::cout << "warning: linear solver " << from << ": " << why << "; using " << description() << " from here on\n"
@@ -293,8 +290,7 @@ void LinearSolver::setup_once(const la::RCP<la::CrsMatrix>& A) {
   const bool forced = force_rebuild_;
   force_rebuild_ = false;
   if (same && !forced && m.keep_preconditioner()) return;
-  m.age = 0;
-  m.first_iterations = -1;
+  m.reuse.built();
   m.fresh = true;
   ++m.times.builds;
   if (m.cfg.preconditioner == "muelu") {
@@ -474,9 +470,7 @@ LinearSolver::Result LinearSolver::solve_once(const la::Vector& b, la::Vector& x
     if (clamp) params->set("Num Blocks", static_cast<int>(std::max(rows, 1LL)));
   }
   gmres_in_two_phases(*problem, params, res);
-  m.last_converged = res.converged;
-  m.last_iterations = res.iterations;
-  if (m.first_iterations < 0) m.first_iterations = res.iterations;
+  m.reuse.solved(res.iterations, res.residual, res.converged);
   return res;
 }
 

@@ -23,6 +23,7 @@
 #include "deck/Config.hpp"
 #include "run/Simulation.hpp"
 #include "solver/LinearSolver.hpp"
+#include "solver/ReusePolicy.hpp"
 #include "solver/Newton.hpp"
 
 using namespace stentor;
@@ -391,6 +392,88 @@ TEST(LinearSolverReuse, StalledReusedPreconditionerIsRebuiltAfterOneCycle) {
   EXPECT_EQ(lin.times().builds, 2);
   EXPECT_EQ(lin.times().fallbacks, 0);
   EXPECT_LE(r.iterations, 5);  // the rebuilt (exact on one rank) preconditioner's solve
+}
+
+// The rebuild policy in GMRES iterations: solves at a fresh preconditioner's rate never
+// force a rebuild (only the age limit does); solves that need more iterations per digit add
+// up their excess, a faster solve pays some back, and a rebuild comes once the excess
+// reaches the build's worth; a solve that did not converge forces one at once.
+TEST(ReusePolicy, RebuildsWhenLostIterationsReachTheBuildCost) {
+  ReusePolicy p;
+  p.max_age = 5;
+  p.build_cost = 25.0;
+  p.built();
+  p.solved(20, 1e-10, true);  // fresh: 2 iterations per digit
+  for (int k = 0; k < 5; ++k) {
+    ASSERT_TRUE(p.keep()) << k;
+    p.solved(24, 1e-10, true);  // 20 % slower: within the allowance (25 %)
+    EXPECT_DOUBLE_EQ(p.excess, 0.0);
+  }
+  EXPECT_FALSE(p.keep());  // served max_age set-ups
+  p.built();
+  p.solved(8, 1e-4, true);    // fresh: 2 per digit, from a loose solve
+  ASSERT_TRUE(p.keep());
+  p.solved(40, 1e-10, true);  // 4 per digit: 40 - 1.25 * 2 * 10 = 15 lost
+  EXPECT_DOUBLE_EQ(p.excess, 15.0);
+  ASSERT_TRUE(p.keep());
+  p.solved(10, 1e-10, true);  // faster than the allowance: pays back 15
+  EXPECT_DOUBLE_EQ(p.excess, 0.0);
+  ASSERT_TRUE(p.keep());
+  p.solved(40, 1e-10, true);
+  ASSERT_TRUE(p.keep());      // 15 < 25
+  p.solved(40, 1e-10, true);  // 30 >= 25
+  EXPECT_DOUBLE_EQ(p.excess, 30.0);
+  EXPECT_FALSE(p.keep());
+  p.built();
+  EXPECT_DOUBLE_EQ(p.excess, 0.0);
+  p.solved(3, 0.5, true);     // gained less than a digit: no rate from it
+  EXPECT_LT(p.rate0, 0.0);
+  p.solved(10, 1e-5, true);
+  EXPECT_DOUBLE_EQ(p.rate0, 2.0);
+  ASSERT_TRUE(p.keep());
+  p.solved(200, 1e-3, false);  // not converged
+  EXPECT_FALSE(p.keep());
+}
+
+// A preconditioner kept while the matrix drifts away from the one it was built for (the
+// exact LU of a symmetric tridiagonal matrix, then ever more unsymmetric ones) costs GMRES
+// iterations; with the default rebuild cost it is rebuilt before its age limit, and the
+// run needs fewer iterations than one that keeps it (rebuild cost "infinite"), every solve
+// to tolerance either way.
+TEST(LinearSolverReuse, DriftingMatrixRebuildsWhenItPays) {
+  auto run = [](double cost, long& builds) {
+    auto map = Teuchos::rcp(new la::Map(200, 0, comm()));
+    auto A = tridiagonal(map);
+    LinearSolverConfig lc;
+    lc.preconditioner = "schwarz";  // ILU(0) of a tridiagonal matrix: its exact LU on one rank
+    lc.fill_level = 0;
+    lc.tolerance = 1e-10;
+    lc.preconditioner_reuse = 20;
+    lc.preconditioner_rebuild_cost = cost;
+    LinearSolver lin(lc, comm());
+    la::Vector b(map), x(map);
+    b.putScalar(1.0);
+    int iterations = 0;
+    for (int k = 0; k < 12; ++k) {
+      const double s = 0.15 * k;
+      set_tridiagonal(*A, 2.5, -1.0 - s, -1.0 + s);
+      lin.setup(A);
+      const LinearSolver::Result r = lin.solve(b, x);
+      EXPECT_TRUE(r.converged) << k;
+      EXPECT_LE(true_residual(*A, b, x), 1.01e-10) << k;
+      iterations += r.iterations;
+    }
+    builds = lin.times().builds;
+    return iterations;
+  };
+  long kept_builds = 0, policy_builds = 0;
+  const int kept = run(1e9, kept_builds);
+  const int policy = run(25.0, policy_builds);
+  EXPECT_EQ(kept_builds, 1);
+  EXPECT_GT(policy_builds, 1);
+  EXPECT_LT(policy_builds, 12);
+  EXPECT_LT(policy, kept);
+  std::printf("drift: kept %d iterations, 1 build; policy %d iterations, %ld builds\n", kept, policy, policy_builds);
 }
 
 namespace {
