@@ -12,7 +12,8 @@
 #
 # Environment: CASES ("deck:h" list), RANKS ("1"), VARIANTS (name:key=value,... with keys
 # predictor (Stepping), forcing (Newton), reuse (Linear Solver->preconditioner reuse),
-# rebuild (Linear Solver->preconditioner rebuild cost),
+# rebuild (Linear Solver->preconditioner rebuild cost), onchange (Linear Solver->
+# preconditioner rebuild on contact change, true|false),
 # preconditioner (Linear Solver), smoother (Linear Solver->MueLu->smoother: type), fields
 # (Output->fields, true|false)), BUILD (default build), OUT (default /tmp/stentor-tts),
 # MPIFLAGS (mpirun options; default: --bind-to core where the ranks fit the cores, as
@@ -63,6 +64,7 @@ for c in $CASES; do
           forcing) sets+=(--set "Newton/forcing=string:$val") ;;
           reuse) sets+=(--set "Linear Solver/preconditioner reuse=int:$val") ;;
           rebuild) sets+=(--set "Linear Solver/preconditioner rebuild cost=double:$val") ;;
+          onchange) sets+=(--set "Linear Solver/preconditioner rebuild on contact change=bool:$val") ;;
           preconditioner) sets+=(--set "Linear Solver/preconditioner=string:$val") ;;
           smoother) sets+=(--set "Linear Solver/MueLu/smoother: type=string:$val") ;;
           fields) sets+=(--set "Output/fields=bool:$val") ;;

@@ -1368,6 +1368,7 @@ void DeckReader::read_linear(const ParameterList& pl) {
   l.fill_level = get_int(pl, ls, "fill level");
   l.preconditioner_reuse = get_int(pl, ls, "preconditioner reuse");
   l.preconditioner_rebuild_cost = get_double(pl, ls, "preconditioner rebuild cost");
+  l.preconditioner_rebuild_on_change = get_bool(pl, ls, "preconditioner rebuild on contact change");
 #ifndef STENTOR_HAVE_MUELU
   if (l.preconditioner == "muelu")
     fail("'Linear Solver->preconditioner' = muelu needs Trilinos with MueLu, which this build lacks; use schwarz");

@@ -169,6 +169,7 @@ struct LinearSolverConfig {
   int fill_level = 1;                    // "fill level": RILUK level of fill
   int preconditioner_reuse = 20;         // "preconditioner reuse": later setups that may keep it (gmres)
   double preconditioner_rebuild_cost = 25.0;  // "preconditioner rebuild cost": GMRES iterations a build is worth
+  bool preconditioner_rebuild_on_change = true;  // "preconditioner rebuild on contact change"
   // Pass-through sublists "Belos", "Ifpack2", "MueLu", "Amesos2" as XML text ("" if absent);
   // their entries override the values above.
   std::string belos_xml, ifpack2_xml, muelu_xml, amesos2_xml;

@@ -157,6 +157,7 @@ LinearSolver::LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la
   impl_->comm = comm;
   impl_->reuse.max_age = cfg.preconditioner_reuse;
   impl_->reuse.build_cost = cfg.preconditioner_rebuild_cost;
+  rebuild_on_change_ = cfg.preconditioner_rebuild_on_change;
   if (cfg.preconditioner == "auto") {
     // The default: multigrid where this Trilinos has MueLu. Its GMRES iteration counts stay
     // flat under mesh refinement and weak scaling, one-level Schwarz's grow

@@ -17,9 +17,12 @@
 // last link reaches Newton: LinearSolverFailure, thrown on every rank alike (a failed
 // iteration: cut-back).
 //
-// A reused preconditioner (Linear Solver->preconditioner reuse) with which GMRES gains less
-// than one digit in its first cycle is rebuilt for the current matrix and the system solved
-// again; only a freshly built one that stalls moves down the chain.
+// A preconditioner is kept across Newton iterations and steps while the matrix graph stays
+// the same (Linear Solver->preconditioner reuse), and rebuilt when solver/ReusePolicy.hpp
+// says the GMRES iterations it loses outweigh a build, or when Newton calls
+// tangent_changed() (a changed contact active set) or rebuild_preconditioner() (a checkpoint). A kept one with
+// which GMRES gains less than one digit in its first cycle is rebuilt for the current matrix
+// and the system solved again; only a freshly built one that stalls moves down the chain.
 #pragma once
 #include <memory>
 #include <string>
@@ -60,6 +63,13 @@ class LinearSolver {
   // uninterrupted run doing the same both stay bitwise equal (preconditioner reuse).
   void rebuild_preconditioner() { force_rebuild_ = true; }
 
+  // The next tangent's discrete part changed (a contact active set or a stick/slip state,
+  // NewtonSystem::settled() false): its preconditioner is built afresh, unless
+  // Linear Solver->preconditioner rebuild on contact change is false.
+  void tangent_changed() {
+    if (rebuild_on_change_) force_rebuild_ = true;
+  }
+
   // The configured relative residual tolerance (Belos pass-through included); 0 for direct.
   double tolerance() const;
 
@@ -84,6 +94,7 @@ class LinearSolver {
   bool fall_back(const std::string& why);
   Agreement agree(const std::string& why) const;
   bool force_rebuild_ = false;
+  bool rebuild_on_change_ = true;
 };
 
 }  // namespace stentor

@@ -166,9 +166,15 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
   }
   Forcing forcing(cfg, lin.tolerance(), first_ratio_hint);
   int damped_unsettled = 0;  // consecutive iterations whose full step changed the active set and was damped
+  bool settled = sys.settled();  // at the point whose tangent the next solve uses
   for (int it = 1; it <= cfg.max_iterations; ++it) {
     LinearSolver::Result lr;
     const double eta = forcing.next(rn, target);
+    // A tangent whose discrete part changed (contact rows of nodes that entered, left or
+    // changed stick/slip) gets a preconditioner built for it: one kept from the old rows
+    // loses more than a build is worth there (docs/performance.md, "Rebuilding a stale
+    // preconditioner").
+    if (!settled) lin.tangent_changed();
     r.scale(-1.0);
     if (!linear_solve(lin, sys.matrix(), r, du, eta, lr, res.failure)) return res;
     r.scale(-1.0);
@@ -200,6 +206,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     }
     u.update(1.0, u_trial, 0.0);
     r.update(1.0, r_trial, 0.0);
+    settled = t.settled;
     const double step = t.alpha * scaled * du_full;  // |alpha du| of the (limited) update
     const double un = u.norm2();
     if (it == 1 && rn > 0.0) res.first_ratio = t.rn / rn;

@@ -254,6 +254,56 @@ TEST(Newton, ResidualOnlyTrialsSameIteratesFewerTangents) {
               cheap.tangents, cheap.residuals, full.tangents);
 }
 
+// A tangent whose discrete part changed at the point it was assembled at (settled() false:
+// e.g. contact rows of nodes that entered the active set) gets a preconditioner built for
+// it, whatever the reuse count; once settled, the kept one serves again. The iterates do
+// not depend on it (GMRES to the same tolerance).
+class UnsettledCubic : public CubicSystem {
+ public:
+  UnsettledCubic(const la::RCP<const la::Map>& map, int unsettled) : CubicSystem(map, false), left_(unsettled) {}
+  bool evaluate(const la::Vector& u, la::Vector& r, bool tangent) override {
+    settled_ = left_-- <= 0;
+    return CubicSystem::evaluate(u, r, tangent);
+  }
+  bool settled() const override { return settled_; }
+
+ private:
+  int left_;
+  bool settled_ = true;
+};
+
+TEST(Newton, ChangedActiveSetRebuildsTheKeptPreconditioner) {
+  auto run = [](int unsettled, int& iterations, bool on_change = true) {
+    auto map = Teuchos::rcp(new la::Map(40, 0, comm()));
+    UnsettledCubic sys(map, unsettled);
+    LinearSolverConfig lc;
+    lc.preconditioner = "schwarz";
+    lc.tolerance = 1e-13;
+    lc.preconditioner_reuse = 20;
+    lc.preconditioner_rebuild_cost = 1e9;  // only the active set (and the age) rebuild
+    lc.preconditioner_rebuild_on_change = on_change;
+    LinearSolver lin(lc, comm());
+    NewtonConfig nc;
+    nc.residual_tolerance = 1e-12;
+    nc.line_search = false;  // one evaluate per iteration: the k-th solve uses the k-th point
+    la::Vector u(map);
+    const NewtonResult res = newton_solve(sys, u, lin, nc, nullptr);
+    EXPECT_TRUE(res.converged) << res.failure;
+    iterations = res.iterations;
+    return lin.times().builds;
+  };
+  int its_settled = 0, its_changed = 0;
+  EXPECT_EQ(run(0, its_settled), 1);  // built once, kept to the end
+  // The start and the first two iterates are unsettled: the first three solves each get a
+  // preconditioner of their own (the first one is the first build anyway).
+  EXPECT_EQ(run(3, its_changed), 3);
+  int its_off = 0;
+  EXPECT_EQ(run(3, its_off, false), 1);  // preconditioner rebuild on contact change = false
+  EXPECT_EQ(its_off, its_changed);
+  EXPECT_GE(its_settled, 4);
+  EXPECT_GE(its_changed, 4);
+}
+
 // Eisenstat-Walker's first forcing term from a hint (the last dynamic step's first residual
 // ratio, passed by the Stepper): a step that one tight solve converges (here a linear
 // system) is solved tightly at once, in one Newton iteration, instead of loosely first
