@@ -416,15 +416,16 @@ std::vector<ListSpec> build_schema() {
          integer("preconditioner reuse", 20,
                  "GMRES: how many later Newton iterations (and steps) may keep a preconditioner built for an "
                  "earlier tangent of the same matrix instead of rebuilding it (0: rebuilt every iteration). It is "
-                 "rebuilt earlier when the last solve did not converge, or when the iterations it has lost since "
-                 "its build add up to `preconditioner rebuild cost`. A stale preconditioner changes only the "
+                 "rebuilt earlier when the last solve did not converge, when the iterations it has lost since "
+                 "its build add up to `preconditioner rebuild cost`, or when the contact active set changed "
+                 "(`preconditioner rebuild on contact change`). A stale preconditioner changes only the "
                  "Krylov iterations, not the Newton iterate's accuracy. Measured in docs/performance.md.")
              .ge(0),
          dbl("preconditioner rebuild cost", 25.0,
              "GMRES: what building the preconditioner is worth, in GMRES iterations. A kept preconditioner is "
              "rebuilt once the iterations it has cost beyond a fresh one's rate (iterations per digit of "
              "residual reduction of the first solve after its build, +25 %) add up to this. The decision uses "
-             "only iteration counts, so runs stay reproducible. A MueLu build measured 22-25 iterations' worth "
+             "only iteration counts, so runs stay reproducible. A MueLu build measured about 25 iterations' worth "
              "on 2 and 16 ranks (docs/performance.md, \"Rebuilding a stale preconditioner\"); raise it where "
              "builds are dearer. 0: rebuilt after the first solve that loses any.")
              .ge(0.0),

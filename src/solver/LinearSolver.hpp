@@ -19,8 +19,8 @@
 //
 // A preconditioner is kept across Newton iterations and steps while the matrix graph stays
 // the same (Linear Solver->preconditioner reuse), and rebuilt when solver/ReusePolicy.hpp
-// says the GMRES iterations it loses outweigh a build, or when Newton calls
-// tangent_changed() (a changed contact active set) or rebuild_preconditioner() (a checkpoint). A kept one with
+// says the GMRES iterations it loses outweigh a build, or after tangent_changed() (Newton:
+// a changed contact active set) or rebuild_preconditioner() (a checkpoint). A kept one with
 // which GMRES gains less than one digit in its first cycle is rebuilt for the current matrix
 // and the system solved again; only a freshly built one that stalls moves down the chain.
 #pragma once

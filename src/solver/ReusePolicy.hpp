@@ -20,7 +20,7 @@
 //             last solve did not converge.
 //
 // Newton adds one more rule (solver/Newton.cpp): a tangent whose contact active set changed
-// at its point gets a fresh preconditioner (LinearSolver::rebuild_preconditioner()).
+// at its point gets a fresh preconditioner (LinearSolver::tangent_changed()).
 //
 // Measured (docs/performance.md, "Rebuilding a stale preconditioner"): a MueLu build is
 // worth about 25 GMRES iterations both on the 30k-DOF S2 case on 2 ranks here and on the
