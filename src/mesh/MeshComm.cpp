@@ -16,6 +16,13 @@
 namespace stentor {
 namespace {
 
+// f(offset, length) over [0, n) in chunks below MPI's int count limit.
+template <class F>
+void for_each_chunk(std::uint64_t n, F f) {
+  const std::uint64_t chunk = 1u << 30;
+  for (std::uint64_t off = 0; off < n; off += chunk) f(off, static_cast<int>(std::min(chunk, n - off)));
+}
+
 int num_vertices(CellType t) {
   switch (t) {
     case CellType::Tri3:
@@ -38,11 +45,23 @@ void broadcast_bytes(std::vector<char>& buf, MPI_Comm comm, int root) {
   std::uint64_t n = buf.size();
   MPI_Bcast(&n, 1, MPI_UINT64_T, root, comm);
   buf.resize(n);
-  const std::uint64_t chunk = 1u << 30;
-  for (std::uint64_t off = 0; off < n; off += chunk) {
-    const int len = static_cast<int>(std::min(chunk, n - off));
-    MPI_Bcast(buf.data() + off, len, MPI_CHAR, root, comm);
-  }
+  for_each_chunk(n, [&](std::uint64_t off, int len) { MPI_Bcast(buf.data() + off, len, MPI_CHAR, root, comm); });
+}
+
+void send_bytes(const std::vector<char>& buf, int to, MPI_Comm comm) {
+  const std::uint64_t n = buf.size();
+  MPI_Send(&n, 1, MPI_UINT64_T, to, 0, comm);
+  for_each_chunk(n, [&](std::uint64_t off, int len) { MPI_Send(buf.data() + off, len, MPI_CHAR, to, 1, comm); });
+}
+
+std::vector<char> recv_bytes(int from, MPI_Comm comm) {
+  std::uint64_t n = 0;
+  MPI_Recv(&n, 1, MPI_UINT64_T, from, 0, comm, MPI_STATUS_IGNORE);
+  std::vector<char> buf(n);
+  for_each_chunk(n, [&](std::uint64_t off, int len) {
+    MPI_Recv(buf.data() + off, len, MPI_CHAR, from, 1, comm, MPI_STATUS_IGNORE);
+  });
+  return buf;
 }
 
 void on_root(const std::function<void()>& work, MPI_Comm comm, int root) {

@@ -15,6 +15,10 @@ namespace stentor {
 // Collective.
 void broadcast_bytes(std::vector<char>& buf, MPI_Comm comm, int root = 0);
 
+// Bytes from this rank to rank `to`, and their receipt on `to` (chunked alike).
+void send_bytes(const std::vector<char>& buf, int to, MPI_Comm comm);
+std::vector<char> recv_bytes(int from, MPI_Comm comm);
+
 // Runs `work` on root only; an InputError it throws is rethrown with the same message on
 // every rank, any other exception as std::runtime_error, so that no rank waits for root in
 // vain. Collective.

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cstdint>
 #include <stdexcept>
 #include <string>
 
@@ -66,23 +65,6 @@ struct CellsAroundFacetNodes {
     }
   }
 };
-
-// Bytes to one rank and back, in chunks below MPI's int count limit.
-void send_bytes(const std::vector<char>& buf, int to, MPI_Comm comm) {
-  const std::uint64_t n = buf.size(), chunk = 1u << 30;
-  MPI_Send(&n, 1, MPI_UINT64_T, to, 0, comm);
-  for (std::uint64_t off = 0; off < n; off += chunk)
-    MPI_Send(buf.data() + off, static_cast<int>(std::min(chunk, n - off)), MPI_CHAR, to, 1, comm);
-}
-std::vector<char> recv_bytes(int from, MPI_Comm comm) {
-  std::uint64_t n = 0;
-  const std::uint64_t chunk = 1u << 30;
-  MPI_Recv(&n, 1, MPI_UINT64_T, from, 0, comm, MPI_STATUS_IGNORE);
-  std::vector<char> buf(n);
-  for (std::uint64_t off = 0; off < n; off += chunk)
-    MPI_Recv(buf.data() + off, static_cast<int>(std::min(chunk, n - off)), MPI_CHAR, from, 1, comm, MPI_STATUS_IGNORE);
-  return buf;
-}
 
 // A block with b's name, tag and cell type, and no cells.
 CellBlock empty_like(const CellBlock& b) {
