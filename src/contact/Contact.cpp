@@ -91,6 +91,7 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
       master_set.insert(master_set.end(), p.master->nodes().begin(), p.master->nodes().end());
       has_master_ = true;
     }
+    linearised_ = linearised_ || pc.linearised_sets;
     pairs_.push_back(std::move(p));
   }
   // The surface whose positions ranks import (ContactGhosts.cpp: only the part near their
@@ -447,6 +448,14 @@ void Contact::begin_step(double t_n, double dt, const la::Vector& u_n) {
   t0_ = t_n;
   t1_ = t_n + dt;
   dt_ = dt;
+  alpha_ = 1.0;
+  for (auto& p : pairs_)
+    for (auto& nd : p.nodes) {
+      nd.lam_valid = false;  // the step's first iterate decides from r
+      nd.normal_flips = nd.tangent_flips = 0;
+      nd.hold_active = nd.hold_revised = false;
+      nd.hold_tangent = 0;
+    }
   if (has_master_) {
     u_n_->assign(u_n);
     rebuild_ghosts(u_n);
@@ -534,7 +543,156 @@ contact::LawParams Contact::node_params(const Pair& p, const Slave& nd, const co
   const double area = nd.area > 0.0 ? nd.area : 1.0;
   q.cn = p.cfg.c_normal > 0.0 ? p.cfg.c_normal * area : nd.scale * (p.persistence ? lp.dt : 1.0);
   q.ct = p.cfg.c_tangent > 0.0 ? p.cfg.c_tangent * area : nd.scale * lp.dt;
+  q.force_active = nd.hold_active;
+  q.force_tangent = nd.hold_tangent;
+  if (nd.lam_valid) {
+    q.has_lam = true;
+    const bool active = nd.base_state >= contact::Stick;
+    for (int c = 0; c < 3; ++c) q.lam[c] = active && !nd.fixed[c] ? nd.lam_base[c] + alpha_ * nd.kdu[c] : 0.0;
+    q.base = nd.base_state;
+  }
   return q;
+}
+
+// The set of this solve (nd.state) against the last one's (nd.base_state): a node that
+// entered or left contact, or changed between stick and slip, kFreezeAfter times in the
+// step is held active, or sticking, from now on.
+void Contact::count_flips(Slave& nd) {
+  const bool was = nd.base_state >= contact::Stick, is = nd.state >= contact::Stick;
+  if (was != is) ++nd.normal_flips;
+  else if (was && nd.state != nd.base_state) ++nd.tangent_flips;
+  if (nd.normal_flips >= kFreezeAfter && is) nd.hold_active = true;
+  if (nd.tangent_flips >= kFreezeAfter && nd.hold_tangent == 0) nd.hold_tangent = contact::Slip;
+}
+
+namespace {
+// The worst failed condition among the held nodes of one rank (kind 1: tension on a held
+// active node, 2: a held sticking node outside the Coulomb cone, 3: a held slipping node
+// slipping against its friction force).
+struct HeldFailure {
+  double excess = 0.0, value = 0.0, bound = 0.0;
+  long long gid = -1;
+  int pair = -1, kind = 0;
+};
+
+std::string held_message(const HeldFailure& w, const std::string& pair) {
+  std::ostringstream os;
+  os.precision(4);
+  os << "contact node " << w.gid << " of 'Contact->" << pair << "' ";
+  if (w.kind == 1) os << "held active after its contact cycled ends in tension, lambda_nu = " << w.value;
+  if (w.kind == 2) os << "cycled between stick and slip; sticking it ends outside the Coulomb cone, |lambda_tau| = " << w.value
+                      << " > mu |lambda_nu| = " << w.bound;
+  if (w.kind == 3) os << "cycled between stick and slip; slipping it slides " << w.value << " against its friction force";
+  os << " (tolerance " << Contact::kKktTolerance << " x the pair's largest nodal force or slip)";
+  return os.str();
+}
+}  // namespace
+
+int Contact::verify_held(std::string& why) {
+  HeldFailure w;
+  long revised = 0;
+  for (std::size_t ip = 0; ip < pairs_.size(); ++ip) {
+    Pair& p = pairs_[ip];
+    double loc[2] = {0.0, 0.0}, glob[2] = {0.0, 0.0};  // the largest nodal force and tangential slip
+    for (const auto& nd : p.nodes)
+      if (nd.state >= contact::Stick) {
+        loc[0] = std::max(loc[0], std::sqrt(dot3(nd.f, nd.f)));
+        const double rn = dot3(nd.rel, nd.normal);
+        double rt = 0.0;
+        for (int c = 0; c < 3; ++c) rt += (nd.rel[c] - rn * nd.normal[c]) * (nd.rel[c] - rn * nd.normal[c]);
+        loc[1] = std::max(loc[1], std::sqrt(rt));
+      }
+    Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_MAX, 2, loc, glob);
+    const double ftol = kKktTolerance * glob[0], stol = kKktTolerance * glob[1];
+    for (auto& nd : p.nodes) {
+      if (!(nd.hold_active || nd.hold_tangent) || nd.state < contact::Stick) continue;
+      const double fn = dot3(nd.f, nd.normal), lam_n = -fn, rn = dot3(nd.rel, nd.normal);
+      double lt[3], st[3];  // lambda_tau = -(I - n n) f and the tangential slip
+      for (int c = 0; c < 3; ++c) lt[c] = -(nd.f[c] - fn * nd.normal[c]), st[c] = nd.rel[c] - rn * nd.normal[c];
+      const double lam_t = std::sqrt(dot3(lt, lt)), bound = p.cfg.friction * std::max(-lam_n, 0.0);
+      const double slip = std::sqrt(dot3(st, st)), along = dot3(lt, st);
+      HeldFailure f;
+      if (nd.hold_active && lam_n > ftol) f = {lam_n - ftol, lam_n, 0.0, 0, 0, 1};
+      else if (nd.hold_tangent == contact::Stick && lam_t - bound > ftol) f = {(lam_t - bound - ftol) / std::max(ftol, 1e-300), lam_t, bound, 0, 0, 2};
+      else if (nd.hold_tangent == contact::Slip && along < 0.0 && slip > stol) f = {(slip - stol) / std::max(stol, 1e-300), slip, 0.0, 0, 0, 3};
+      if (f.kind == 0) continue;
+      if (f.kind >= 2 && !nd.hold_revised) {  // the other tangential state, once
+        nd.hold_tangent = f.kind == 2 ? contact::Slip : contact::Stick;
+        nd.hold_revised = true;
+        ++revised;
+        continue;
+      }
+      f.gid = static_cast<long long>(nd.gid), f.pair = static_cast<int>(ip);
+      if (f.excess > w.excess) w = f;
+    }
+  }
+  long grev = 0;
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &revised, &grev);
+  if (grev > 0) return 1;
+  double ex = w.excess, gex = 0.0;
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_MAX, 1, &ex, &gex);
+  if (!(gex > 0.0)) return 0;
+  // The highest rank holding the worst excess sends its record.
+  const int me = dist_.comm()->getRank();
+  int from = w.excess == gex ? me : -1, gfrom = -1;
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_MAX, 1, &from, &gfrom);
+  double rec[5] = {-1, -1, -1, -1, -1}, grec[5];
+  if (me == gfrom) rec[0] = static_cast<double>(w.gid), rec[1] = w.pair, rec[2] = w.kind, rec[3] = w.value, rec[4] = w.bound;
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_MAX, 5, rec, grec);
+  HeldFailure g;
+  g.gid = static_cast<long long>(grec[0]), g.kind = static_cast<int>(grec[2]), g.value = grec[3], g.bound = grec[4];
+  why = held_message(g, pairs_[static_cast<std::size_t>(grec[1])].cfg.name);
+  return 2;
+}
+
+// The bulk tangent rows of the slave dofs of every pair that decides its sets from the
+// last linear solve, before the contact rows replace them (linearised_step reads them).
+void Contact::capture_rows(const la::RCP<la::CrsMatrix>& K) {
+  rows_of_ = K;
+  auto Kl = K->getLocalMatrixHost();
+  for (auto& p : pairs_) {
+    p.krow_ptr.assign(1, 0);
+    p.krow_col.clear();
+    p.krow_val.clear();
+    if (!p.cfg.linearised_sets) continue;
+    for (const auto& nd : p.nodes)
+      for (int c = 0; c < dim_; ++c) {
+        const la::LO row = nd.lid * dim_ + c;
+        for (auto k = Kl.graph.row_map(row); k < Kl.graph.row_map(row + 1); ++k) {
+          p.krow_col.push_back(Kl.graph.entries(k));
+          p.krow_val.push_back(Kl.values(k));
+        }
+        p.krow_ptr.push_back(p.krow_col.size());
+      }
+  }
+}
+
+void Contact::linearised_step(const la::Vector& du) {
+  if (!linearised_ || rows_of_.is_null()) return;
+  la::Vector du_col(rows_of_->getColMap());
+  const auto importer = rows_of_->getGraph()->getImporter();
+  if (importer.is_null())
+    du_col.assign(du);
+  else
+    du_col.doImport(du, *importer, Tpetra::INSERT);
+  alpha_ = 1.0;
+  auto dh = du_col.getLocalViewHost(Tpetra::Access::ReadOnly);
+  for (auto& p : pairs_) {
+    if (!p.cfg.linearised_sets || p.krow_ptr.size() != p.nodes.size() * static_cast<std::size_t>(dim_) + 1) continue;
+    for (std::size_t i = 0; i < p.nodes.size(); ++i) {
+      Slave& nd = p.nodes[i];
+      if (nd.lam_valid) count_flips(nd);
+      nd.lam_valid = true;
+      nd.base_state = nd.state;  // the set of the solve: the last apply()'s
+      for (int c = 0; c < 3; ++c) nd.lam_base[c] = nd.f[c], nd.kdu[c] = 0.0;
+      for (int c = 0; c < dim_; ++c) {
+        const std::size_t row = i * static_cast<std::size_t>(dim_) + static_cast<std::size_t>(c);
+        double v = 0.0;
+        for (std::size_t k = p.krow_ptr[row]; k < p.krow_ptr[row + 1]; ++k) v += p.krow_val[k] * dh(p.krow_col[k], 0);
+        nd.kdu[c] = v;
+      }
+    }
+  }
 }
 
 // s_p: the largest tangent diagonal entry of the node's dofs (a force/length scale).
@@ -879,6 +1037,7 @@ void Contact::update_changed() {
 
 la::RCP<la::CrsMatrix> Contact::apply(const la::Vector& u, la::Vector& r, const la::RCP<la::CrsMatrix>& K) {
   if (K) read_scales(*K);
+  if (K && linearised_) capture_rows(K);
   evaluate_nodes(u, r);
   send_reactions(r);
   update_changed();
@@ -894,24 +1053,27 @@ la::RCP<la::CrsMatrix> Contact::apply(const la::Vector& u, la::Vector& r, const 
 std::string Contact::iteration_summary() const {
   std::vector<long> loc, glob;
   for (const auto& p : pairs_) {
-    long a = 0, st = 0, sl = 0, ends = 0;
+    long a = 0, st = 0, sl = 0, ends = 0, held = 0;
     for (const auto& nd : p.nodes) {
+      held += nd.hold_active || nd.hold_tangent != 0;
       a += nd.state >= contact::Stick;
       st += nd.state == contact::Stick;
       sl += nd.state == contact::Slip;
       ends += p.master && nd.state >= contact::Stick && !nd.inside;
     }
-    loc.insert(loc.end(), {a, st, sl, ends});
+    loc.insert(loc.end(), {a, st, sl, ends, held});
   }
   glob.resize(loc.size());
   Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), glob.data());
   std::ostringstream os;
   os << "      contact";
   for (std::size_t i = 0; i < pairs_.size(); ++i) {
-    os << "  " << pairs_[i].cfg.name << ": active " << glob[4 * i] << " (stick " << glob[4 * i + 1] << ", slip " << glob[4 * i + 2] << ")";
+    const long* g = &glob[5 * i];
+    os << "  " << pairs_[i].cfg.name << ": active " << g[0] << " (stick " << g[1] << ", slip " << g[2] << ")";
     // Nodes whose closest point is held at a facet's end (outside every facet, e.g. over a
     // concave kink): their conditions are not smooth there.
-    if (glob[4 * i + 3] > 0) os << " [" << glob[4 * i + 3] << " projected past a facet end]";
+    if (g[3] > 0) os << " [" << g[3] << " projected past a facet end]";
+    if (g[4] > 0) os << " [" << g[4] << " held after cycling]";
     os << (changed_ ? "" : ", settled");
   }
   return os.str();

@@ -67,6 +67,27 @@ class Contact {
   // facet of an active node) of the last apply() differs from the one before it
   // (collective result, computed in apply()).
   bool active_set_changed() const { return changed_; }
+  // Newton's correction du from the tangent of the last apply() (collective): the
+  // multipliers of that linear solve become the ones that decide the sets ("set update" =
+  // linearised; Hintermueller-Ito-Kunisch's primal-dual active set): zero on the nodes that
+  // were inactive in it, f_p + K_p du on the active ones (f_p, K_p: the node's bulk residual
+  // and tangent rows there). set_step_length(alpha): the next apply() is at u + alpha du, its
+  // deciding multipliers f_p + alpha K_p du.
+  void linearised_step(const la::Vector& du);
+  void set_step_length(double alpha) { alpha_ = alpha; }
+  // Cycle control: a node whose set in the solves went back and forth kFreezeAfter times in
+  // this step is held for the rest of the step, so the iteration cannot cycle on it: active
+  // (contact entered and left), slipping (stick and slip). At convergence its conditions are
+  // checked from the converged contact force and slip, each to kKktTolerance of the pair's
+  // largest nodal force or slip: a held active node must press, a held slipping node must
+  // slip along its friction force (no reversed slip), a held sticking node must stay inside
+  // the Coulomb cone. Returns 0 when every held node meets them; 1 when a slipping node
+  // failed and is held sticking instead, or the reverse, once per node (Newton iterates on);
+  // 2 when a held node fails with no alternative left, `why` naming the node (the step is
+  // then cut back). Collective.
+  static constexpr int kFreezeAfter = 3;
+  static constexpr double kKktTolerance = 1e-3;
+  int verify_held(std::string& why);
   // Which pairs enforce contact (one flag per Config::contact entry; all by default): the
   // slave nodes of an inactive pair are free. "Stages" switch pairs per stage.
   void set_active_pairs(const std::vector<bool>& active);
@@ -155,6 +176,17 @@ class Contact {
     double xi_free[2] = {0, 0};        // the projection's parameters before clamping (MasterSurface::Hit)
     bool inside = true;
     double gap = 0.0, normal[3] = {0, 0, 0}, rel[3] = {0, 0, 0};
+    // linearised_step(): whether the step's deciding multiplier is set, whether the node was
+    // active in that solve, its bulk residual there and K_p du.
+    bool lam_valid = false;
+    int base_state = contact::Free;
+    // Cycle control within the step: flips of the solve's set between Newton iterations
+    // (in/out of contact, stick/slip), and the node held active / sticking after kFreezeAfter.
+    int normal_flips = 0, tangent_flips = 0;
+    bool hold_active = false;
+    int hold_tangent = 0;        // 0, or the held contact::Stick / contact::Slip
+    bool hold_revised = false;   // the tangential hold was switched once (verify_held)
+    double lam_base[3] = {0, 0, 0}, kdu[3] = {0, 0, 0};
   };
 
 
@@ -169,6 +201,11 @@ class Contact {
     std::vector<std::vector<int>> node_faces;    // mortar: per slave node (nodes order), its slave facets
     std::vector<contact::MortarRows> mortar_out; // mortar: per slave node, the last evaluation
     std::vector<Slave> nodes;
+    // "set update" = linearised: the bulk tangent rows of the slave nodes' dofs at the last
+    // apply() with a tangent (CSR, row i * dim + c; columns in that tangent's column map).
+    std::vector<std::size_t> krow_ptr;
+    std::vector<la::LO> krow_col;
+    std::vector<double> krow_val;
     std::vector<contact::NodeOutput> out;   // per slave node, last apply()
     long excluded = 0;                      // slave nodes with every component prescribed (left out), global
     long partial = 0;                       // slave nodes with some prescribed components (kept), global
@@ -191,6 +228,11 @@ class Contact {
   contact::LawParams node_params(const Pair& p, const Slave& nd, const contact::LawParams& lp) const;
   void initial_gap_rates(const la::Vector& u0, const la::Vector& v0, double dt0);
   void read_scales(const la::CrsMatrix& K);
+  void capture_rows(const la::RCP<la::CrsMatrix>& K);
+  static void count_flips(Slave& nd);  // Pair::krow_* of the linearised pairs
+  bool linearised_ = false;                            // some pair decides its sets from the last solve
+  double alpha_ = 1.0;                                 // set_step_length()
+  la::RCP<const la::CrsMatrix> rows_of_;               // the tangent capture_rows() read (its column map)
   void evaluate_nodes(const la::Vector& u, la::Vector& r);
   void send_reactions(la::Vector& r);
   void rewrite_rigid_rows(la::CrsMatrix& K);

@@ -17,7 +17,9 @@
 //
 // Sets (PDAS, from the current values): active iff lambda_nu + c_nu g / dt' <= 0 (dt' = dt for
 // persistence, 1 for gap); in the active set, with q = lambda_tau + c_tau (I - n n) rel / dt,
-// slip iff |q| + mu lambda_nu >= 0 (direction s = q / |q|), stick otherwise.
+// slip iff |q| + mu lambda_nu >= 0 (direction s = q / |q|), stick otherwise. The multiplier
+// in these tests is the last linear solve's (LawParams::lam) where the caller has one, else
+// the bulk residual r; the rows always use r.
 // Rows (the slave's dim rows, replaced; the normal condition goes to the component most
 // aligned with n):
 //   normal                   s_p g
@@ -107,6 +109,18 @@ struct LawParams {
   bool persistence = true;
   double dt = 1.0, cn = 1.0, ct = 1.0, mu = 0.0, sp = 1.0;
   double release = 0.0;  // an active node is released when lambda_nu + c_nu g > release (>= 0)
+  // The multiplier that decides the sets (values only; the rows keep the bulk residual r):
+  // with `has_lam`, the contact force of the last linear solve at this iterate (Contact::
+  // linearised_step: 0 for a node inactive in that solve), else r itself.
+  bool has_lam = false;
+  double lam[3] = {0, 0, 0};
+  int base = Free;  // with has_lam: the node's set in that solve (decide_set)
+  // Cycle control (Contact::linearised_step): a node whose set flipped back and forth in this
+  // step is held active (force_active) and/or in one tangential state (force_tangent: Stick
+  // or Slip; 0 none) until the step ends; its conditions are checked at convergence
+  // (Contact::verify_held).
+  bool force_active = false;
+  int force_tangent = 0;
 };
 
 // Results of one evaluation (double): values and derivatives with respect to y.
@@ -221,6 +235,42 @@ KOKKOS_INLINE_FUNCTION T geometry(const NodeInput& in, const Obstacle* ob, const
 template <class T>
 KOKKOS_INLINE_FUNCTION T dot3(const T* a, const T* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
+// The node's set at this iterate, from values: 0 inactive, 1 stick (or frictionless), 2
+// slip. f is the deciding multiplier (the bulk residual r, or the last solve's, LawParams::
+// lam), lam_n = -n . f, g the normal measure over dt' (dt with persistence, else 1), rel_t
+// the tangential relative displacement over dt, q = lambda_tau + c_tau rel_t.
+//   Without the last solve's multipliers (`set update` = residual): active iff
+//   lambda_nu + c_nu g <= release; slip iff |q| >= mu |lambda_nu|.
+//   With them (primal-dual active set; Hueber-Stadler-Wohlmuth 2008), each node is decided
+//   by what its own set in that solve left free: a node active in it (whose linearised gap
+//   is zero) stays active iff it presses, lambda_nu <= release; a node inactive in it
+//   (lambda = 0) enters iff it penetrates, c_nu g <= release, and enters sticking iff its
+//   slip is below the augmented bound, c_tau |rel_t| < mu c_nu (-g) (Alart-Curnier); a
+//   sticking node (zero linearised slip) stays sticking iff |lambda_tau| <= mu |lambda_nu|;
+//   a slipping node (lambda_tau on the cone) keeps slipping iff it slides along
+//   lambda_tau, rel_t . lambda_tau >= 0. No decision then weighs a multiplier against
+//   c times the nonlinear remainder of a constraint the solve met, so the sets do not
+//   depend on c_nu, c_tau (only the entering nodes' stick/slip on their ratio).
+// Held nodes (cycle control) keep the held set.
+struct SetInput {
+  double lam_n, g, lam_t[3], rel_t[3], q[3];
+};
+
+KOKKOS_INLINE_FUNCTION int decide_set(const LawParams& p, const SetInput& in) {
+  const double lam_aug = in.lam_n + p.cn * in.g;
+  const bool from_solve = p.has_lam && p.base >= Stick;
+  bool active = from_solve ? in.lam_n <= p.release : (p.has_lam ? p.cn * in.g : lam_aug) <= p.release;
+  if (p.force_active) active = true;
+  if (!active) return 0;
+  if (!(p.mu > 0.0)) return 1;
+  if (p.force_tangent != 0) return p.force_tangent == Stick ? 1 : 2;
+  const double lt = std::sqrt(dot3(in.lam_t, in.lam_t)), qn = std::sqrt(dot3(in.q, in.q));
+  if (!p.has_lam) return qn >= -p.mu * in.lam_n ? 2 : 1;
+  if (p.base == Stick) return lt > -p.mu * std::min(in.lam_n, 0.0) ? 2 : 1;
+  if (p.base == Slip) return dot3(in.rel_t, in.lam_t) >= 0.0 ? 2 : 1;
+  return qn >= -p.mu * std::min(lam_aug, 0.0) ? 2 : 1;
+}
+
 // The law of one active or candidate slave node in scalar T, from its geometry: the
 // normal measure d (gap) and, with persistence, g = n . rel (master surfaces) or d - d_n
 // (rigid), the normal n, the relative displacement rel, the tangent direction a1 (null:
@@ -231,18 +281,31 @@ KOKKOS_INLINE_FUNCTION int law(int dim, const bool fixed[3], const LawParams& p,
                                const T r[3], T res[3], const double normal[3]) {
   using std::sqrt;
   const T rn = dot3(n, r);
-  const T lam_n = -rn;
-  if (value(lam_n) + p.cn * value(g) / (p.persistence ? p.dt : 1.0) > p.release) return Inactive;
   T t[2][3];
   tangents(dim, n, a1, t);
   const T reln = dot3(n, rel);
   T q[3];
-  for (int c = 0; c < 3; ++c) q[c] = -(r[c] - rn * n[c]) + p.ct * (rel[c] - reln * n[c]) / p.dt;
+  // The decision's values: the deciding multiplier f (r unless p.has_lam).
+  SetInput si;
+  double f[3], nv[3];
+  for (int c = 0; c < 3; ++c) f[c] = p.has_lam ? p.lam[c] : value(r[c]), nv[c] = value(n[c]);
+  const double fn = dot3(f, nv);
+  si.lam_n = -fn;
+  si.g = value(g) / (p.persistence ? p.dt : 1.0);
+  for (int c = 0; c < 3; ++c) {
+    const T relt = (rel[c] - reln * n[c]) / p.dt;
+    q[c] = -(r[c] - rn * n[c]) + p.ct * relt;
+    si.lam_t[c] = -(f[c] - fn * nv[c]);
+    si.rel_t[c] = value(relt);
+    si.q[c] = si.lam_t[c] + p.ct * si.rel_t[c];
+  }
+  const int set = decide_set(p, si);
+  if (set == 0) return Inactive;
   bool stick = false;
   T s[3] = {T(0.0), T(0.0), T(0.0)};
   if (p.mu > 0.0) {
     const T qn = sqrt(dot3(q, q));
-    if (value(qn) + p.mu * value(lam_n) >= 0.0 && value(qn) > 0.0) {
+    if (set == 2 && value(qn) > 0.0) {
       for (int c = 0; c < 3; ++c) s[c] = q[c] / qn;
     } else {
       stick = true;

@@ -1154,6 +1154,7 @@ void DeckReader::read_contact(const ParameterList& pl) {
     c.c_tangent = get_double(sub, ls, "c tangent");
     c.formulation = get_string(sub, ls, "formulation");
     c.discretization = get_string(sub, ls, "discretization");
+    c.linearised_sets = get_string(sub, ls, "set update") == "linearised";
     if (c.discretization == "mortar" && !has_master)
       fail(quoted(path + "->discretization") + " = mortar couples two meshed surfaces; it needs 'master' (a rigid obstacle is "
            "exact at every slave node already)");

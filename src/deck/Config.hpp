@@ -227,6 +227,7 @@ struct ContactPairConfig {
   double friction = 0.0;                  // "friction": Coulomb coefficient mu >= 0 (0: frictionless)
   std::string formulation = "auto";       // "formulation": auto | persistence | gap (auto: persistence in dynamics, gap in statics)
   std::string discretization = "node-to-segment";  // "discretization" (master pairs): node-to-segment | mortar
+  bool linearised_sets = true;            // "set update": linearised (multiplier of the last solve) | residual
 };
 
 // One entry of "Stages" (sublist name = name), in deck order: the interval (start, end]

@@ -581,7 +581,15 @@ std::vector<ListSpec> build_schema() {
        dbl("c tangent", 0.0,
            "Active-set parameter c_tau [Pa s/m] of the friction complementarity function, per unit area like `c normal`; "
            "0: automatic (the node's tangent diagonal times dt).")
-           .ge(0.0)}));
+           .ge(0.0),
+       str("set update", "linearised",
+           "Which multiplier decides the active and stick/slip sets at a Newton iterate. `linearised`: the "
+           "multiplier of the last linear solve (primal-dual active set: zero on the nodes that were inactive in it, "
+           "the force the linearised problem needed on the active ones), so the decision follows the sign of the gap "
+           "for an inactive node and of the force for an active one, whatever c_nu and c_tau; `residual`: the node's "
+           "bulk residual at the iterate (the condensed multiplier), whose nonlinear remainder can decide the set "
+           "when c is small. See docs/contact.md, Active sets.")
+           .one_of({"linearised", "residual"})}));
   {
     auto l = list("Stages", "Stages",
                   "A procedure of consecutive stages (Abaqus steps), run in the order listed; state (displacement, "

@@ -29,6 +29,13 @@ class StepSystem : public NewtonSystem {
   // Contact rows are scaled by the tangent's diagonal (Contact::read_scales).
   bool residual_needs_tangent() const override { return contact != nullptr; }
   double coordinate_scale() const override { return coordinate_scale_; }
+  void linearised_step(const la::Vector& du) override {
+    if (contact) contact->linearised_step(du);
+  }
+  void step_length(double alpha) override {
+    if (contact) contact->set_step_length(alpha);
+  }
+  int verify_held(std::string& why) override { return contact ? contact->verify_held(why) : 0; }
   double coordinate_scale_ = 0.0;  // |X| over the dofs (Stepper's constructor)
   // |f_ext| and |f_int - f_ext| over all rows (reactions included): the forces in play.
   // After unloading (a deflated balloon, a body at rest) both are round-off, and so would

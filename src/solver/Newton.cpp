@@ -83,6 +83,7 @@ Trial line_search(NewtonSystem& sys, const la::Vector& u, const la::Vector& du, 
   const bool cheap_trials = !sys.residual_needs_tangent();
   for (int ls = 0; ls <= max_halvings; ++ls) {
     u_trial.update(1.0, u, t.alpha, du, 0.0);
+    sys.step_length(t.alpha);
     const bool with_tangent = ls == 0 || !cheap_trials;
     if (sys.evaluate(u_trial, r_trial, with_tangent)) {
       t.admissible_seen = true;
@@ -160,7 +161,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     res.failure = os.str();
     return res;
   }
-  if (rn <= target && sys.settled()) {
+  if (rn <= target && sys.settled()) {  // nothing is held before the first solve
     res.converged = true;
     return res;
   }
@@ -185,6 +186,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     }
     const double du_full = du.norm2();  // Newton's correction, before damping
     const double scaled = limit_increment(du, cfg.max_increment);
+    sys.linearised_step(du);
     Trial t = line_search(sys, u, du, rn, damped_unsettled, cfg, u_trial, r_trial);
     if (t.accepted && t.alpha < 1.0 && t.full_unsettled) ++damped_unsettled;
     else damped_unsettled = 0;
@@ -197,6 +199,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
       // can rise before Newton's quadratic phase), else fail.
       t.alpha = 1.0;
       u_trial.update(1.0, u, t.alpha, du, 0.0);
+      sys.step_length(1.0);
       if (!sys.evaluate(u_trial, r_trial, true) || !std::isfinite(t.rn = r_trial.norm2())) {
         res.failure = "line search found no admissible decrease";
         return res;
@@ -225,8 +228,19 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     const bool small = rn <= target || roundoff ||
                        (step <= cfg.increment_tolerance * std::max(un, 1e-300) && rn <= std::sqrt(cfg.residual_tolerance) * ref);
     if (small && t.settled) {
-      res.converged = true;
-      return res;
+      const int held = sys.verify_held(res.failure);
+      if (held != 1) {
+        res.converged = held == 0;
+        return res;
+      }
+      if (log) *log << "    held contact nodes revised: Newton goes on\n";
+      if (!sys.evaluate(u, r, true)) {
+        res.failure = "the converged point became inadmissible";
+        return res;
+      }
+      rn = r.norm2();
+      settled = false;
+      continue;
     }
     // A residual-only trial was accepted: the next iteration needs the tangent there (the
     // same state, so the same residual).

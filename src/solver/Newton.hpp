@@ -50,6 +50,19 @@ class NewtonSystem {
   // and the residual floor sat above every target: a 1e-3 Pa traction on a 0.5 MPa block
   // failed after 6 cut-backs).
   virtual double coordinate_scale() const { return 0.0; }
+  // After each linear solve, Newton's correction du (limited, before the line search) from
+  // the tangent of the last evaluate(); then, before each trial evaluate(u + alpha du),
+  // alpha. A system whose discrete part is decided by the multipliers of the linearised
+  // problem (contact's primal-dual active set) keeps them as state here.
+  virtual void linearised_step(const la::Vector& du) { (void)du; }
+  virtual void step_length(double alpha) { (void)alpha; }
+  // At convergence, whether the solution meets every condition the iteration held fixed
+  // (contact nodes held after cycling): 0 yes; 1 no, and the holds were revised (Newton
+  // iterates on); 2 no, `why` says where (Newton fails and the step is cut back).
+  virtual int verify_held(std::string& why) {
+    (void)why;
+    return 0;
+  }
 };
 
 struct NewtonResult {

@@ -259,6 +259,45 @@ TEST(Contact, CoulombSlipAboveLimit) {
   EXPECT_GT(r.energy["friction_dissipation"][r.energy.rows() - 1], 0.0);
 }
 
+// ---- 3d. The sets do not depend on c_nu, c_tau ("set update" = linearised): the sliding
+// block (impact on the plane, slip, then stick as it stops) with the automatic c (about
+// 1.6e6 Pa s/m here: the node's tangent diagonal x dt over its area) and c_nu = c_tau =
+// 1e8, 1e12, 1e16 Pa s/m (1e2 to 1e10 times it) has the same active, stick and slip
+// counts at every step and the same Newton iterations per step to +-1.
+TEST(Contact, LinearisedSetsDoNotDependOnC) {
+  const double cs[] = {0.0, 1e8, 1e12, 1e16};
+  std::vector<Outcome> out;
+  for (double c : cs) {
+    Config cfg = sliding_deck(0.5, 1.0, 10.0);
+    cfg.stepping.end_time = 0.24;
+    cfg.stepping.num_steps = 120;
+    cfg.contact[0].c_normal = cfg.contact[0].c_tangent = c;
+    std::ostringstream tag;
+    tag << "c_independent_" << c;
+    out.push_back(run(cfg, tag.str()));
+  }
+  const Series& h0 = out[0].history;
+  ASSERT_EQ(h0.rows(), 120u);
+  double stick_steps = 0, slip_steps = 0;
+  for (std::size_t i = 0; i < h0.rows(); ++i) stick_steps += h0["contact_floor_stick"][i] > 0, slip_steps += h0["contact_floor_slip"][i] > 0;
+  EXPECT_GT(stick_steps, 10);  // the block stops: both regimes are exercised
+  EXPECT_GT(slip_steps, 10);
+  for (std::size_t k = 1; k < out.size(); ++k) {
+    const Series& h = out[k].history;
+    ASSERT_EQ(h.rows(), h0.rows()) << "c = " << cs[k];
+    int worst = 0;
+    for (std::size_t i = 0; i < h.rows(); ++i) {
+      for (const char* col : {"contact_floor_active", "contact_floor_stick", "contact_floor_slip"})
+        EXPECT_EQ(h[col][i], h0[col][i]) << col << " at step " << i + 1 << ", c = " << cs[k];
+      worst = std::max(worst, static_cast<int>(std::abs(h["newton_iterations"][i] - h0["newton_iterations"][i])));
+    }
+    std::printf("[contact] c = %.0e: %d cut-backs, %d Newton iterations (automatic c: %d), largest per-step difference %d\n", cs[k],
+                out[k].res.cutbacks, out[k].res.newton_iterations, out[0].res.newton_iterations, worst);
+    EXPECT_EQ(out[k].res.cutbacks, 0);
+    EXPECT_LE(worst, 1) << "c = " << cs[k];
+  }
+}
+
 // ---- 4. 1 vs 2 MPI ranks through the executable.
 TEST(Contact, SameHistoryOnOneAndTwoRanks) {
   if (std::system("command -v mpirun > /dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
