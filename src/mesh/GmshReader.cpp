@@ -30,6 +30,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "deck/InputLimits.hpp"
+#include "mesh/Confine.hpp"
 #include "mesh/GeoScreen.hpp"
 #include "mesh/Progress.hpp"
 #include "mesh/MshScreen.hpp"
@@ -255,6 +257,18 @@ struct RawBlock {
   std::vector<std::size_t> nodes;  // gmsh node tags
 };
 
+// The screens (mesh/GeoScreen.hpp, mesh/MshScreen.hpp) on the mesh file and everything
+// gmsh would read with it; returns those files (the mesh file first).
+std::vector<std::string> screen_mesh_file(const std::string& file) {
+  if (lower_extension(file) != ".msh") return screen_geo_file(file);
+  check_input_size(file, true, ".msh file");
+  std::vector<std::string> files = {file};
+  if (geo_screen_disabled()) return files;
+  screen_msh_file(file);  // counts gmsh would trust (a crash, a hang)
+  screen_options_file(file, 0, &files);
+  return files;
+}
+
 // read_mesh() in this process.
 Mesh read_mesh_here(const MeshConfig& cfg, bool verbose) {
   const std::string& file = cfg.file;
@@ -274,8 +288,7 @@ Mesh read_mesh_here(const MeshConfig& cfg, bool verbose) {
     if (cfg.size < 0) throw InputError(file + ": mesh size must be >= 0");
   }
 
-  if (!is_msh) screen_geo_file(file);  // before gmsh runs any of it
-  if (is_msh) screen_msh_file(file);   // counts gmsh would trust (a crash, a hang)
+  screen_mesh_file(file);  // before gmsh runs any of it
   GmshSession session(verbose);
   gmsh_call(session, file, "read the file", [&] { gmsh::open(file); });
 
@@ -436,6 +449,20 @@ std::string g_helper_exe;  // empty: gmsh runs in this process
 
 constexpr const char* kMeshFile = "mesh.bin";
 constexpr const char* kErrorFile = "error.txt";
+constexpr const char* kConfinementFile = "confinement.txt";  // "landlock ABI N" or "unconfined: why"
+
+// Says once per run, in the log, that gmsh's process ran without the kernel's
+// confinement (mesh/Confine.hpp), and why; the .geo screen was then the only guard.
+void report_confinement(const std::string& dir) {
+  static bool said = false;
+  std::ifstream in(dir + "/" + kConfinementFile);
+  std::string line;
+  if (said || !std::getline(in, line) || line.rfind("unconfined: ", 0) != 0) return;
+  said = true;
+  std::cout << "warning: gmsh's process runs without Landlock confinement (" << line.substr(12)
+            << "): the .geo screen alone keeps mesh scripts from writing, deleting or running anything\n"
+            << std::flush;
+}
 
 std::string num17(double v) {
   char buf[40];
@@ -481,21 +508,20 @@ Mesh read_mesh_in_child(const MeshConfig& cfg, bool verbose) {
     if (!f) throw InputError(file + ": cannot open mesh file (missing or unreadable)");
   }
   // The screens first, here: nothing of a refused file ever reaches gmsh.
-  if (lower_extension(file) == ".msh")
-    screen_msh_file(file);
-  else
-    screen_geo_file(file);
+  screen_mesh_file(file);
   TempDir dir;
   std::vector<std::string> args = {g_helper_exe, "--gmsh-helper", dir.path, file, num17(cfg.size),
                                    std::to_string(cfg.order), cfg.recombine ? "1" : "0", std::to_string(cfg.dimension),
-                                   num17(cfg.max_cells), verbose ? "1" : "0", std::to_string(::getpid())};
+                                   num17(cfg.max_cells), verbose ? "1" : "0", std::to_string(::getpid()),
+                                   std::to_string(input_limits().text), std::to_string(input_limits().mesh)};
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
   std::vector<std::string> env_s;
   for (char** e = environ; e && *e; ++e)
-    if (std::strncmp(*e, "HOME=", 5) != 0) env_s.emplace_back(*e);
+    if (std::strncmp(*e, "HOME=", 5) != 0 && std::strncmp(*e, "TMPDIR=", 7) != 0) env_s.emplace_back(*e);
   env_s.push_back("HOME=" + dir.path);
+  env_s.push_back("TMPDIR=" + dir.path);
   std::vector<char*> envp;
   for (auto& e : env_s) envp.push_back(e.data());
   envp.push_back(nullptr);
@@ -543,6 +569,7 @@ Mesh read_mesh_in_child(const MeshConfig& cfg, bool verbose) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   ::kill(-pid, SIGKILL);  // anything it left running
+  report_confinement(dir.path);
 
   if (timed_out) {
     std::ostringstream os;
@@ -587,11 +614,15 @@ void write_file(const std::string& path, const std::string& data) {
 void enable_gmsh_process(const std::string& exe) { g_helper_exe = exe; }
 
 Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
-  return g_helper_exe.empty() ? read_mesh_here(cfg, verbose) : read_mesh_in_child(cfg, verbose);
+  const std::string before = current_phase();
+  current_phase() = "reading the mesh " + cfg.file;
+  Mesh m = g_helper_exe.empty() ? read_mesh_here(cfg, verbose) : read_mesh_in_child(cfg, verbose);
+  current_phase() = before;
+  return m;
 }
 
 int gmsh_helper_main(int argc, char** argv) {
-  if (argc != 11) {
+  if (argc != 13) {
     std::fprintf(stderr, "stentor --gmsh-helper: internal use only\n");
     return 1;
   }
@@ -624,7 +655,13 @@ int gmsh_helper_main(int argc, char** argv) {
   cfg.dimension = std::atoi(argv[7]);
   cfg.max_cells = std::strtod(argv[8], nullptr);
   const bool verbose = std::atoi(argv[9]) != 0;
+  input_limits().text = std::strtoull(argv[11], nullptr, 10);
+  input_limits().mesh = std::strtoull(argv[12], nullptr, 10);
   try {
+    // Confined before gmsh reads anything: reads only the screened files, writes only in `dir`.
+    const std::string why = confine_process(dir, screen_mesh_file(cfg.file));
+    write_file(dir + "/" + kConfinementFile,
+               why.empty() ? "landlock ABI " + std::to_string(landlock_abi()) : "unconfined: " + why);
     const Mesh m = read_mesh_here(cfg, verbose);
     const std::vector<char> bytes = serialize_mesh(m);
     write_file(dir + "/" + kMeshFile, std::string(bytes.begin(), bytes.end()));

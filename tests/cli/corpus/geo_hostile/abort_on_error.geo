@@ -1,0 +1,3 @@
+// expect: 'General' sets General.AbortOnError
+General.AbortOnError = 4;
+Error("x");

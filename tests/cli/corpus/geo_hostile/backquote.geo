@@ -1,0 +1,2 @@
+// expect: the character '`'
+`touch x`;

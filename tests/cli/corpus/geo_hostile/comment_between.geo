@@ -1,0 +1,4 @@
+// expect: 'Printf' writes a file
+Printf("x") /* a comment */
+  // and another
+  >> "@WATCH@/pwned.txt";

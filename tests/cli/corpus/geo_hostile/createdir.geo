@@ -1,0 +1,2 @@
+// expect: 'CreateDir' writes or deletes files
+CreateDir StrCat("@WATCH@", "/d");

@@ -1,0 +1,2 @@
+// expect: 'DeleteFile' writes or deletes files
+DeleteFile StrCat("@WATCH@", "/keep.txt");

@@ -1,0 +1,2 @@
+// expect: 'Printf' writes a file
+Printf("x") >> StrCat(DirName(CurrentFileName), "../../pwned.txt");

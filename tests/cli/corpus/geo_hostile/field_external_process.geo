@@ -1,0 +1,2 @@
+// expect: 'Field' of type ExternalProcess runs a program
+Field[1] = ExternalProcess;

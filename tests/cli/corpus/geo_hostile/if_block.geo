@@ -1,0 +1,4 @@
+// expect: 'Printf' writes a file
+If (1)
+  Printf("x") > "@WATCH@/if.txt";
+EndIf

@@ -1,0 +1,2 @@
+// expect: 'Include' needs a literal
+Include StrCat("@WATCH@", "/x.geo");

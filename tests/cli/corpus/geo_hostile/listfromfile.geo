@@ -1,0 +1,2 @@
+// expect: 'ListFromFile' reads a file
+a() = ListFromFile("/etc/passwd");

@@ -1,0 +1,2 @@
+// expect: hostile_inc.txt:2: 'Printf' writes a file
+Merge "hostile_inc.txt";

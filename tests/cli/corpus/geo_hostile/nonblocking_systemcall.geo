@@ -1,0 +1,2 @@
+// expect: 'NonBlockingSystemCall' runs a program
+NonBlockingSystemCall "touch @WATCH@/sc";

@@ -1,0 +1,2 @@
+// expect: 'OnelabRun' runs a program
+OnelabRun("x", StrCat("touch ", "@WATCH@/o"));

@@ -1,0 +1,2 @@
+// expect: 'General' sets an option that names a file or program (General.OptionsFileName)
+General.OptionsFileName = StrCat("@WATCH@", "/o.opt");

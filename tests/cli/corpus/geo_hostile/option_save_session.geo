@@ -1,0 +1,2 @@
+// expect: 'General' sets General.SaveSession
+General.SaveSession = 1;

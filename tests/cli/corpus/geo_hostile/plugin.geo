@@ -1,0 +1,2 @@
+// expect: 'Plugin' runs a post-processing plugin
+Plugin(CutPlane).Run;

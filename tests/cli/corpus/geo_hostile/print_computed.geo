@@ -1,0 +1,2 @@
+// expect: 'Print' writes files
+Print Sprintf("@WATCH@/p%g.png", 1);

@@ -1,0 +1,2 @@
+// expect: 'RenameFile' writes or deletes files
+RenameFile "@WATCH@/keep.txt";

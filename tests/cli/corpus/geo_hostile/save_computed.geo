@@ -1,0 +1,2 @@
+// expect: 'Save' writes files
+Save StrCat("@WATCH@", "/s.msh");

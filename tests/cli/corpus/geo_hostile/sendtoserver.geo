@@ -1,0 +1,2 @@
+// expect: 'SendToServer' runs a program
+SendToServer View[0] "x";

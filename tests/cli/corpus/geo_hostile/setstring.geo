@@ -1,0 +1,2 @@
+// expect: 'SetString' sets an option or parameter by a computed name
+SetString(StrCat("General.", "OptionsFileName"), "@WATCH@/o");

@@ -1,0 +1,2 @@
+// expect: 'Printf' writes a file
+Printf("%g", 1) > Sprintf("@WATCH@/p%g.txt", 2);

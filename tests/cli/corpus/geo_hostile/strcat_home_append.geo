@@ -1,0 +1,2 @@
+// expect: 'Printf' writes a file
+Printf("touch /tmp/x") >> StrCat(GetEnv("HOME"), "/.bashrc");

@@ -1,0 +1,2 @@
+// expect: 'System' runs a program
+System "touch @WATCH@/sc";

@@ -1,0 +1,2 @@
+// expect: 'SystemCall' runs a program
+SystemCall StrCat("touch ", "@WATCH@/sc");

@@ -1,0 +1,2 @@
+// expect: 'Background' is a command Stentor does not know
+Background Mesh View[0];
