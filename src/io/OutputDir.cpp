@@ -17,6 +17,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "io/Checkpoint.hpp"
 #include "io/WriteError.hpp"
 
 namespace stentor {
@@ -119,6 +120,28 @@ Holder read_holder(int fd) {
   return h;
 }
 
+// "<dir>/<name>_checkpoint.h5 (t = 0.025, step 50)" for each complete checkpoint in `dir`
+// (the one written last; not the .prev.h5 kept beside it nor a .tmp cut short).
+std::vector<std::string> checkpoints_in(const fs::path& dir) {
+  std::vector<std::string> found;
+  const std::string tail = "_checkpoint.h5";
+  for (const auto& n : entries(dir)) {
+    if (n.size() <= tail.size() || n.compare(n.size() - tail.size(), tail.size(), tail) != 0) continue;
+    const std::string path = (dir / n).string();
+    std::string at;
+    try {
+      const CheckpointData d = read_checkpoint_file(path);
+      std::ostringstream os;
+      os << " (t = " << d.real("time") << ", step " << d.integer("step") << ")";
+      at = os.str();
+    } catch (const std::exception& e) {
+      at = " (its time and step cannot be read: " + std::string(e.what()) + ")";
+    }
+    found.push_back(path + at);
+  }
+  return found;
+}
+
 }  // namespace
 
 OutputDir::OutputDir(const std::string& final_dir, const Options& opts)
@@ -201,6 +224,7 @@ void OutputDir::lock(const Options& opts) {
                 (notice_.empty() ? "" : "; " + notice_);
   }
   if (lock_fd_ < 0) throw std::runtime_error("cannot lock " + file + ": it keeps being removed by another run");
+  keep_checkpoints();
   for (const auto& n : entries(staging_)) {
     std::error_code ec;
     if (n != kLockFile) fs::remove_all(fs::path(staging_) / n, ec);
@@ -210,6 +234,23 @@ void OutputDir::lock(const Options& opts) {
                            (opts.deck.empty() ? "" : "deck " + opts.deck + "\n");
   const bool ok = ::ftruncate(lock_fd_, 0) == 0 && ::pwrite(lock_fd_, text.data(), text.size(), 0) == ssize_t(text.size());
   check_write(ok, "writing the lock file", file);
+}
+
+// An earlier run that is no longer running left a checkpoint in the staging folder: a
+// plain run would empty the folder and lose it (hours of a killed run's work), so it
+// stops and says how to go on; --overwrite discards it.
+void OutputDir::keep_checkpoints() {
+  if (overwrite_) return;
+  const std::vector<std::string> found = checkpoints_in(staging_);
+  if (found.empty()) return;
+  release();
+  std::string list;
+  for (const auto& f : found) list += (list.empty() ? "" : "; ") + f;
+  const std::string first = found.front().substr(0, found.front().find(" ("));
+  throw std::runtime_error("'" + staging_ + "' holds the checkpoint " + list + " of an earlier run that is no longer "
+                           "running; a new run would empty the folder and lose it. Resume that run with --restart " +
+                           first + " (the same deck and --output), or start again from t = 0 and discard it with "
+                           "--overwrite");
 }
 
 void OutputDir::copy_in(const std::string& file, const std::string& name) {

@@ -20,7 +20,10 @@
 // for the whole run and naming the run (pid, host, start time, deck). A second run into
 // the same folder is refused with that description; a lock file nobody holds (the run
 // died, or failed and kept its partial results) is taken over. Where the file system
-// does not support flock(), a lock whose pid is dead on this host is taken over.
+// does not support flock(), a lock whose pid is dead on this host is taken over, its
+// files removed; but a staging folder holding a checkpoint (<name>_checkpoint.h5) is
+// never emptied without `overwrite`: the run is refused, naming the checkpoint, its time
+// and step, --restart <checkpoint> to resume and --overwrite to discard it.
 //
 // Use it on one rank only (rank 0); other ranks must wait for it (barrier) before writing.
 #pragma once
@@ -73,6 +76,7 @@ class OutputDir {
  private:
   void check_final(const Options& opts);
   void lock(const Options& opts);
+  void keep_checkpoints();
   void write_manifest(const std::vector<std::string>& names) const;
   void release();
 
