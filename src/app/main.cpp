@@ -8,6 +8,7 @@
 #include <chrono>
 #include <csignal>
 #include <unistd.h>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "deck/Config.hpp"
+#include "deck/InputLimits.hpp"
 #include "io/LogCopy.hpp"
 #include "io/WriteError.hpp"
 #include "mesh/GmshReader.hpp"
@@ -39,13 +41,16 @@ const char* kUsage =
     "  --overwrite    write into DIR even when it is not empty and holds no Stentor results\n"
     "                 (files with the names of the results are replaced, no other file)\n"
     "  --restart FILE continue from checkpoint FILE (Output->checkpoint every), on any number of ranks\n"
+    "  --max-input-size SIZE  refuse a deck or .geo (or a file it includes) larger than SIZE,\n"
+    "                 unread (bytes, or with k, M, G: 64M, 1G; default 64M)\n"
+    "  --max-mesh-size SIZE   the same for .msh and CAD files (default 16G)\n"
     "  --verbose      print every Newton iteration\n"
     "  --version      print Stentor's version and the library versions it was built with\n"
     "  --help         this text\n"
     "  --kokkos-...   Kokkos's own options (--kokkos-help lists them)\n"
     "\n"
     "exit status: 0 success, 1 internal error, 2 invalid input (or an output folder that\n"
-    "may not be used), 3 the solve or writing a result file failed;\n"
+    "may not be used), 3 the solve or writing a result file failed, 4 out of memory;\n"
     "under MPI an error on any one rank ends every rank with that status\n";
 
 #ifndef STENTOR_VERSION
@@ -83,7 +88,9 @@ EarlyOptions early_options(int argc, char** argv) {
       continue;
     }
     e.rest.push_back(argv[i]);
-    if ((a == "--output" || a == "-o" || a == "--restart") && i + 1 < argc) e.rest.push_back(argv[++i]);
+    if ((a == "--output" || a == "-o" || a == "--restart" || a == "--max-input-size" || a == "--max-mesh-size") &&
+        i + 1 < argc)
+      e.rest.push_back(argv[++i]);
   }
   e.rest.push_back(nullptr);
   return e;
@@ -121,7 +128,7 @@ int fail_all_ranks(int rank, int size, int code, const std::string& msg) {
 
 // Test hook (documented in tests/cli/CMakeLists.txt): STENTOR_TEST_FAIL_RANK=R[:input|:alloc]
 // makes rank R alone throw after reading the deck, an internal error (exit 1), with
-// ":input" an input error (exit 2), with ":alloc" std::bad_alloc (out of memory, exit 1),
+// ":input" an input error (exit 2), with ":alloc" std::bad_alloc (out of memory, exit 4),
 // to check that one rank's failure ends every rank.
 void test_failure_hook(int rank) {
   const char* v = std::getenv("STENTOR_TEST_FAIL_RANK");
@@ -190,6 +197,15 @@ int main(int argc, char** argv) {
         return 2;
       }
       opts.output_dir = argv[++i];
+    } else if (a == "--max-input-size" || a == "--max-mesh-size") {
+      std::uint64_t& limit = a == "--max-input-size" ? stentor::input_limits().text : stentor::input_limits().mesh;
+      if (i + 1 >= argc || !stentor::parse_size(argv[i + 1], limit)) {
+        if (rank == 0)
+          std::cerr << "stentor: error: " << a << " needs a size > 0 in bytes, or with k, M, G or T (e.g. 512M), got '"
+                    << (i + 1 < argc ? argv[i + 1] : "") << "'\n";
+        return 2;
+      }
+      ++i;
     } else if (a == "--restart") {
       if (i + 1 >= argc) {
         if (rank == 0) std::cerr << "stentor: error: --restart needs a checkpoint file\n" << kUsage;
@@ -212,7 +228,9 @@ int main(int argc, char** argv) {
   }
   const int size = Tpetra::getDefaultComm()->getSize();
   try {
+    stentor::current_phase() = "reading the deck " + deck;
     const stentor::Config cfg = stentor::read_deck(deck);
+    stentor::current_phase() = "setting up the run";
     test_failure_hook(rank);
     return stentor::run_simulation(cfg, opts);
   } catch (const stentor::InputError& e) {
@@ -228,7 +246,9 @@ int main(int argc, char** argv) {
   } catch (const stentor::LinearSolverFailure& e) {
     return fail_all_ranks(rank, size, 3, std::string("stentor: error: the linear solver failed: ") + e.what() + "\n");
   } catch (const std::bad_alloc&) {
-    return fail_all_ranks(rank, size, 1, "stentor: out of memory on rank " + std::to_string(rank) + "\n");
+    return fail_all_ranks(rank, size, 4, "stentor: error: out of memory on rank " + std::to_string(rank) + " while " +
+                                             stentor::current_phase() + " (exit status 4); give the run more memory "
+                                             "(more ranks or nodes, a higher ulimit -v), or make the model smaller\n");
   } catch (const std::exception& e) {
     return fail_all_ranks(rank, size, 1, "stentor: internal error on rank " + std::to_string(rank) + ": " + e.what() + "\n");
   } catch (...) {

@@ -1,6 +1,7 @@
 // Input deck reader: Teuchos ParameterList XML -> stentor::Config, validated against
 // the schema of deck/Schema.cpp. Every problem throws InputError("<deck>: ...").
 #include "deck/Config.hpp"
+#include "deck/InputLimits.hpp"
 
 #include <Teuchos_Array.hpp>
 #include <Teuchos_FileInputSource.hpp>
@@ -1776,6 +1777,7 @@ Config DeckReader::read() {
 }  // namespace
 
 Config read_deck(const std::string& path) {
+  check_input_size(path, false, "deck");  // before a byte of it is read
   DeckReader reader(path);
   return reader.read();
 }

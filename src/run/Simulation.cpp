@@ -17,6 +17,7 @@
 #include <memory>
 #include <sstream>
 
+#include "deck/InputLimits.hpp"
 #include "run/Model.hpp"
 #include "run/Reporter.hpp"
 #include "run/Restart.hpp"
@@ -334,6 +335,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
     resume(run, restart);
   else
     initialize(run);
+  current_phase() = "time stepping (solving the steps and writing their results)";
   reporter.begin_interval(state.t, cfg.stepping.end_time);
   if (cfg.stages.empty()) {
     if (run_interval(run, cfg.stepping.end_time)) reporter.end_stage(state, "the run");

@@ -531,6 +531,34 @@ TEST(GeoScreen, RefusesCommandsHiddenFromTheFirstScreen) {
     EXPECT_NO_THROW(screen_geo_file(input(f))) << f;
 }
 
+// The screen decides on what a statement does (docs/robustness.md, "Mesh scripts"): a
+// Printf redirection whatever forms its target, any command but Include/Merge/Background
+// Field, at any depth; ordinary geometry, loops, macros and options still pass.
+TEST(GeoScreen, RefusesByMeaningNotSpelling) {
+  TempDir tmp;
+  const std::string dir = tmp.path.string();
+  auto refused = [&](const std::string& text, std::initializer_list<std::string> fragments) {
+    SCOPED_TRACE(text);
+    expect_input_error([&] { screen_geo_text(text, "x.geo", dir); }, fragments);
+  };
+  refused("Printf(\"touch /tmp/x\") >> StrCat(\"/home/me/\", \".bashrc\");", {"x.geo:1: 'Printf' writes a file"});
+  refused("f = Sprintf(\"/tmp/p%g\", 1);\nPrintf(\"x\") > f;", {"x.geo:2: 'Printf' writes a file"});
+  refused("For i In {1:2}\n  If (i > 1)\n    Save StrCat(\"a\", \"b\");\n  EndIf\nEndFor", {"x.geo:3: 'Save' writes files"});
+  refused("Macro M\nDeleteFile \"a\";\nReturn", {"x.geo:2: 'DeleteFile' writes or deletes files"});
+  refused("Frobnicate \"a\";", {"x.geo:1: 'Frobnicate' is a command Stentor does not know"});
+  refused("General.NumThreads = 100000;", {"'General' sets General.NumThreads"});
+  refused("Field[1] = ExternalProcess;", {"'Field' of type ExternalProcess runs a program"});
+  refused("a = 1; $b = 2;", {"x.geo:1: the character '$'"});
+  tmp.write("x.geo", "Point(1) = {0, 0, 0};\n");
+  tmp.write("x.geo.opt", "Exit;\n");
+  expect_input_error([&] { screen_geo_file(tmp.file("x.geo")); }, {"x.geo.opt:1: 'Exit' ends the process"});
+  EXPECT_NO_THROW(screen_geo_text("lc = 0.1; s[] = {1, 2};\nFor i In {0:#s[]-1}\n  x = s[i] + 1;\nEndFor\n"
+                                  "Macro M\n  Point(newp) = {x, 0, 0, lc};\nReturn\nCall M;\n"
+                                  "Field[1] = Box; Field[1].VIn = lc; Background Field = 1;\n"
+                                  "Printf(\"x = %g\", x > 1);\nMesh.Algorithm = 6;\n",
+                                  "x.geo", dir));
+}
+
 // Meshing is bounded: a size far too small for the geometry is refused before gmsh
 // meshes (it used to run for minutes or die of std::bad_alloc); the limit can be raised.
 TEST(GmshReader, CellEstimateBoundsMeshing) {
