@@ -47,8 +47,11 @@ namespace stentor {
 //    (this executable with --gmsh-helper) limited to cfg.time_limit seconds and the
 //    machine's memory: a crash, an exit, a hang or running out of memory in gmsh is an
 //    InputError naming the file ("gmsh crashed ...", "... within 'Mesh->time limit'"),
-//    and nothing gmsh writes (preferences) lands in the user's HOME. Without it (unit
-//    tests) gmsh runs in this process.
+//    and nothing gmsh writes (preferences) lands in the user's HOME. The child confines
+//    itself with Landlock before gmsh reads anything (mesh/Confine.hpp: it writes only
+//    in its temporary folder, reads only the screened files and system libraries); the
+//    log says when the kernel cannot. Without it (unit tests) gmsh runs in this process.
+//  * Files larger than the input size limits (deck/InputLimits.hpp) are refused unread.
 Mesh read_mesh(const MeshConfig& cfg, bool verbose = false);
 
 // Makes read_mesh() run gmsh in a child process started from `exe`, which must answer

@@ -443,6 +443,12 @@ TEST(GmshReader, Errors) {
 
 // A .geo is input, never a program: commands that run programs, write files, end the
 // process or mesh by themselves are refused (file:line) before gmsh reads the file.
+// screen_geo_text on `text` (as x.geo in `dir`) throws an InputError holding each fragment.
+void expect_geo_refused(const std::string& dir, const std::string& text, std::initializer_list<std::string> fragments) {
+  SCOPED_TRACE(text);
+  expect_input_error([&] { screen_geo_text(text, "x.geo", dir); }, fragments);
+}
+
 TEST(GeoScreen, RefusesCommandsThatRunOrWrite) {
   TempDir tmp;
   const std::string dir = tmp.path.string();
@@ -492,10 +498,7 @@ TEST(GeoScreen, RefusesCommandsThatRunOrWrite) {
 TEST(GeoScreen, RefusesCommandsHiddenFromTheFirstScreen) {
   TempDir tmp;
   const std::string dir = tmp.path.string();
-  auto refused = [&](const std::string& text, std::initializer_list<std::string> fragments) {
-    SCOPED_TRACE(text);
-    expect_input_error([&] { screen_geo_text(text, "x.geo", dir); }, fragments);
-  };
+  auto refused = [&](const std::string& text, std::initializer_list<std::string> f) { expect_geo_refused(dir, text, f); };
   refused("Printf('\"');\nSystemCall 'touch PWNED';\nPrintf('\"');\n", {"x.geo:2: 'SystemCall'"});
   refused("Printf(\"\\\");\nSystemCall \"touch PWNED\";\nPrintf(\"\\\");\n", {"x.geo:2: 'SystemCall'"});
   tmp.write("cmds.txt", "\nSystemCall \"touch PWNED\";\n");
@@ -537,18 +540,17 @@ TEST(GeoScreen, RefusesCommandsHiddenFromTheFirstScreen) {
 TEST(GeoScreen, RefusesByMeaningNotSpelling) {
   TempDir tmp;
   const std::string dir = tmp.path.string();
-  auto refused = [&](const std::string& text, std::initializer_list<std::string> fragments) {
-    SCOPED_TRACE(text);
-    expect_input_error([&] { screen_geo_text(text, "x.geo", dir); }, fragments);
+  const std::pair<std::string, std::string> cases[] = {
+      {"Printf(\"touch /tmp/x\") >> StrCat(\"/home/me/\", \".bashrc\");", "x.geo:1: 'Printf' writes a file"},
+      {"f = Sprintf(\"/tmp/p%g\", 1);\nPrintf(\"x\") > f;", "x.geo:2: 'Printf' writes a file"},
+      {"For i In {1:2}\n  If (i > 1)\n    Save StrCat(\"a\", \"b\");\n  EndIf\nEndFor", "x.geo:3: 'Save' writes files"},
+      {"Macro M\nDeleteFile \"a\";\nReturn", "x.geo:2: 'DeleteFile' writes or deletes files"},
+      {"Frobnicate \"a\";", "x.geo:1: 'Frobnicate' is a command Stentor does not know"},
+      {"General.NumThreads = 100000;", "'General' sets General.NumThreads"},
+      {"Field[1] = ExternalProcess;", "'Field' of type ExternalProcess runs a program"},
+      {"a = 1; $b = 2;", "x.geo:1: the character '$'"},
   };
-  refused("Printf(\"touch /tmp/x\") >> StrCat(\"/home/me/\", \".bashrc\");", {"x.geo:1: 'Printf' writes a file"});
-  refused("f = Sprintf(\"/tmp/p%g\", 1);\nPrintf(\"x\") > f;", {"x.geo:2: 'Printf' writes a file"});
-  refused("For i In {1:2}\n  If (i > 1)\n    Save StrCat(\"a\", \"b\");\n  EndIf\nEndFor", {"x.geo:3: 'Save' writes files"});
-  refused("Macro M\nDeleteFile \"a\";\nReturn", {"x.geo:2: 'DeleteFile' writes or deletes files"});
-  refused("Frobnicate \"a\";", {"x.geo:1: 'Frobnicate' is a command Stentor does not know"});
-  refused("General.NumThreads = 100000;", {"'General' sets General.NumThreads"});
-  refused("Field[1] = ExternalProcess;", {"'Field' of type ExternalProcess runs a program"});
-  refused("a = 1; $b = 2;", {"x.geo:1: the character '$'"});
+  for (const auto& [text, fragment] : cases) expect_geo_refused(dir, text, {fragment});
   tmp.write("x.geo", "Point(1) = {0, 0, 0};\n");
   tmp.write("x.geo.opt", "Exit;\n");
   expect_input_error([&] { screen_geo_file(tmp.file("x.geo")); }, {"x.geo.opt:1: 'Exit' ends the process"});
