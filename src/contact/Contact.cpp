@@ -555,8 +555,9 @@ contact::LawParams Contact::node_params(const Pair& p, const Slave& nd, const co
 }
 
 // The set of this solve (nd.state) against the last one's (nd.base_state): a node that
-// entered or left contact, or changed between stick and slip, kFreezeAfter times in the
-// step is held active, or sticking, from now on.
+// entered or left contact kFreezeAfter times in the step is held active from now on, one
+// that changed between stick and slip that often is held slipping (verify_held may switch
+// it to sticking once).
 void Contact::count_flips(Slave& nd) {
   const bool was = nd.base_state >= contact::Stick, is = nd.state >= contact::Stick;
   if (was != is) ++nd.normal_flips;
@@ -588,6 +589,15 @@ std::string held_message(const HeldFailure& w, const std::string& pair) {
 }
 }  // namespace
 
+namespace {
+// The part of v orthogonal to the unit normal n, and its length.
+double tangential(const double* v, const double* n, double* vt) {
+  const double vn = dot3(v, n);
+  for (int c = 0; c < 3; ++c) vt[c] = v[c] - vn * n[c];
+  return std::sqrt(dot3(vt, vt));
+}
+}  // namespace
+
 int Contact::verify_held(std::string& why) {
   HeldFailure w;
   long revised = 0;
@@ -596,21 +606,18 @@ int Contact::verify_held(std::string& why) {
     double loc[2] = {0.0, 0.0}, glob[2] = {0.0, 0.0};  // the largest nodal force and tangential slip
     for (const auto& nd : p.nodes)
       if (nd.state >= contact::Stick) {
+        double st[3];
         loc[0] = std::max(loc[0], std::sqrt(dot3(nd.f, nd.f)));
-        const double rn = dot3(nd.rel, nd.normal);
-        double rt = 0.0;
-        for (int c = 0; c < 3; ++c) rt += (nd.rel[c] - rn * nd.normal[c]) * (nd.rel[c] - rn * nd.normal[c]);
-        loc[1] = std::max(loc[1], std::sqrt(rt));
+        loc[1] = std::max(loc[1], tangential(nd.rel, nd.normal, st));
       }
     Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_MAX, 2, loc, glob);
     const double ftol = kKktTolerance * glob[0], stol = kKktTolerance * glob[1];
     for (auto& nd : p.nodes) {
       if (!(nd.hold_active || nd.hold_tangent) || nd.state < contact::Stick) continue;
-      const double fn = dot3(nd.f, nd.normal), lam_n = -fn, rn = dot3(nd.rel, nd.normal);
-      double lt[3], st[3];  // lambda_tau = -(I - n n) f and the tangential slip
-      for (int c = 0; c < 3; ++c) lt[c] = -(nd.f[c] - fn * nd.normal[c]), st[c] = nd.rel[c] - rn * nd.normal[c];
-      const double lam_t = std::sqrt(dot3(lt, lt)), bound = p.cfg.friction * std::max(-lam_n, 0.0);
-      const double slip = std::sqrt(dot3(st, st)), along = dot3(lt, st);
+      const double lam_n = -dot3(nd.f, nd.normal);
+      double ft[3], st[3];  // the tangential force (lambda_tau = -ft) and slip
+      const double lam_t = tangential(nd.f, nd.normal, ft), slip = tangential(nd.rel, nd.normal, st);
+      const double bound = p.cfg.friction * std::max(-lam_n, 0.0), along = -dot3(ft, st);  // lambda_tau . slip
       HeldFailure f;
       if (nd.hold_active && lam_n > ftol) f = {lam_n - ftol, lam_n, 0.0, 0, 0, 1};
       else if (nd.hold_tangent == contact::Stick && lam_t - bound > ftol) f = {(lam_t - bound - ftol) / std::max(ftol, 1e-300), lam_t, bound, 0, 0, 2};

@@ -176,12 +176,12 @@ class Contact {
     double xi_free[2] = {0, 0};        // the projection's parameters before clamping (MasterSurface::Hit)
     bool inside = true;
     double gap = 0.0, normal[3] = {0, 0, 0}, rel[3] = {0, 0, 0};
-    // linearised_step(): whether the step's deciding multiplier is set, whether the node was
-    // active in that solve, its bulk residual there and K_p du.
+    // linearised_step(): whether the step's deciding multiplier is set, the node's set in
+    // that solve, its bulk residual there (lam_base) and K_p du.
     bool lam_valid = false;
     int base_state = contact::Free;
     // Cycle control within the step: flips of the solve's set between Newton iterations
-    // (in/out of contact, stick/slip), and the node held active / sticking after kFreezeAfter.
+    // (in/out of contact, stick/slip), and the holds after kFreezeAfter (count_flips).
     int normal_flips = 0, tangent_flips = 0;
     bool hold_active = false;
     int hold_tangent = 0;        // 0, or the held contact::Stick / contact::Slip
@@ -228,8 +228,8 @@ class Contact {
   contact::LawParams node_params(const Pair& p, const Slave& nd, const contact::LawParams& lp) const;
   void initial_gap_rates(const la::Vector& u0, const la::Vector& v0, double dt0);
   void read_scales(const la::CrsMatrix& K);
-  void capture_rows(const la::RCP<la::CrsMatrix>& K);
-  static void count_flips(Slave& nd);  // Pair::krow_* of the linearised pairs
+  void capture_rows(const la::RCP<la::CrsMatrix>& K);  // Pair::krow_* of the linearised pairs
+  static void count_flips(Slave& nd);
   bool linearised_ = false;                            // some pair decides its sets from the last solve
   double alpha_ = 1.0;                                 // set_step_length()
   la::RCP<const la::CrsMatrix> rows_of_;               // the tangent capture_rows() read (its column map)

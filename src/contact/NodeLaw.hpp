@@ -17,9 +17,9 @@
 //
 // Sets (PDAS, from the current values): active iff lambda_nu + c_nu g / dt' <= 0 (dt' = dt for
 // persistence, 1 for gap); in the active set, with q = lambda_tau + c_tau (I - n n) rel / dt,
-// slip iff |q| + mu lambda_nu >= 0 (direction s = q / |q|), stick otherwise. The multiplier
-// in these tests is the last linear solve's (LawParams::lam) where the caller has one, else
-// the bulk residual r; the rows always use r.
+// slip iff |q| + mu lambda_nu >= 0 (direction s = q / |q|), stick otherwise. These are the
+// tests with the bulk residual r as multiplier; where the caller has the last linear solve's
+// (LawParams::lam), decide_set's tests apply instead. The rows always use r.
 // Rows (the slave's dim rows, replaced; the normal condition goes to the component most
 // aligned with n):
 //   normal                   s_p g
