@@ -5,6 +5,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "io/SafeFile.hpp"
 #include "io/WriteError.hpp"
 
 namespace stentor {
@@ -26,10 +27,8 @@ std::string csv_quote(const std::string& s) {
 CsvWriter::CsvWriter(const std::string& path, std::vector<std::string> columns)
     : path_(path), columns_(std::move(columns)) {
   if (columns_.empty()) throw std::runtime_error("CsvWriter: no columns for " + path_);
-  file_.reset(std::fopen(path_.c_str(), "w"));
-  if (!file_)
-    throw std::runtime_error("CsvWriter: cannot open " + path_ + " for writing: " +
-                             std::strerror(errno));
+  file_.reset(fopen_for_write(path_));
+  if (!file_) throw std::runtime_error("CsvWriter: cannot open " + path_ + " for writing: " + open_error(errno));
   std::string header;
   for (std::size_t i = 0; i < columns_.size(); ++i) {
     if (i) header += ',';

@@ -6,6 +6,7 @@
 #include <memory>
 #include <streambuf>
 
+#include "io/SafeFile.hpp"
 #include "io/WriteError.hpp"
 
 namespace stentor::log_copy {
@@ -78,7 +79,7 @@ void attach(const std::string& path) {
   if (g_sink->file) std::fclose(g_sink->file);
   g_sink->path = path;
   g_sink->error = 0;
-  g_sink->file = std::fopen(path.c_str(), "w");
+  g_sink->file = fopen_for_write(path);
   check_write(g_sink->file != nullptr, "creating", path);
   const std::string held = std::move(g_sink->held);
   g_sink->held.clear();

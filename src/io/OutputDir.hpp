@@ -6,12 +6,16 @@
 //
 // Nothing a run did not write is ever deleted or overwritten:
 // - <final> must be new, empty, or a Stentor results folder: one holding the manifest
-//   kManifest, which lists the files the run that wrote it created. Any other non-empty
-//   folder is refused unless `overwrite` (--overwrite) is given.
-// - commit() replaces only the files the earlier manifest lists (they are removed, the new
-//   files moved in) and writes a new manifest; other files in <final> stay as they are. A
-//   file of the same name as a new result that the manifest does not list (the user's) is
-//   never replaced without `overwrite`.
+//   kManifest, which lists the files the run that wrote it created, each with its size and
+//   FNV-1a hash (names encoded: bytes other than letters, digits and . _ - + as %XX), the
+//   whole closed by a hash of its text. Any other non-empty folder is refused unless
+//   `overwrite` (--overwrite) is given.
+// - The manifest is data to verify, not an instruction: commit() replaces or removes only
+//   the listed files that still have the listed size and hash (checked again just before
+//   each removal), moves the new files in and writes a new manifest; every other file in
+//   <final> stays as it is: the user's, a listed file changed since, and every file a
+//   malformed or foreign manifest lists (reported in notice()). A file of the same name as
+//   a new result that is not such a verified entry is never replaced without `overwrite`.
 // - <final> (and <final>.partial) must not hold the deck or mesh being read.
 // - A leftover <final>.partial is reused only when it holds the lock file (Stentor's own
 //   staging folder); any other is refused.
@@ -19,7 +23,9 @@
 // Concurrent runs: the staging folder holds the lock file kLockFile, locked with flock()
 // for the whole run and naming the run (pid, host, start time, deck). A second run into
 // the same folder is refused with that description; a lock file nobody holds (the run
-// died, or failed and kept its partial results) is taken over. Where the file system
+// died, or failed and kept its partial results) is taken over. The lock file is opened without
+// following a symbolic link: a link there (or a staging folder that is a link) is refused,
+// never written through. Where the file system
 // does not support flock(), a lock whose pid is dead on this host is taken over, its
 // files removed; but a staging folder holding a checkpoint (<name>_checkpoint.h5) is
 // never emptied without `overwrite`: the run is refused, naming the checkpoint, its time
@@ -27,7 +33,10 @@
 //
 // Use it on one rank only (rank 0); other ranks must wait for it (barrier) before writing.
 #pragma once
+#include <cstdint>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace stentor {
@@ -50,6 +59,9 @@ class OutputDir {
   // folder and what to do) when the folder may not be used or another run holds it.
   OutputDir(const std::string& final_dir, const Options& opts);
   OutputDir(const std::string& final_dir) : OutputDir(final_dir, Options{}) {}
+  // Whether a running run holds the lock of <final_dir>.partial: its description (pid,
+  // host, start, deck, lock file), or "" when none does. Follows no link; writes nothing.
+  static std::string running_in(const std::string& final_dir);
   // Releases the lock. Without commit() or discard() the staging folder stays, with the
   // (now free) lock file naming the run that wrote it.
   ~OutputDir();
@@ -77,7 +89,9 @@ class OutputDir {
   void check_final(const Options& opts);
   void lock(const Options& opts);
   void keep_checkpoints();
-  void write_manifest(const std::vector<std::string>& names) const;
+  // Name -> (size, FNV-1a hex) of each file listed.
+  using Files = std::map<std::string, std::pair<std::uint64_t, std::string>>;
+  void write_manifest(const Files& files) const;
   void release();
 
   std::string final_;

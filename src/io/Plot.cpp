@@ -21,6 +21,7 @@
 
 extern char** environ;
 
+#include "io/SafeFile.hpp"
 #include "io/WriteError.hpp"
 
 namespace stentor {
@@ -312,10 +313,8 @@ bool plot_png(const PlotTable& table, const std::string& png, const PlotSpec& sp
     const std::string png_ref = png_abs.string();
 #endif
     {
-      std::ofstream out(script);
-      out << plot_script(table, png_ref, script.filename().string(), spec, xi, yi);
-      out.flush();
-      check_write(static_cast<bool>(out), "writing the plot script", script.string());
+      const bool ok = write_text_file(script.string(), plot_script(table, png_ref, script.filename().string(), spec, xi, yi));
+      check_write(ok, "writing the plot script", script.string());
     }
     std::error_code ec;
     fs::remove(png_abs, ec);  // a stale plot must not pass for a new one

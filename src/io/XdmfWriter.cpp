@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "io/Csv.hpp"
+#include "io/SafeFile.hpp"
 #include "io/WriteError.hpp"
 
 namespace stentor {
@@ -524,6 +525,7 @@ struct XdmfWriter::Impl {
   void create_file() {
     H5Id fapl(check(H5Pcreate(H5P_FILE_ACCESS), "H5Pcreate"), H5Pclose);
     if (parallel) check_status(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL), "H5Pset_fapl_mpio");
+    if (is_link(h5_path)) throw std::runtime_error(h5_path + ": " + open_error(ELOOP));
     file = H5Id(check(H5Fcreate(h5_path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), "creating the HDF5 file"),
                 H5Fclose);
   }
@@ -561,13 +563,7 @@ struct XdmfWriter::Impl {
 
   void write_xdmf() const {
     const std::string tmp = xdmf_path + ".tmp";
-    {
-      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      check_write(static_cast<bool>(out), "XdmfWriter: opening", tmp);
-      out << xdmf_text();
-      out.flush();
-      check_write(static_cast<bool>(out), "XdmfWriter: writing", tmp);
-    }
+    check_write(write_text_file(tmp, xdmf_text()), "XdmfWriter: writing", tmp);
     std::error_code ec;
     fs::rename(tmp, xdmf_path, ec);
     errno = ec.value();

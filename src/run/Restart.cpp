@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "io/OutputDir.hpp"
 #include "mesh/MeshComm.hpp"
 #include "parallel/RawComm.hpp"
 #include "run/OutputRows.hpp"
@@ -309,6 +310,24 @@ std::vector<std::string> csv_lines_until(const std::string& file, long long step
   return lines;
 }
 
+// A restart into the output folder of a run still running would move its staging folder
+// away under it: refused before anything is read or moved. Rank 0 looks.
+void refuse_running_output(const Model& m, const RunOptions& opts) {
+  std::string err;
+  if (m.rank == 0) {
+    const std::string out = opts.output_dir.empty() ? m.cfg.output.directory : opts.output_dir;
+    try {
+      const std::string who = OutputDir::running_in(out);
+      if (!who.empty())
+        err = "cannot restart into '" + out + "': another run is writing into it: " + who +
+              ". Wait for it to end, or choose another folder with --output DIR";
+    } catch (const std::exception& e) {
+      err = e.what();
+    }
+  }
+  agree(m, err);
+}
+
 // The staging folder Reporter::open() would replace, when it is the checkpoint's folder:
 // renamed to <dir>.interrupted first. Rank 0 acts; every rank gets the verdict.
 void keep_interrupted_output(const Model& m, const std::string& path, const RunOptions& opts, std::ostream& log) {
@@ -352,6 +371,7 @@ bool write_checkpoint(const Model& model, const Stepper& stepper, const RunState
 }
 
 Restart read_restart(const std::string& path, const Model& model, const RunOptions& opts, std::ostream& log) {
+  refuse_running_output(model, opts);
   Restart r;
   r.path = path;
   r.data = read_everywhere(model, path);

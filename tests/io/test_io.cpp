@@ -1050,3 +1050,53 @@ TEST(Plot, FailingOrHangingGnuplotEndsWithoutPlot) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(), 0.5);
   EXPECT_TRUE(fs::exists(dir / "next.gp"));
 }
+
+// The manifest lists odd names unambiguously, and a run removes only the listed files that
+// still are as the earlier run wrote them.
+TEST(OutputDir, ManifestIsVerifiedNotObeyed) {
+  const fs::path base = scratch("outdir_manifest");
+  const std::string fin = (base / "r").string();
+  const std::string odd = "a b\nc%.csv";
+  {
+    OutputDir d(fin);
+    std::ofstream(fs::path(d.path()) / odd) << "odd";
+    std::ofstream(fs::path(d.path()) / "kept.csv") << "run 1";
+    d.commit();
+  }
+  const std::string manifest = slurp(fs::path(fin) / OutputDir::kManifest);
+  EXPECT_NE(manifest.find(" a%20b%0Ac%25.csv\n"), std::string::npos) << manifest;
+  std::ofstream(fs::path(fin) / "kept.csv", std::ios::app) << ", changed by the user";
+  {
+    OutputDir d(fin);
+    EXPECT_NE(d.notice().find("1 files that " + fin + "/" + OutputDir::kManifest + " lists are not as the run"), std::string::npos)
+        << d.notice();
+    std::ofstream(fs::path(d.path()) / "new.csv") << "run 2";
+    d.commit();
+  }
+  EXPECT_FALSE(fs::exists(fs::path(fin) / odd));  // as written: removed
+  EXPECT_EQ(slurp(fs::path(fin) / "kept.csv"), "run 1, changed by the user");  // changed: kept
+  EXPECT_EQ(slurp(fs::path(fin) / "new.csv"), "run 2");
+  // A manifest with a line added by hand is not Stentor's: none of its lines counts.
+  std::ofstream(fs::path(fin) / OutputDir::kManifest, std::ios::app) << "0 cbf29ce484222325 new.csv\n";
+  {
+    OutputDir d(fin);
+    d.commit();
+  }
+  EXPECT_EQ(slurp(fs::path(fin) / "new.csv"), "run 2");
+}
+
+// running_in() names a run that holds the lock, and nothing once it has ended.
+TEST(OutputDir, RunningInNamesTheHolder) {
+  const fs::path base = scratch("outdir_running");
+  const std::string fin = (base / "r").string();
+  EXPECT_EQ(OutputDir::running_in(fin), "");
+  OutputDir::Options o;
+  o.deck = "live.xml";
+  {
+    OutputDir d(fin, o);
+    // flock() locks are per open file: this process's second look sees the first's lock.
+    EXPECT_NE(OutputDir::running_in(fin).find("deck live.xml (lock file " + fin + ".partial/.stentor.lock)"), std::string::npos)
+        << OutputDir::running_in(fin);
+  }
+  EXPECT_EQ(OutputDir::running_in(fin), "");
+}
