@@ -5,13 +5,20 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <climits>
+#include <cmath>
+#include <cstdint>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <numeric>
 #include <stdexcept>
+#include <type_traits>
+
+#include "io/RankVote.hpp"
+#include "io/SafeFile.hpp"
 
 namespace stentor {
 
@@ -20,7 +27,42 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr const char* kFormat = "stentor checkpoint";
-constexpr long long kVersion = 1;
+constexpr long long kVersion = 2;  // 2: the payload checksum (attribute "checksum")
+// The most columns a table may have, and the seconds a rank waits for the others to
+// agree on a failed parallel write before the job is ended (io/RankVote.hpp).
+constexpr hsize_t kMaxColumns = 1 << 16;
+constexpr double kWriteVoteTimeout = 120.0;
+
+// The payload checksum: FNV-1a of the scalars (names and values, in name order) plus the
+// sum, modulo 2^64, of one FNV-1a per table row (table name, id, values). A sum, so that
+// ranks holding different rows add their parts (MPI_SUM) and the order of rows does not
+// matter; any changed byte of a value, id, name or scalar changes it.
+std::uint64_t scalar_sum(const CheckpointData& d) {
+  Fnv1a f;
+  for (const auto& [k, v] : d.reals) f.add(k), f.add(&v, sizeof v);
+  for (const auto& [k, v] : d.ints) f.add(k), f.add(&v, sizeof v);
+  for (const auto& [k, v] : d.strings) f.add(k), f.add(v);
+  return f.h;
+}
+std::uint64_t row_sum(const CheckpointData& d) {
+  std::uint64_t sum = 0;
+  for (const auto& [name, t] : d.tables) {
+    const auto k = static_cast<std::size_t>(t.ncols);
+    for (std::size_t i = 0; i < t.ids.size(); ++i) {
+      Fnv1a f;
+      f.add(name);
+      f.add(&t.ids[i], sizeof(long long));
+      f.add(t.values.data() + i * k, k * sizeof(double));
+      sum += f.h;
+    }
+  }
+  return sum;
+}
+std::string checksum_text(std::uint64_t sum) {
+  Fnv1a f;
+  f.h = sum;
+  return f.hex();
+}
 
 // An HDF5 handle closed by its own close function.
 class H5 {
@@ -80,7 +122,7 @@ RowSpan row_span(std::size_t mine, MPI_Comm comm) {
 }
 
 // Dataset `name` of `span.total` rows of `cols` columns (1: a vector), this rank's `n` rows
-// from `span.first`; collective when `dxpl` is a collective MPI-IO transfer list.
+// from `span.first` (the dataset's creation is collective in parallel, the write not).
 void write_dataset(hid_t loc, const char* name, hid_t type, hsize_t cols, RowSpan span, std::size_t n, const void* data, hid_t dxpl,
                    const std::string& file) {
   const int rank = cols > 1 ? 2 : 1;
@@ -89,14 +131,10 @@ void write_dataset(hid_t loc, const char* name, hid_t type, hsize_t cols, RowSpa
   H5 dset(H5Dcreate2(loc, name, type, space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Dclose,
           std::string("dataset ") + name, file);
   if (span.total == 0) return;
+  if (n == 0) return;  // independent transfers (see write_file): a rank without rows writes nothing
   H5 mem(H5Screate_simple(rank, count, nullptr), H5Sclose, "H5Screate_simple", file);
-  if (n > 0) {
-    check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr), "selecting rows", file);
-  } else {
-    check(H5Sselect_none(space.get()), "H5Sselect_none", file);
-    check(H5Sselect_none(mem.get()), "H5Sselect_none", file);
-  }
-  check(H5Dwrite(dset.get(), type, mem.get(), space.get(), dxpl, n > 0 ? data : nullptr), std::string("writing ") + name, file);
+  check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start, nullptr, count, nullptr), "selecting rows", file);
+  check(H5Dwrite(dset.get(), type, mem.get(), space.get(), dxpl, data), std::string("writing ") + name, file);
 }
 
 void write_tables(hid_t root, const CheckpointData& d, MPI_Comm comm, hid_t dxpl, const std::string& file) {
@@ -109,6 +147,16 @@ void write_tables(hid_t root, const CheckpointData& d, MPI_Comm comm, hid_t dxpl
   }
 }
 
+// STENTOR_TEST_FAIL_CHECKPOINT_RANK=R: rank R's checkpoint writes fail after its rows, as a
+// full disk on that rank's node would (the other ranks' writes succeed).
+void test_fail_rank_hook(MPI_Comm comm, const std::string& tmp) {
+  const char* v = std::getenv("STENTOR_TEST_FAIL_CHECKPOINT_RANK");
+  if (!v || !*v) return;
+  int rank = 0;
+  if (comm != MPI_COMM_NULL) MPI_Comm_rank(comm, &rank);
+  if (std::atoi(v) == rank) throw std::runtime_error(tmp + ": writing the rows failed: " + std::strerror(ENOSPC) + " (test hook)");
+}
+
 // STENTOR_TEST_KILL_CHECKPOINT=N: SIGKILL while writing the N-th checkpoint of this process.
 void test_kill_hook() {
   static int count = 0;
@@ -117,32 +165,66 @@ void test_kill_hook() {
   if (v && *v && std::atoi(v) == count) std::raise(SIGKILL);
 }
 
-// comm: MPI_COMM_NULL (serial) or the communicator of the ranks writing their rows.
+// Runs `step`; in parallel the ranks then vote (io/RankVote.hpp), and every rank throws the
+// lowest failing rank's message: no rank leaves the write (for H5Fclose, a collective)
+// while another is still in it. A rank stuck in a collective ends the job (exit 3).
+template <class F>
+void agreed_step(MPI_Comm comm, F step) {
+  std::string err;
+  try {
+    step();
+  } catch (const std::exception& e) {
+    err = e.what();
+  }
+  if (comm != MPI_COMM_NULL) {
+    const RankVote v = vote_on_failure(comm, err, kWriteVoteTimeout);
+    if (v.failed_rank >= 0) err = v.failure + (v.failed_rank > 0 ? " (on rank " + std::to_string(v.failed_rank) + ")" : "");
+  }
+  if (!err.empty()) throw std::runtime_error(err);  // every rank: the file is closed together
+}
+
+// The scalars and tables into the open file `f` (every rank the same scalars, its rows).
+void write_payload(hid_t f, const CheckpointData& d, MPI_Comm comm, hid_t dxpl, const std::string& checksum, const std::string& tmp) {
+  write_string_attr(f, "format", kFormat, tmp);
+  write_attr(f, "version", H5T_NATIVE_LLONG, &kVersion, tmp);
+  write_string_attr(f, "checksum", checksum, tmp);
+  {
+    H5 g(H5Gcreate2(f, "reals", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "group reals", tmp);
+    for (const auto& [k, v] : d.reals) write_attr(g.get(), k, H5T_NATIVE_DOUBLE, &v, tmp);
+  }
+  {
+    H5 g(H5Gcreate2(f, "ints", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "group ints", tmp);
+    for (const auto& [k, v] : d.ints) write_attr(g.get(), k, H5T_NATIVE_LLONG, &v, tmp);
+  }
+  {
+    H5 g(H5Gcreate2(f, "strings", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "group strings", tmp);
+    for (const auto& [k, v] : d.strings) write_string_attr(g.get(), k, v, tmp);
+  }
+  write_tables(f, d, comm, dxpl, tmp);
+  test_fail_rank_hook(comm, tmp);
+}
+
+// comm: MPI_COMM_NULL (serial) or the communicator of the ranks writing their rows. In
+// parallel the rows are written independently (no collective inside a row write that a
+// failing rank could leave), and the ranks vote on a failure before the file is closed:
+// a rank whose write failed never leaves for H5Fclose while another still writes.
 void write_file(const std::string& tmp, const CheckpointData& d, MPI_Comm comm) {
+  std::uint64_t sum = row_sum(d), total = sum;
+  if (comm != MPI_COMM_NULL) MPI_Allreduce(&sum, &total, 1, MPI_UINT64_T, MPI_SUM, comm);
+  const std::string checksum = checksum_text(scalar_sum(d) + total);
   H5 fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "H5Pcreate", tmp);
   H5 dxpl(H5Pcreate(H5P_DATASET_XFER), H5Pclose, "H5Pcreate", tmp);
   if (comm != MPI_COMM_NULL) {
     check(H5Pset_fapl_mpio(fapl.get(), comm, MPI_INFO_NULL), "H5Pset_fapl_mpio", tmp);
-    check(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_COLLECTIVE), "H5Pset_dxpl_mpio", tmp);
+    check(H5Pset_dxpl_mpio(dxpl.get(), H5FD_MPIO_INDEPENDENT), "H5Pset_dxpl_mpio", tmp);
   }
+  if (is_link(tmp)) throw std::runtime_error(tmp + ": " + open_error(ELOOP));
   H5 f(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get()), H5Fclose, "creating the file", tmp);
-  write_string_attr(f.get(), "format", kFormat, tmp);
-  write_attr(f.get(), "version", H5T_NATIVE_LLONG, &kVersion, tmp);
-  {
-    H5 g(H5Gcreate2(f.get(), "reals", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "group reals", tmp);
-    for (const auto& [k, v] : d.reals) write_attr(g.get(), k, H5T_NATIVE_DOUBLE, &v, tmp);
-  }
-  {
-    H5 g(H5Gcreate2(f.get(), "ints", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "group ints", tmp);
-    for (const auto& [k, v] : d.ints) write_attr(g.get(), k, H5T_NATIVE_LLONG, &v, tmp);
-  }
-  {
-    H5 g(H5Gcreate2(f.get(), "strings", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose, "group strings", tmp);
-    for (const auto& [k, v] : d.strings) write_string_attr(g.get(), k, v, tmp);
-  }
-  write_tables(f.get(), d, comm, dxpl.get(), tmp);
+  // Each part that may fail on one rank is followed by a vote; H5Fflush (collective) only
+  // once every rank's rows are written.
+  agreed_step(comm, [&] { write_payload(f.get(), d, comm, dxpl.get(), checksum, tmp); });
   test_kill_hook();
-  check(H5Fflush(f.get(), H5F_SCOPE_GLOBAL), "H5Fflush", tmp);
+  agreed_step(comm, [&] { check(H5Fflush(f.get(), H5F_SCOPE_GLOBAL), "H5Fflush", tmp); });
   f.close(tmp);
 }
 
@@ -167,10 +249,22 @@ std::vector<std::string> attr_names(hid_t loc) {
   return names;
 }
 
+// An attribute of one value (a scalar or one-element dataspace) of type class `cls`:
+// anything else in a hand-edited file would overrun the value it is read into.
+void check_attr(hid_t attr, H5T_class_t cls, const std::string& name, const std::string& file) {
+  H5 space(H5Aget_space(attr), H5Sclose, "space of " + name, file);
+  H5 type(H5Aget_type(attr), H5Tclose, "type of " + name, file);
+  const char* expected = cls == H5T_STRING ? "a string" : cls == H5T_FLOAT ? "a floating-point number" : "an integer";
+  if (H5Sget_simple_extent_npoints(space.get()) != 1 || H5Tget_class(type.get()) != cls ||
+      (cls == H5T_STRING && (H5Tis_variable_str(type.get()) != 0 || H5Tget_size(type.get()) > (1u << 20))))
+    throw std::runtime_error(file + ": attribute " + name + " is not " + expected + " (one value" +
+                             (cls == H5T_STRING ? ", fixed length, at most 1 MiB)" : ")"));
+}
+
 std::string read_string_attr(hid_t loc, const std::string& name, const std::string& file) {
   H5 attr(H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose, "attribute " + name, file);
+  check_attr(attr.get(), H5T_STRING, name, file);
   H5 type(H5Aget_type(attr.get()), H5Tclose, "type of " + name, file);
-  if (H5Tget_class(type.get()) != H5T_STRING) throw std::runtime_error(file + ": attribute " + name + " is not a string");
   const std::size_t n = H5Tget_size(type.get());
   std::string v(n, '\0');
   check(H5Aread(attr.get(), type.get(), v.data()), "reading " + name, file);
@@ -181,8 +275,11 @@ std::string read_string_attr(hid_t loc, const std::string& name, const std::stri
 template <class T>
 T read_attr(hid_t loc, const std::string& name, hid_t type, const std::string& file) {
   H5 attr(H5Aopen(loc, name.c_str(), H5P_DEFAULT), H5Aclose, "attribute " + name, file);
+  check_attr(attr.get(), std::is_floating_point<T>::value ? H5T_FLOAT : H5T_INTEGER, name, file);
   T v{};
   check(H5Aread(attr.get(), type, &v), "reading " + name, file);
+  if constexpr (std::is_floating_point<T>::value)
+    if (!std::isfinite(v)) throw std::runtime_error(file + ": attribute " + name + " is not a finite number");
   return v;
 }
 
@@ -191,30 +288,74 @@ herr_t collect_link_name(hid_t, const char* name, const H5L_info_t*, void* out) 
   return 0;
 }
 
-CheckpointTable read_table(hid_t tables, const std::string& name, const std::string& file) {
-  H5 g(H5Gopen2(tables, name.c_str(), H5P_DEFAULT), H5Gclose, "table " + name, file);
-  H5 ids(H5Dopen2(g.get(), "ids", H5P_DEFAULT), H5Dclose, "table " + name + " ids", file);
-  H5 vals(H5Dopen2(g.get(), "values", H5P_DEFAULT), H5Dclose, "table " + name + " values", file);
-  H5 is(H5Dget_space(ids.get()), H5Sclose, "ids space", file), vs(H5Dget_space(vals.get()), H5Sclose, "values space", file);
-  hsize_t n = 0, dims[2] = {0, 0};
-  if (H5Sget_simple_extent_ndims(is.get()) != 1 || H5Sget_simple_extent_ndims(vs.get()) != 2)
-    throw std::runtime_error(file + ": table " + name + " has the wrong shape");
-  H5Sget_simple_extent_dims(is.get(), &n, nullptr);
-  H5Sget_simple_extent_dims(vs.get(), dims, nullptr);
-  if (dims[0] != n) throw std::runtime_error(file + ": table " + name + ": ids and values differ in length");
+// The dimensions of dataset `dset` (named `what`) of type class `cls`: rank 1 or 2, the
+// element count within what the file's `file_bytes` can hold.
+std::vector<hsize_t> dataset_dims(hid_t dset, H5T_class_t cls, const std::string& what, std::uintmax_t file_bytes,
+                                  const std::string& file) {
+  H5 space(H5Dget_space(dset), H5Sclose, what + " space", file);
+  H5 type(H5Dget_type(dset), H5Tclose, what + " type", file);
+  if (H5Tget_class(type.get()) != cls)
+    throw std::runtime_error(file + ": " + what + " is not of " + (cls == H5T_FLOAT ? "floating-point" : "integer") + " type");
+  const int nd = H5Sget_simple_extent_ndims(space.get());
+  if (nd < 1 || nd > 2) throw std::runtime_error(file + ": " + what + " has " + std::to_string(nd) + " dimensions, expected 1 or 2");
+  std::vector<hsize_t> dims(static_cast<std::size_t>(nd));
+  H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  const hsize_t cols = nd == 2 ? dims[1] : 1;
+  if (cols > kMaxColumns || (dims[0] > 0 && cols == 0) || dims[0] > file_bytes / 8 || dims[0] * cols > file_bytes / 8)
+    throw std::runtime_error(file + ": " + what + " claims " + std::to_string(dims[0]) + " x " + std::to_string(cols) +
+                             " values, more than the file holds");
+  return dims;
+}
+
+// Table `name`: ids (integers, none negative, none twice) and values (finite), one row each.
+CheckpointTable read_table(hid_t tables, const std::string& name, std::uintmax_t file_bytes, const std::string& file) {
+  const std::string where = "table /tables/" + name;
+  H5 g(H5Gopen2(tables, name.c_str(), H5P_DEFAULT), H5Gclose, where, file);
+  H5 ids(H5Dopen2(g.get(), "ids", H5P_DEFAULT), H5Dclose, where + "/ids", file);
+  H5 vals(H5Dopen2(g.get(), "values", H5P_DEFAULT), H5Dclose, where + "/values", file);
+  const auto id_dims = dataset_dims(ids.get(), H5T_INTEGER, where + "/ids", file_bytes, file);
+  const auto v_dims = dataset_dims(vals.get(), H5T_FLOAT, where + "/values", file_bytes, file);
+  if (id_dims.size() != 1) throw std::runtime_error(file + ": " + where + "/ids is not a vector");
+  const hsize_t n = id_dims[0], cols = v_dims.size() == 2 ? v_dims[1] : 1;
+  if (v_dims[0] != n) throw std::runtime_error(file + ": " + where + ": ids and values differ in length");
   CheckpointTable t;
-  t.ncols = static_cast<int>(dims[1]);
+  t.ncols = static_cast<int>(cols);
   t.ids.resize(n);
-  t.values.resize(n * dims[1]);
+  t.values.resize(n * cols);
   if (n > 0) {
-    check(H5Dread(ids.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.ids.data()), "reading " + name, file);
-    if (dims[1] > 0) check(H5Dread(vals.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.values.data()), "reading " + name, file);
+    check(H5Dread(ids.get(), H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.ids.data()), "reading " + where + "/ids", file);
+    check(H5Dread(vals.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, t.values.data()), "reading " + where + "/values", file);
   }
+  for (std::size_t i = 0; i < t.values.size(); ++i)
+    if (!std::isfinite(t.values[i]))
+      throw std::runtime_error(file + ": " + where + "/values holds a non-finite number (row " + std::to_string(i / cols) + ", id " +
+                               std::to_string(t.ids[i / cols]) + ")");
   if (!std::is_sorted(t.ids.begin(), t.ids.end())) t.sort_rows();
+  for (std::size_t i = 0; i < t.ids.size(); ++i)
+    if (t.ids[i] < 0 || (i > 0 && t.ids[i] == t.ids[i - 1]))
+      throw std::runtime_error(file + ": " + where + "/ids: id " + std::to_string(t.ids[i]) + (t.ids[i] < 0 ? " is negative" : " appears twice"));
   return t;
 }
 
+// The named scalars of group `group` (reals, ints or strings).
+void read_scalars(hid_t f, CheckpointData& d, const std::string& path) {
+  {
+    H5 g(H5Gopen2(f, "reals", H5P_DEFAULT), H5Gclose, "group reals", path);
+    for (const auto& k : attr_names(g.get())) d.reals[k] = read_attr<double>(g.get(), k, H5T_NATIVE_DOUBLE, path + ": /reals");
+  }
+  {
+    H5 g(H5Gopen2(f, "ints", H5P_DEFAULT), H5Gclose, "group ints", path);
+    for (const auto& k : attr_names(g.get())) d.ints[k] = read_attr<long long>(g.get(), k, H5T_NATIVE_LLONG, path + ": /ints");
+  }
+  {
+    H5 g(H5Gopen2(f, "strings", H5P_DEFAULT), H5Gclose, "group strings", path);
+    for (const auto& k : attr_names(g.get())) d.strings[k] = read_string_attr(g.get(), k, path + ": /strings");
+  }
+}
+
 CheckpointData read_file(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t bytes = fs::file_size(path, ec);
   H5 f(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose, "not an HDF5 file, or unreadable:", path);
   if (H5Aexists(f.get(), "format") <= 0 || read_string_attr(f.get(), "format", path) != kFormat)
     throw std::runtime_error(path + ": not a Stentor checkpoint (no 'format' attribute \"" + kFormat + "\")");
@@ -222,24 +363,18 @@ CheckpointData read_file(const std::string& path) {
   if (version != kVersion)
     throw std::runtime_error(path + ": checkpoint format version " + std::to_string(version) + ", this build reads version " +
                              std::to_string(kVersion));
+  if (H5Aexists(f.get(), "checksum") <= 0) throw std::runtime_error(path + ": no 'checksum' attribute");
+  const std::string checksum = read_string_attr(f.get(), "checksum", path);
   CheckpointData d;
-  {
-    H5 g(H5Gopen2(f.get(), "reals", H5P_DEFAULT), H5Gclose, "group reals", path);
-    for (const auto& k : attr_names(g.get())) d.reals[k] = read_attr<double>(g.get(), k, H5T_NATIVE_DOUBLE, path);
-  }
-  {
-    H5 g(H5Gopen2(f.get(), "ints", H5P_DEFAULT), H5Gclose, "group ints", path);
-    for (const auto& k : attr_names(g.get())) d.ints[k] = read_attr<long long>(g.get(), k, H5T_NATIVE_LLONG, path);
-  }
-  {
-    H5 g(H5Gopen2(f.get(), "strings", H5P_DEFAULT), H5Gclose, "group strings", path);
-    for (const auto& k : attr_names(g.get())) d.strings[k] = read_string_attr(g.get(), k, path);
-  }
+  read_scalars(f.get(), d, path);
   H5 tables(H5Gopen2(f.get(), "tables", H5P_DEFAULT), H5Gclose, "group tables", path);
   std::vector<std::string> names;
   hsize_t idx = 0;
   check(H5Literate(tables.get(), H5_INDEX_NAME, H5_ITER_INC, &idx, collect_link_name, &names), "listing tables", path);
-  for (const auto& n : names) d.tables[n] = read_table(tables.get(), n, path);
+  for (const auto& n : names) d.tables[n] = read_table(tables.get(), n, ec ? ~std::uintmax_t(0) : bytes, path);
+  if (checksum_text(scalar_sum(d) + row_sum(d)) != checksum)
+    throw std::runtime_error(path + ": the checksum of its data does not match (the file was changed after Stentor wrote it, "
+                             "or is damaged)");
   return d;
 }
 

@@ -5,7 +5,7 @@
 // so that a file written on R ranks can be read back on any other number of ranks.
 //
 // <file>.h5
-//   attributes of /      format = "stentor checkpoint", version = 1
+//   attributes of /      format = "stentor checkpoint", version = 2, checksum (below)
 //   /reals, /ints, /strings   one attribute per named scalar (double, int64, string)
 //   /tables/<name>/ids        n int64, sorted ascending
 //   /tables/<name>/values     n x ncols doubles (row i belongs to ids[i])
@@ -13,8 +13,17 @@
 // Writing is atomic: the file is written as <file>.tmp, flushed to disk, and renamed over
 // <file>; the file it replaces is kept as <stem>.prev.h5 (hard link + rename), so at every
 // instant <file> is either absent (before the first checkpoint) or complete.
-// Writing: serial, or on several ranks each writing its rows (MPI-IO). Reading: serial
-// (the caller sends the rows on).
+// Writing: serial, or on several ranks each writing its rows (MPI-IO, independent
+// transfers); the ranks vote on a failure before the file is closed, so that a write
+// failing on one rank (a full disk on its node) fails on every rank instead of hanging
+// the job (io/RankVote.hpp). Reading: serial (the caller sends the rows on).
+//
+// A checkpoint is untrusted input (any HDF5 tool edits it). Reading checks its form: each
+// scalar one value of its type (no arrays, no variable-length strings), reals finite;
+// each table's ids integers, values floating-point, 1 or 2 dimensions, no more values
+// than the file can hold, all finite, ids not negative and none twice; and the checksum:
+// FNV-1a of the scalars plus the sum (mod 2^64) of one FNV-1a per table row, so that a
+// changed byte is found. What the values mean is checked by run/CheckpointCheck.hpp.
 #pragma once
 #include <mpi.h>
 
@@ -48,9 +57,10 @@ struct CheckpointData {
 };
 
 // Writes `data` to `path` atomically (see above). Throws std::runtime_error naming the file.
-// Test hook: with STENTOR_TEST_KILL_CHECKPOINT=N in the environment, the process kills
+// Test hooks: with STENTOR_TEST_KILL_CHECKPOINT=N in the environment, the process kills
 // itself with SIGKILL in the middle of writing its N-th checkpoint (after the tables, before
-// the temporary file is closed and renamed), as a crash or `kill -9` would.
+// the temporary file is closed and renamed), as a crash or `kill -9` would; with
+// STENTOR_TEST_FAIL_CHECKPOINT_RANK=R rank R's writes fail (ENOSPC) after its rows.
 void write_checkpoint_file(const std::string& path, const CheckpointData& data);
 // The same, collective over `comm`: every rank passes the same scalars and the same tables
 // (names, columns), each table holding this rank's rows, which follow those of the lower
@@ -59,8 +69,9 @@ void write_checkpoint_file(const std::string& path, const CheckpointData& data);
 // std::runtime_error on every rank, with the first failing rank's message, when any rank
 // failed. One rank: the serial write.
 void write_checkpoint_file(const std::string& path, const CheckpointData& mine, MPI_Comm comm);
-// Reads a checkpoint file. Throws std::runtime_error (starting with `path`) when the file
-// is missing, unreadable or not a Stentor checkpoint.
+// Reads a checkpoint file. Throws std::runtime_error (starting with `path`, naming the
+// attribute or dataset) when the file is missing, unreadable, not a Stentor checkpoint, or
+// fails the checks above.
 CheckpointData read_checkpoint_file(const std::string& path);
 // Where write_checkpoint_file keeps the checkpoint it replaced.
 std::string previous_checkpoint_path(const std::string& path);

@@ -1,57 +1,14 @@
 #include "parallel/Agreement.hpp"
 
-#include <mpi.h>
-
-#include <chrono>
-#include <iostream>
-#include <thread>
-
+#include "io/RankVote.hpp"
 #include "parallel/RawComm.hpp"
 
 namespace stentor {
 
-namespace {
-
-[[noreturn]] void abort_vote(int rank, int size, const std::string& local, double timeout_s) {
-  std::cerr << "[rank " << rank << "] "
-            << (local.empty() ? std::string("waited for ranks that failed inside a collective operation")
-                              : local)
-            << "\nstentor: the ranks could not agree on this failure within " << timeout_s
-            << " s (another rank is stuck in a collective operation); ending all " << size << " ranks (exit status 3)\n"
-            << std::flush;
-  MPI_Abort(MPI_COMM_WORLD, 3);
-  std::abort();
-}
-
-}  // namespace
-
 Agreement agree_on_failure(const Teuchos::Comm<int>& comm, const std::string& local, double timeout_s) {
-  const int rank = comm.getRank(), size = comm.getSize();
-  Agreement a;
-  if (size == 1) {
-    if (!local.empty()) a = Agreement{0, local};
-    return a;
-  }
-  const MPI_Comm c = raw_mpi_comm(comm);
-  int mine = local.empty() ? size : rank, lowest = size;
-  MPI_Request req;
-  MPI_Iallreduce(&mine, &lowest, 1, MPI_INT, MPI_MIN, c, &req);
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
-  int done = 0;
-  for (auto pause = std::chrono::microseconds(20);; pause = std::min(pause * 2, std::chrono::microseconds(10000))) {
-    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
-    if (done) break;
-    if (std::chrono::steady_clock::now() > deadline) abort_vote(rank, size, local, timeout_s);
-    std::this_thread::sleep_for(pause);
-  }
-  if (lowest == size) return a;
-  // Every rank is here: the failing rank's message reaches all of them.
-  a.failed_rank = lowest;
-  int n = rank == lowest ? static_cast<int>(local.size()) : 0;
-  MPI_Bcast(&n, 1, MPI_INT, lowest, c);
-  a.failure = rank == lowest ? local : std::string(static_cast<std::size_t>(n), ' ');
-  MPI_Bcast(a.failure.data(), n, MPI_CHAR, lowest, c);
-  return a;
+  if (comm.getSize() == 1) return local.empty() ? Agreement{} : Agreement{0, local};
+  const RankVote v = vote_on_failure(raw_mpi_comm(comm), local, timeout_s);
+  return Agreement{v.failed_rank, v.failure};
 }
 
 }  // namespace stentor

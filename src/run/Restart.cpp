@@ -12,8 +12,12 @@
 #include <sstream>
 
 #include "io/OutputDir.hpp"
+#include "io/SafeFile.hpp"
+#include "io/WriteError.hpp"
 #include "mesh/MeshComm.hpp"
+#include "parallel/Agreement.hpp"
 #include "parallel/RawComm.hpp"
+#include "run/CheckpointCheck.hpp"
 #include "run/OutputRows.hpp"
 #include "run/Reporter.hpp"
 #include "run/RunState.hpp"
@@ -28,15 +32,10 @@ namespace {
 // FNV-1a of the deck file's bytes: tells whether a checkpoint came from the same deck.
 std::string deck_hash(const std::string& deck_path) {
   std::ifstream in(deck_path, std::ios::binary);
-  std::uint64_t h = 1469598103934665603ull;
-  char c;
-  while (in.get(c)) {
-    h ^= static_cast<unsigned char>(c);
-    h *= 1099511628211ull;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
+  Fnv1a f;
+  char buf[4096];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) f.add(buf, static_cast<std::size_t>(in.gcount()));
+  return f.hex();
 }
 
 // The analysis of the run: "static" or the scheme; with stages of several analyses or
@@ -263,6 +262,19 @@ void check_tables(const Model& m, const CheckpointData& d, const std::string& pa
       throw InputError(path + ": holds '" + name + "', which this deck has no use for (another contact pair or material?)");
 }
 
+// Every value the restart uses in its range (run/CheckpointCheck.hpp); a problem on any
+// rank (each checks its rows of the node tables) is an InputError on every rank. Collective.
+void check_values(const Model& m, const CheckpointData& d, const std::string& path) {
+  std::string bad;
+  try {
+    bad = checkpoint_problem(m, d, path);
+  } catch (const std::exception& e) {
+    bad = path + ": " + e.what();
+  }
+  const Agreement a = agree_on_failure(*m.comm, bad);
+  if (a.failed()) throw InputError(a.failure);
+}
+
 // Mesh, analysis, stages and tables against the model; the deck hash only warns.
 void validate(const Model& m, const CheckpointData& d, const std::string& path, std::ostream& log) {
   try {
@@ -279,6 +291,7 @@ void validate(const Model& m, const CheckpointData& d, const std::string& path, 
       throw InputError(path + ": checkpoint of a run with " + std::to_string(d.integer("num_stages")) + " stages; the deck has " +
                        std::to_string(m.cfg.stages.size()) + " ('Stages')");
     check_tables(m, d, path);
+    check_values(m, d, path);
     if (d.string("deck_hash") != deck_hash(m.cfg.deck_path))
       log << "warning: " << path << " was written by another deck (" << d.string("deck") << ", or it changed since); continuing with "
           << m.cfg.deck_path << "'s parameters\n";
@@ -363,11 +376,11 @@ bool write_checkpoint(const Model& model, const Stepper& stepper, const RunState
   const CheckpointData d = collect(model, stepper, s);
   try {  // every rank writes its rows; a failure anywhere is thrown on every rank
     write_checkpoint_file(path, d, raw_mpi_comm(*model.comm));
-    return true;
   } catch (const std::exception& e) {
-    log << "warning: checkpoint at step " << s.step << " not written: " << e.what() << " (the previous one stays)\n" << std::flush;
-    return false;
+    log << "  checkpoint at step " << s.step << " not written; the previous one stays\n" << std::flush;
+    throw WriteError(std::string("writing the checkpoint at step ") + std::to_string(s.step) + " failed: " + e.what());
   }
+  return true;
 }
 
 Restart read_restart(const std::string& path, const Model& model, const RunOptions& opts, std::ostream& log) {

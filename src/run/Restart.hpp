@@ -27,8 +27,10 @@ class Stepper;
 std::string checkpoint_path(const Reporter& reporter, const Model& model);
 
 // Writes the state after an accepted step to `path` atomically, every rank its rows
-// (collective; the same `path` on every rank). False on every rank (rank 0 having printed
-// a warning to `log`) when the file could not be written: the previous checkpoint stays.
+// (collective; the same `path` on every rank), and returns true. Throws WriteError on
+// every rank when the file could not be written on any one (the ranks agree before
+// closing it; the run then stops with exit status 3, as for any failed result write;
+// rank 0 notes on `log` that the previous checkpoint stays).
 bool write_checkpoint(const Model& model, const Stepper& stepper, const RunState& s, const std::string& path, std::ostream& log);
 
 // A checkpoint read for a restart, on every rank.
@@ -41,7 +43,9 @@ struct Restart {
 };
 
 // Reads `path` (rank 0, then broadcast) and checks it against the model: mesh dimension,
-// node and cell counts, analysis and scheme, stages, contact pairs, Gauss-point layout.
+// node and cell counts, analysis and scheme, stages, contact pairs, Gauss-point layout, and
+// every value's range and cross-reference (run/CheckpointCheck.hpp). First, a run still
+// writing into the output folder (its lock held) is an InputError: nothing is touched.
 // A mismatch is an InputError naming the file; a checkpoint written by another deck (other
 // file contents) is only a warning on `log`. Collective. Call before Reporter::open(): when
 // the checkpoint lies in the staging folder that open() would replace (<dir>.partial of an

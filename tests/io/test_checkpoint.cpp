@@ -1,10 +1,15 @@
 // Checkpoint files (io/Checkpoint.hpp): round trip, byte image, replacement that keeps the
-// previous file, and clear errors for files that are not checkpoints.
+// previous file, clear errors for files that are not checkpoints, and hand-edited files
+// (changed values, non-finite numbers, malformed objects) refused with the object named.
 #include <gtest/gtest.h>
+#include <hdf5.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "io/Checkpoint.hpp"
 
@@ -103,4 +108,79 @@ TEST(Checkpoint, FilesThatAreNotCheckpointsAreNamedInTheError) {
   fs::copy_file(good, cut);
   fs::resize_file(cut, fs::file_size(good) / 2);
   EXPECT_EQ(message(cut).rfind(cut + ":", 0), 0u) << message(cut);
+}
+
+namespace {
+
+std::string read_error(const std::string& path) {
+  try {
+    read_checkpoint_file(path);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+// Opens `path` read-write and runs `edit` on it (a hand edit with any HDF5 tool).
+template <class F>
+void edit_file(const std::string& path, F edit) {
+  const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  ASSERT_GE(f, 0);
+  edit(f);
+  H5Fclose(f);
+}
+
+}  // namespace
+
+// Any changed value is detected by the payload checksum, though the file is valid HDF5.
+TEST(Checkpoint, ChangedValueFailsTheChecksum) {
+  const std::string p = (scratch("checksum") / "c.h5").string();
+  write_checkpoint_file(p, sample(1.0));
+  edit_file(p, [](hid_t f) {
+    const hid_t d = H5Dopen2(f, "/tables/u/values", H5P_DEFAULT);
+    std::vector<double> v(6);
+    H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    v[1] = std::nextafter(v[1], 1e300);  // one ulp
+    H5Dwrite(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v.data());
+    H5Dclose(d);
+  });
+  EXPECT_NE(read_error(p).find("the checksum of its data does not match"), std::string::npos) << read_error(p);
+}
+
+// Non-finite values are refused on reading (naming the table), whatever the checksum says.
+TEST(Checkpoint, NonFiniteValuesAreRefused) {
+  const std::string p = (scratch("nonfinite") / "c.h5").string();
+  CheckpointData d = sample(1.0);
+  d.tables["u"].values[3] = std::nan("");
+  write_checkpoint_file(p, d);
+  EXPECT_NE(read_error(p).find("/tables/u/values holds a non-finite number (row 1, id 5)"), std::string::npos) << read_error(p);
+  d = sample(std::numeric_limits<double>::infinity());
+  write_checkpoint_file(p, d);
+  EXPECT_NE(read_error(p).find("attribute time is not a finite number"), std::string::npos) << read_error(p);
+}
+
+// A scalar stored as an array (which would overrun the one value it is read into), a
+// string where a number belongs, and an id twice: each named, none read.
+TEST(Checkpoint, MalformedObjectsAreNamed) {
+  const std::string p = (scratch("malformed") / "c.h5").string();
+  write_checkpoint_file(p, sample(1.0));
+  edit_file(p, [](hid_t f) {
+    const hid_t g = H5Gopen2(f, "reals", H5P_DEFAULT);
+    H5Adelete(g, "time");
+    const hsize_t n = 1000;
+    const hid_t s = H5Screate_simple(1, &n, nullptr);
+    const hid_t a = H5Acreate2(g, "time", H5T_NATIVE_DOUBLE, s, H5P_DEFAULT, H5P_DEFAULT);
+    std::vector<double> zeros(n, 0.0);
+    H5Awrite(a, H5T_NATIVE_DOUBLE, zeros.data());
+    H5Aclose(a), H5Sclose(s), H5Gclose(g);
+  });
+  EXPECT_NE(read_error(p).find("attribute time is not a floating-point number (one value)"), std::string::npos) << read_error(p);
+  write_checkpoint_file(p, sample(1.0));
+  edit_file(p, [](hid_t f) {
+    const hid_t d = H5Dopen2(f, "/tables/u/ids", H5P_DEFAULT);
+    const long long ids[3] = {3, 3, 7};
+    H5Dwrite(d, H5T_NATIVE_LLONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, ids);
+    H5Dclose(d);
+  });
+  EXPECT_NE(read_error(p).find("/tables/u/ids: id 3 appears twice"), std::string::npos) << read_error(p);
 }
