@@ -341,6 +341,9 @@ class DeckReader {
 // a few more); kMaxNesting leaves ample room and stays far from the stack's limit.
 
 constexpr int kMaxNesting = 64;
+// The most steps a procedure may take (all stages together): the run counts steps and
+// attempts in int, and caps the attempts at 100 x steps + 1000 (Stepping->max steps).
+constexpr long long kMaxTotalSteps = 20000000;
 
 void DeckReader::check_nesting() const {
   std::ifstream in(cfg_.deck_path, std::ios::binary);
@@ -1646,7 +1649,7 @@ void DeckReader::read_stages(const ParameterList& pl, const ParameterList* stepp
   for (const auto& l : cfg_.loads) load_names.push_back(l.name);
   for (const auto& c : cfg_.contact) pair_names.push_back(c.name);
   double t = 0.0;
-  int total = 0;
+  long long total = 0;
   for (auto it = pl.begin(); it != pl.end(); ++it) {
     const std::string& name = pl.name(it);
     const std::string path = "Stages->" + name;
@@ -1660,6 +1663,9 @@ void DeckReader::read_stages(const ParameterList& pl, const ParameterList* stepp
     if (has_d == has_e) fail(quoted(path) + " needs exactly one of 'duration' and 'end time'" + (has_d ? ", not both" : ""));
     st.end = has_d ? t + get_double(sub, ls, "duration") : get_double(sub, ls, "end time");
     if (!(st.end > t)) fail(quoted(path + "->end time") + " must be after the previous stage's end " + num(t) + ", got " + num(st.end));
+    if (!std::isfinite(st.end) || st.end > 1e300)
+      fail(quoted(path) + ": the stage ends at " + num(st.end) + " (the previous end " + num(t) + " plus its duration); the procedure's "
+           "times must stay finite, at most 1e300 s");
     if (sub.isParameter("steps") && sub.isParameter("step")) fail(quoted(path) + " takes 'steps' or 'step', not both");
     st.num_steps = get_int(sub, ls, "steps");
     if (sub.isParameter("step")) {
@@ -1694,6 +1700,9 @@ void DeckReader::read_stages(const ParameterList& pl, const ParameterList* stepp
     if (sub.isSublist("Ramps")) read_stage_ramps(sub.sublist("Ramps"), path + "->Ramps", k);
     t = st.end;
     total += st.num_steps;
+    if (total > kMaxTotalSteps)
+      fail("the stages up to " + quoted(path) + " take " + std::to_string(total) + " steps in all; at most " +
+           std::to_string(kMaxTotalSteps) + " (the step counter's range): use fewer steps or larger 'step's");
   }
   if (cfg_.stages.empty()) fail("'Stages' defines no stage; add one sublist per stage or remove 'Stages'");
   // Held values: the factor at the end of the stage before (0 before the first).
@@ -1710,7 +1719,7 @@ void DeckReader::read_stages(const ParameterList& pl, const ParameterList* stepp
     fill_held(c.radius_ramp);
   }
   cfg_.stepping.end_time = t;
-  cfg_.stepping.num_steps = total;
+  cfg_.stepping.num_steps = static_cast<int>(total);
 }
 
 Config DeckReader::read() {
@@ -1765,6 +1774,9 @@ Config DeckReader::read() {
   std::string& dir = cfg_.output.directory;
   for (std::size_t at = dir.find("{deck}"); at != std::string::npos; at = dir.find("{deck}", at + stem.size()))
     dir.replace(at, 6, stem);
+  if (cfg_.stages.empty() && cfg_.stepping.num_steps > kMaxTotalSteps)
+    fail("'Stepping->steps' = " + std::to_string(cfg_.stepping.num_steps) + " exceeds " + std::to_string(kMaxTotalSteps) +
+         " (the step counter's range)");
   const double step = cfg_.stepping.end_time / cfg_.stepping.num_steps;
   if (cfg_.stages.empty())
     check_step(step, cfg_.stepping.end_time, "the step 'Stepping->end time' / 'Stepping->steps'");
