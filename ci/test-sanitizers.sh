@@ -2,8 +2,8 @@
 # AddressSanitizer + UndefinedBehaviorSanitizer: builds stentor and a few test programs
 # with -fsanitize=address,undefined in their own folder (build-asan, Release + -g1), then runs a
 # small meaningful subset: the cli.corpus subset (hostile decks and meshes), some
-# bad-input cases, unit tests (deck, io, material), one contact and one plastic system
-# test. Exit 1 on any sanitizer report (or failed test).
+# bad-input cases, the hostile checkpoints (restart_hostile.sh), unit tests (deck, io,
+# checkpoint, material), one contact and one plastic system test. Exit 1 on any sanitizer report (or failed test).
 #   STENTOR_ASAN_BUILD_DIR  build folder (default build-asan)
 #   STENTOR_JOBS            parallel compile jobs (default 2)
 # Cold time on the 2-core development machine: see docs/robustness.md.
@@ -19,7 +19,7 @@ if [ ! -f "$B/build.ninja" ]; then
         -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" > "$B/configure.log" 2>&1 \
     || { cat "$B/configure.log"; exit 1; }
 fi
-tests="test_deck test_io test_checkpoint test_ciarlet_geymonat test_plasticity test_contact test_plasticity_fe test_mortar"
+tests="test_deck test_io test_checkpoint test_ciarlet_geymonat test_plasticity test_contact test_plasticity_fe test_mortar checkpoint_edit"
 # gtest_discover_tests runs each test program after linking (--gtest_list_tests): without
 # this, LeakSanitizer reports Open MPI's allocations there and fails the build.
 export ASAN_OPTIONS=detect_leaks=0
@@ -59,6 +59,10 @@ run test_plasticity_fe ./test_plasticity_fe --gtest_filter="${STENTOR_ASAN_PLAST
 asan_skip='^(?!geo_(huge_list|mesh_size_factor|mesh_size_field|mesh_size_min_max|mesh_transfinite|mesh_layers|mesh_min_curve_points|mesh_threads|mesh_smoothing)$)'
 run cli_corpus bash "$src/tests/cli/corpus/corpus.sh" ./stentor "$src/inputs" "$PWD/asan-corpus" \
     --subset 24 --jobs 2 --mem-mb 0 --timeout 90 --match "$asan_skip"
+# Hostile checkpoints (hand-edited, bit-flipped, truncated, reshaped): read by the
+# sanitized stentor, each must end in exit 2 naming the dataset, no report.
+run cli_restart_hostile bash "$src/tests/cli/restart_hostile.sh" "$PWD/stentor" "$PWD/tests/cli/checkpoint_edit" \
+    "$(command -v mpirun)" -np "$PWD/asan-hostile" "$src/tests/cli/decks/restart_bars.xml" 1
 # Bad inputs, run as a user would (some, like a non-finite initial energy, are only
 # found when the run starts): exit 2 expected.
 rm -rf asan-out && mkdir -p asan-out
@@ -67,7 +71,7 @@ for c in bad_wrong_type bad_contact_group bad_geo_systemcall bad_node_count bad_
 done
 cd "$src"
 # A report anywhere (also in a corpus case's stderr) fails the script.
-reports=$(grep -rlE "ERROR: AddressSanitizer|runtime error:|ERROR: LeakSanitizer" "$log" "$B/asan-corpus" 2>/dev/null)
+reports=$(grep -rlE "ERROR: AddressSanitizer|runtime error:|ERROR: LeakSanitizer" "$log" "$B/asan-corpus" "$B/asan-hostile" 2>/dev/null)
 [ -n "$reports" ] && fails+=("sanitizer reports in: $reports")
 echo "[asan] total: $(( $(date +%s) - t0 )) s"
 if [ ${#fails[@]} -gt 0 ]; then

@@ -360,6 +360,9 @@ MESH_DECK = """<ParameterList name="stentor">
 #   tmpfs=BYTES    the run writes into a tmpfs of that size (skipped where mount fails)
 #   timeout=S      a longer wall-clock limit for this case
 #   slow           run only with run_corpus.py --slow (it takes minutes by design)
+#   prepare=KIND   run_corpus.py makes the case's folder hostile first (prepare_folder:
+#                  links, planted manifests) or fuzzes a checkpoint to restart from
+#                  (prepare=ckpt_*: fuzz_checkpoint)
 # Injected commands try to create PWNED_<case> files: relative to the working folder
 # of whatever runs them, and in the corpus' sentinel folder (absolute, and through
 # $PWN_DIR, which run_corpus.py points at it). run_corpus.py asserts none appears.
@@ -908,6 +911,23 @@ def write_failure_cases(mesh):
     return out
 
 
+def output_trust_cases(mesh):
+    """Links in and around the output folder, planted and malformed manifests, fuzzed
+    checkpoints (prepared by run_corpus.py: prepare_folder, fuzz_checkpoint)."""
+    st = set_path(STATIC_DECK.format(mesh=mesh), "Stepping->steps", "int", "3")
+    ck = set_path(st, "Output->checkpoint every", "int", "1")
+    out = []
+    for kind in ("lock_link", "lock_dangling", "partial_link", "manifest_link", "manifest_planted", "manifest_v2_wrong_hash",
+                 "manifest_forged_names", "manifest_garbage"):
+        out.append((f"trust_{kind}", "output-trust", st, ["--output", "out"], f"run prepare={kind}"))
+    out.append(("trust_result_link", "output-trust", st, ["--overwrite", "--output", "out"], "run np2 prepare=result_link"))
+    for kind in ("truncated", "bitflip", "nan", "one_column", "int_values", "huge_rows", "time_array", "time_nan", "step_huge",
+                 "ids_negative", "no_tables"):
+        np2 = " np2" if kind in ("bitflip", "one_column", "time_array") else ""
+        out.append((f"ckpt_{kind}", "checkpoint-fuzz", ck, ["--output", "out"], f"run{np2} prepare=ckpt_{kind} timeout=40"))
+    return out
+
+
 def issue16_cases(inputs, out_dir, meshdir):
     """All the issue-16 classes: (name, kind, deck text, args, flags)."""
     sentinel = os.path.join(os.path.abspath(out_dir), "sentinel")
@@ -926,6 +946,7 @@ def issue16_cases(inputs, out_dir, meshdir):
     cases += solver_cases(mesh)
     cases += concurrent_cases(mesh, out_dir)
     cases += write_failure_cases(mesh)
+    cases += output_trust_cases(mesh)
     return cases
 
 

@@ -13,7 +13,10 @@ outlives it). Where --check passes and the case is cheap to run (flag `run`, or 
 derived from block2d, a .msh case, an output-folder / mesh-size case) a real run
 follows under the same limits. Cases flagged `concurrent=N` start N runs into one
 folder at once; `failwrite=`, `fsize=`, `tmpfs=` make the run's writes fail (the test
-hook STENTOR_TEST_FAIL_WRITE, a file size limit, a small tmpfs where mount works).
+hook STENTOR_TEST_FAIL_WRITE, a file size limit, a small tmpfs where mount works);
+`prepare=KIND` makes the case's folder hostile first (links in and around the output
+folder, planted or malformed manifests) or restarts from a fuzzed checkpoint
+(`prepare=ckpt_*`); the user's files it plants in the output folder must survive.
 
 Outcomes:
   good       exit 2 or 3 and stderr (for 3 also the log's FAILED line) names the deck,
@@ -333,12 +336,21 @@ def check_results(folder):
                 if not (data.startswith(b"\x89PNG\r\n\x1a\n") and data.endswith(b"IEND\xaeB`\x82")):
                     corrupt = corrupt or f"{n} is not a whole PNG ({len(data)} bytes)"
     manifest = os.path.join(folder, "stentor-manifest.txt")
-    if os.path.exists(manifest):
+    if os.path.exists(manifest):  # "<size>[+] <FNV-1a> <%XX-encoded name>" lines (src/io/OutputDir.cpp)
         with open(manifest, errors="replace") as f:
             for line in f:
-                line = line.strip()
-                if line and not line.startswith("#") and line not in names:
-                    corrupt = corrupt or f"the manifest lists {line}, which is missing"
+                m = re.match(r"^(\d+)(\+?) ([0-9a-f]{16}) (\S+)$", line.rstrip("\n"))
+                if not m:
+                    continue
+                name = re.sub(r"%([0-9A-Fa-f]{2})", lambda x: chr(int(x.group(1), 16)), m.group(4))
+                path = os.path.join(folder, name)
+                if name not in names:
+                    corrupt = corrupt or f"the manifest lists {name}, which is missing"
+                elif not m.group(2):
+                    with open(path, "rb") as g:
+                        data = g.read()
+                    if len(data) != int(m.group(1)) or f"{fnv1a(data):016x}" != m.group(3):
+                        corrupt = corrupt or f"the manifest's size or hash of {name} does not match the file"
     return nonfinite, corrupt, unscanned
 
 
@@ -377,6 +389,139 @@ def classify(rc, err, deck, args):
 
 # ------------------------------------------------------------------------ a case
 
+# ------------------------------------------------------------ prepared folders (prepare=KIND)
+# The case's folder is made hostile before the run: links in and around the output folder,
+# planted or malformed manifests, a fuzzed checkpoint to restart from. Returns the extra
+# arguments and the files (path -> bytes) that must hold the same bytes after the run:
+# the user's files inside the output folder (outside it, the folder snapshot checks).
+
+def fnv1a(data, h=0xcbf29ce484222325):
+    for b in data:
+        h = ((h ^ b) * 0x100000001b3) & 0xFFFFFFFFFFFFFFFF
+    return h
+
+
+def manifest_v2(entries):
+    """A well-formed manifest (src/io/OutputDir.cpp) listing (size, hash, encoded name)."""
+    text = "# planted\nstentor-manifest 2\n" + "".join(f"{n} {h} {e}\n" for n, h, e in entries)
+    return text + f"end {fnv1a(text.encode()):016x}\n"
+
+
+def user_file(path, text, protected):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write(text)
+    protected[path] = text.encode()
+
+
+def prepare_folder(kind, work, out, protected):
+    victim = os.path.join(work, "victim.txt")
+    with open(victim, "w") as f:
+        f.write("a file outside the output folder\n")
+    if kind == "lock_link":
+        os.makedirs(out + ".partial")
+        os.symlink(victim, os.path.join(out + ".partial", ".stentor.lock"))
+    elif kind == "lock_dangling":
+        os.makedirs(out + ".partial")
+        os.symlink(os.path.join(work, "new_file_outside"), os.path.join(out + ".partial", ".stentor.lock"))
+    elif kind == "partial_link":
+        os.makedirs(os.path.join(work, "victimdir"))
+        user_file(os.path.join(work, "victimdir", "keep.txt"), "mine\n", protected)
+        os.symlink(os.path.join(work, "victimdir"), out + ".partial")
+    elif kind == "result_link":  # with --overwrite: the link is replaced, never written through
+        user_file(os.path.join(out, "notes.txt"), "mine\n", protected)
+        os.symlink(victim, os.path.join(out, "st_history.csv"))
+    elif kind == "manifest_link":
+        user_file(os.path.join(out, "a.txt"), "mine\n", protected)
+        with open(os.path.join(work, "list.txt"), "w") as f:
+            f.write("a.txt\n")
+        os.symlink(os.path.join(work, "list.txt"), os.path.join(out, "stentor-manifest.txt"))
+    elif kind == "manifest_planted":
+        user_file(os.path.join(out, "a.txt"), "mine\n", protected)
+        user_file(os.path.join(out, "st_history.csv"), "my own table\n", protected)
+        user_file(os.path.join(out, "stentor-manifest.txt"), "# Stentor results folder\na.txt\nst_history.csv\n", protected)
+        del protected[os.path.join(out, "stentor-manifest.txt")]  # the run may replace the manifest itself
+    elif kind == "manifest_v2_wrong_hash":
+        user_file(os.path.join(out, "st_history.csv"), "my own table\n", protected)
+        user_file(os.path.join(out, "a.txt"), "mine\n", protected)
+        with open(os.path.join(out, "stentor-manifest.txt"), "w") as f:
+            f.write(manifest_v2([(13, "0123456789abcdef", "st_history.csv"), (5, "0123456789abcdef", "a.txt")]))
+    elif kind == "manifest_forged_names":
+        user_file(os.path.join(out, "a.txt"), "mine\n", protected)
+        h = f"{fnv1a(open(victim, 'rb').read()):016x}"
+        size = os.path.getsize(victim)
+        with open(os.path.join(out, "stentor-manifest.txt"), "w") as f:
+            f.write(manifest_v2([(size, h, "..%2Fvictim.txt"), (size, h, "%2Fetc%2Fhostname"), (0, h, "."), (5, h, "a.txt%00")]))
+    elif kind == "manifest_garbage":
+        user_file(os.path.join(out, "a.txt"), "mine\n", protected)
+        with open(os.path.join(out, "stentor-manifest.txt"), "wb") as f:
+            f.write(b"stentor-manifest 2\n" + os.urandom(4096) + b"\n" + b"9" * 100000 + b" x a.txt\nend 0\n")
+    else:
+        raise ValueError(f"unknown prepare kind {kind}")
+
+
+def fuzz_checkpoint(kind, src, dst):
+    """A copy of checkpoint `src` at `dst`, damaged as `kind` says."""
+    data = bytearray(open(src, "rb").read())
+    if kind == "truncated":
+        data = data[: len(data) // 2]
+    elif kind == "bitflip":  # a byte of the u values (the file's last quarter without h5py)
+        at = len(data) * 3 // 4
+        if h5py is not None:
+            with h5py.File(src, "r") as f:
+                at = f["tables/u/values"].id.get_offset() + 5
+        data[at] ^= 0x10
+    with open(dst, "wb") as f:
+        f.write(data)
+    if kind in ("truncated", "bitflip") or h5py is None:
+        return
+    with h5py.File(dst, "r+") as f:
+        if kind == "nan":
+            v = f["tables/u/values"]
+            v[0, 0] = float("nan")
+        elif kind == "one_column":
+            v = f["tables/u/values"][...]
+            del f["tables/u/values"]
+            f["tables/u/values"] = v[:, :1]
+        elif kind == "int_values":
+            v = f["tables/u/values"][...]
+            del f["tables/u/values"]
+            f["tables/u/values"] = v.astype("i8")
+        elif kind == "huge_rows":
+            del f["tables/u/values"]
+            f.create_dataset("tables/u/values", shape=(10 ** 12, 2), dtype="f8")
+        elif kind == "time_array":
+            del f["reals"].attrs["time"]
+            f["reals"].attrs["time"] = numpy.zeros(1000)
+        elif kind == "time_nan":
+            f["reals"].attrs["time"] = float("nan")
+        elif kind == "step_huge":
+            f["ints"].attrs["step"] = numpy.int64(2 ** 40)
+        elif kind == "ids_negative":
+            f["tables/u/ids"][0] = -1
+        elif kind == "no_tables":
+            del f["tables"]
+        else:
+            raise ValueError(f"unknown checkpoint fuzz {kind}")
+
+
+def prepare_case(case, work, out, opts, env, timeout):
+    """(extra args, protected files) for a case flagged prepare=KIND."""
+    kind = flag(case, "prepare")
+    protected = {}
+    if not kind.startswith("ckpt_"):
+        prepare_folder(kind, work, out, protected)
+        return [], protected
+    # A checkpoint of the deck (checkpoint every step), fuzzed, to restart from.
+    ck = os.path.join(work, "ck")
+    invoke([opts.stentor, "--output", ck, case["deck"]], work, opts, env, timeout)
+    src = os.path.join(ck, "st_checkpoint.h5")
+    dst = os.path.join(work, "in_checkpoint.h5")
+    if os.path.isfile(src):
+        fuzz_checkpoint(kind[len("ckpt_"):], src, dst)
+    return ["--restart", dst], protected
+
+
 def run_case(case, opts, ranks=1):
     name = case["name"]
     work = os.path.join(opts.work, name + ("@np2" if ranks == 2 else ""))
@@ -409,7 +554,12 @@ def run_case(case, opts, ranks=1):
         if "--output" not in args:
             out = out if mount else os.path.join(work, "out")
             args = ["--output", out] + args
-    allowed = {out, out + ".partial", out + ".old", os.path.join(work, "tmp")}
+    protected = {}
+    if flag(case, "prepare") is not None:
+        extra, protected = prepare_case(case, work, out, opts, env, timeout)
+        args = args + extra
+    allowed = {out, out + ".partial", out + ".old", os.path.join(work, "tmp"), os.path.join(work, "ck"),
+               os.path.join(work, "ck.partial")}
     if mount:
         allowed.add(mount)
     before = snapshot(work, allowed)
@@ -457,6 +607,13 @@ def run_case(case, opts, ranks=1):
                     res["findings"].append(("nonfinite", nonfinite))
                 if corrupt:
                     res["findings"].append(("corrupt", corrupt))
+        for path, data in protected.items():  # the user's files inside the output folder
+            try:
+                same = not os.path.islink(path) and open(path, "rb").read() == data
+            except OSError:
+                same = False
+            if not same:
+                res["findings"].append(("outside", f"the user's {os.path.relpath(path, work)} was changed or removed"))
         after = snapshot(work, allowed)
         outside = changed(before, after, work, allowed)
         if outside:
@@ -637,6 +794,7 @@ def main():
         runnable = [c for c in cases if flag(c, "run") is not None and flag(c, "fsize") is None]
         step = max(1, len(runnable) // opts.np2)
         jobs += [(c, 2) for c in runnable[::step][: opts.np2]]
+        jobs += [(c, 2) for c in cases if flag(c, "np2") is not None and (c, 2) not in jobs]
     with concurrent.futures.ThreadPoolExecutor(opts.jobs) as pool:
         results = list(pool.map(lambda j: run_case(j[0], opts, j[1]), jobs))
     corpus_changes = changed(corpus_before, snapshot(opts.corpus, {opts.sentinel}))
