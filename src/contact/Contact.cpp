@@ -1090,7 +1090,7 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
   auto uh = u_np1.getLocalViewHost(Tpetra::Access::ReadOnly);
   if (has_master_) update_master_positions(u_np1, master_x_);
   const std::size_t np = pairs_.size();
-  std::vector<double> loc(np * 6 + 2, 0.0), glob(loc.size(), 0.0), mloc(np, 1e300), mglob(np, 0.0);
+  std::vector<double> loc(np * 6 + 3, 0.0), glob(loc.size(), 0.0), mloc(np, 1e300), mglob(np, 0.0);
   for (std::size_t i = 0; i < np; ++i) {
     auto& p = pairs_[i];
     if (p.mortar)
@@ -1138,6 +1138,7 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
       }
       nd.d_prev = nd.d_n;
       nd.d_n = d;
+      loc[6 * np + 2] += nd.was_active != (nd.state >= contact::Stick);
       nd.was_active = nd.state >= contact::Stick;
     }
   }
@@ -1156,6 +1157,7 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
   }
   s.work = glob[6 * np];
   s.friction_dissipation = glob[6 * np + 1];
+  s.events = static_cast<long>(glob[6 * np + 2]);
   return s;
 }
 

@@ -105,6 +105,7 @@ class Contact {
     std::vector<PairStats> pairs;
     double work = 0.0;                 // normal work of the contact forces over the step (both bodies; + tangential work of a moving obstacle)
     double friction_dissipation = 0.0; // -F_tau . rel_tau >= 0 over the step
+    long events = 0;                   // nodes that entered or left contact over the step
   };
   // Global set sizes of the last apply() (collective), e.g. "contact 3 active (1 stick, 2 slip)".
   std::string iteration_summary() const;

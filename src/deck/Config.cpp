@@ -1337,6 +1337,11 @@ void DeckReader::read_stepping(const ParameterList& pl) {
   cfg_.stepping.num_steps = get_int(pl, ls, "steps");
   cfg_.stepping.max_cutbacks = get_int(pl, ls, "max cutbacks");
   cfg_.stepping.growth = get_double(pl, ls, "growth");
+  cfg_.stepping.target_iterations = get_int(pl, ls, "target iterations");
+  if (cfg_.stepping.target_iterations > 0 && cfg_.stepping.target_iterations < 4)
+    fail("'Stepping->target iterations' = " + std::to_string(cfg_.stepping.target_iterations) +
+         ": must be 0 (off) or at least 4 (a Newton solve to the tolerances takes 2 to 3 iterations, so a smaller target "
+         "would shrink every step)");
   cfg_.stepping.predictor = get_string(pl, ls, "predictor");
   cfg_.stepping.min_dt = get_double(pl, ls, "min dt");
   cfg_.stepping.max_steps = get_int(pl, ls, "max steps");

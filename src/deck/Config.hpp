@@ -130,6 +130,7 @@ struct SteppingConfig {
   int num_steps = 1;       // "Stepping"->"steps" >= 1 (initial step = end time / steps)
   int max_cutbacks = 6;    // "Stepping"->"max cutbacks" >= 0: halvings of a failed step in a row before giving up
   double growth = 1.5;     // "Stepping"->"growth" in [1, 4]: step growth per accepted step, up to end time / steps
+  int target_iterations = 0;  // "Stepping"->"target iterations": the step follows Newton's iterations (0: off, StepControl)
   double min_dt = 0.0;     // "Stepping"->"min dt": smallest step (0: 1e-6 x end time / steps, see min_step())
   int max_steps = 0;       // "Stepping"->"max steps": cap on steps tried (0: 100 x steps + 1000, see step_cap())
   std::string predictor = "auto";  // "Stepping"->"predictor": auto | none | velocity | lifting (Newton's first iterate)

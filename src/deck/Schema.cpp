@@ -318,6 +318,15 @@ std::vector<ListSpec> build_schema() {
        dbl("growth", 1.5, "Factor by which the step grows after each accepted step until it is the deck's step again.")
            .ge(1.0)
            .le(4.0),
+       integer("target iterations", 0,
+               "Newton iterations a step should take: 0 (off) or at least 4 (a solve to the tolerances takes 2 to 3). "
+               "With T > 0 the step follows the solve (Crisfield's rule): after a step that took n iterations the next is "
+               "sqrt(T / n) times it, between 1/2 and `growth`, never above the deck's step, and not larger after a step "
+               "in which a contact node entered or left contact; "
+               "each change is printed with its reason, and the history CSV's `dt` column holds the steps taken. "
+               "Contact scenes: docs/contact.md, \"Step size\".")
+           .ge(0)
+           .le(1000),
        dbl("min dt", 0.0, "Smallest step [s]: a cut-back below it ends the run (exit 3). 0: 1e-6 x (end time / steps).")
            .ge(0.0)
            .dflt_doc("`0` (1e-6 x end time / steps)"),

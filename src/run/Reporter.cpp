@@ -560,6 +560,10 @@ void Reporter::cutback_line(const RunState& s, double t_new, const NewtonResult&
   out_ << "  step " << s.step + 1 << " t=" << fmt_time(t_new) << ": " << nr.failure << "; cutting dt to " << fmt_time(dt_new) << std::endl;
 }
 
+void Reporter::step_size_line(double dt_old, double dt_new, const std::string& why) {
+  out_ << "  dt " << fmt_time(dt_old) << " -> " << fmt_time(dt_new) << ": " << why << std::endl;
+}
+
 std::vector<double> Reporter::displacement_on_root(const la::Vector& u) {
   if (!gather_) {  // every dof (each owned once) on rank 0, in dof (= mesh node) order
     std::vector<long long> owned;  // the owned map's dofs

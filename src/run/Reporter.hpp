@@ -61,6 +61,8 @@ class Reporter {
   // not finite; then the wall time so far and an estimate of the time left.
   void step_line(const RunState& s, const StepRecord& rec, double energy);
   void cutback_line(const RunState& s, double t_new, const NewtonResult& nr, double dt_new);
+  // The step controller changed the step after an accepted step (Stepping->target iterations).
+  void step_size_line(double dt_old, double dt_new, const std::string& why);
 
   // Every rank: the displacement, 3 per mesh node (collective).
   std::vector<double> displacement(const la::Vector& u);

@@ -2,19 +2,26 @@
 // controller, the cumulative energy terms and the counters of the summary.
 #pragma once
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "parallel/LinearAlgebra.hpp"
 
 namespace stentor {
 
-// Step size: starts at the deck's step (the target); a failed step is retried with half
-// the step tried, at most `max_cutbacks` times in a row and never below `min_dt`; each
-// accepted step lets the step grow by `growth` again, up to the target.
+// Step size: starts at the deck's step (the target, also the upper bound); a failed step
+// is retried with half the step tried, at most `max_cutbacks` times in a row and never
+// below `min_dt`. After an accepted step:
+//  - without a target iteration count, the step grows by `growth`, up to the target;
+//  - with one (Stepping->target iterations = T > 0) the step follows the solve (Crisfield's
+//    rule for load increments): a step that took n Newton iterations scales the next by
+//    sqrt(T / n), between 1/2 and `growth`, up to the target; a step that changed a contact
+//    node's set does not let it grow (the contact is moving: another change is likely).
+//    The reason of each change is kept for the log (reason()).
 class StepControl {
  public:
-  StepControl(double target, int max_cutbacks, double growth, double min_dt)
-      : target_(target), dt_(target), growth_(growth), min_dt_(min_dt), max_cutbacks_(max_cutbacks) {}
+  StepControl(double target, int max_cutbacks, double growth, double min_dt, int target_iterations = 0)
+      : target_(target), dt_(target), growth_(growth), min_dt_(min_dt), max_cutbacks_(max_cutbacks), target_iterations_(target_iterations) {}
   // The step to try next, never past the end of the interval (`remaining`).
   double propose(double remaining) {
     tried_ = std::min(dt_, remaining);
@@ -37,10 +44,28 @@ class StepControl {
     min_dt_ = min_dt;
     consecutive_ = 0;
   }
-  void accepted() {
-    dt_ = std::min(target_, growth_ * dt_);
+  // An accepted step that took `iterations` Newton iterations and changed the set of
+  // `events` contact nodes (entered or released).
+  void accepted(int iterations = 0, long events = 0) {
     consecutive_ = 0;
+    reason_.clear();
+    if (target_iterations_ <= 0) {
+      dt_ = std::min(target_, growth_ * dt_);
+      return;
+    }
+    const double before = dt_;
+    const double f = std::sqrt(double(target_iterations_) / std::max(iterations, 1));
+    if (f < 1.0) {
+      dt_ = std::max(min_dt_, std::max(0.5, f) * std::min(dt_, tried_));
+      reason_ = std::to_string(iterations) + " Newton iterations > target " + std::to_string(target_iterations_);
+    } else if (f > 1.0 && events == 0) {
+      dt_ = std::min(target_, std::min(growth_, f) * dt_);
+      reason_ = std::to_string(iterations) + " Newton iterations < target " + std::to_string(target_iterations_);
+    }
+    if (dt_ == before) reason_.clear();
   }
+  // Why the last accepted() changed the step ("" when it did not, or without a target).
+  const std::string& reason() const { return reason_; }
   // Restart: the controller's state (growth and the cut-back limit come from the deck).
   struct Saved {
     double target, dt, min_dt;
@@ -60,7 +85,9 @@ class StepControl {
  private:
   double target_, dt_, tried_ = 0.0, growth_, min_dt_;
   int max_cutbacks_;
+  int target_iterations_ = 0;
   int consecutive_ = 0, total_ = 0;
+  std::string reason_;
 };
 
 // Cumulative energy terms of a dynamic run (written per step to <basename>_energy.csv).

@@ -110,7 +110,7 @@ double check_step(const Config& cfg) {
 // stage restarts it with its own step).
 RunState fresh_state(const Model& model) {
   const SteppingConfig& st = model.cfg.stepping;
-  return RunState(model.dist->owned_map(), StepControl(st.end_time / st.num_steps, st.max_cutbacks, st.growth, st.min_step()));
+  return RunState(model.dist->owned_map(), StepControl(st.end_time / st.num_steps, st.max_cutbacks, st.growth, st.min_step(), st.target_iterations));
 }
 
 // --check: every check a run makes before its first step, and nothing written: the names
@@ -187,7 +187,9 @@ bool accept_step(Run& r, double dt, const NewtonResult& nr, double end) {
   const auto& out = r.model.cfg.output;
   if (out.fields && (s.step % out.every == 0 || last || output_time_reached(r.model.cfg, t0, s.t)))
     r.reporter.write_fields(s.t, s.u);
-  s.control.accepted();
+  const double dt_next = s.control.next();
+  s.control.accepted(rec.newton.iterations, rec.contact.events);
+  if (!s.control.reason().empty()) r.reporter.step_size_line(dt_next, s.control.next(), s.control.reason());
   if (out.checkpoint_every > 0 && (s.step % out.checkpoint_every == 0 || last)) checkpoint(r);
   return true;
 }

@@ -781,6 +781,10 @@ TEST_F(Deck, OtherRangesAndChoices) {
                        "</ParameterList>\n" + newton),
                {"'Stepping->end time' must be > 0, got 0"});
   expect_error(replace(kMinimalDeck, newton,
+                       "<ParameterList name=\"Stepping\"><Parameter name=\"target iterations\" type=\"int\" value=\"2\"/>"
+                       "</ParameterList>\n" + newton),
+               {"'Stepping->target iterations' = 2: must be 0 (off) or at least 4"});
+  expect_error(replace(kMinimalDeck, newton,
                        "<ParameterList name=\"Linear Solver\"><Parameter name=\"method\" type=\"string\" value=\"gmrs\"/>"
                        "</ParameterList>\n" + newton),
                {"'Linear Solver->method' must be one of gmres, direct; got 'gmrs'; did you mean 'gmres'?"});

@@ -21,6 +21,7 @@
 
 #include "RelDiff.hpp"
 #include "deck/Config.hpp"
+#include "run/RunState.hpp"
 #include "run/Simulation.hpp"
 #include "solver/LinearSolver.hpp"
 #include "solver/ReusePolicy.hpp"
@@ -681,4 +682,75 @@ TEST(Newton, TinyLoadsConvergeToMachinePrecision) {
     EXPECT_LT(diff, (f > 1e-4 ? 3e-6 : 1e-4) * scale) << load;
     EXPECT_NEAR(r.reactions.front()[0], -f, (f > 1e-4 ? 1e-6 : 1e-3) * f) << load;
   }
+}
+
+// Stepping->target iterations: the step follows Newton's iteration count (Crisfield's rule).
+// A step that took n iterations scales the next by sqrt(T / n), between 1/2 and `growth`,
+// up to the deck's step, and not up when the contact set changed in it; each change says
+// why. Without a target the step grows after every step.
+TEST(StepControl, FollowsNewtonIterations) {
+  StepControl c(0.1, 6, 1.5, 1e-6, 6);
+  EXPECT_DOUBLE_EQ(c.propose(1.0), 0.1);
+  c.accepted(12, 0);  // sqrt(6 / 12)
+  double dt = 0.1 * std::sqrt(0.5);
+  EXPECT_DOUBLE_EQ(c.next(), dt);
+  EXPECT_NE(c.reason().find("12 Newton iterations > target 6"), std::string::npos) << c.reason();
+  c.propose(1.0);
+  c.accepted(30, 0);  // sqrt(6 / 30) = 0.45, limited to 1/2
+  dt *= 0.5;
+  EXPECT_DOUBLE_EQ(c.next(), dt);
+  c.propose(1.0);
+  c.accepted(6, 0);  // on target: kept, nothing to say
+  EXPECT_DOUBLE_EQ(c.next(), dt);
+  EXPECT_TRUE(c.reason().empty());
+  c.propose(1.0);
+  c.accepted(3, 4);  // easy, but the contact set changed: kept
+  EXPECT_DOUBLE_EQ(c.next(), dt);
+  EXPECT_TRUE(c.reason().empty());
+  c.propose(1.0);
+  c.accepted(4, 0);  // sqrt(6 / 4)
+  dt *= std::sqrt(1.5);
+  EXPECT_DOUBLE_EQ(c.next(), dt);
+  EXPECT_NE(c.reason().find("4 Newton iterations < target 6"), std::string::npos) << c.reason();
+  c.propose(1.0);
+  c.accepted(1, 0);  // sqrt(6), limited to growth = 1.5
+  EXPECT_DOUBLE_EQ(c.next(), 1.5 * dt);
+  for (int k = 0; k < 10; ++k) {  // easy steps grow it back to the deck's step, never past it
+    c.propose(1.0);
+    c.accepted(2, 0);
+  }
+  EXPECT_DOUBLE_EQ(c.next(), 0.1);
+  // A step shortened by the end of the interval that was hard shrinks from what was tried.
+  EXPECT_DOUBLE_EQ(c.propose(0.04), 0.04);
+  c.accepted(24, 0);
+  EXPECT_DOUBLE_EQ(c.next(), 0.02);
+  // Never below the minimum.
+  StepControl floor(0.1, 6, 1.5, 0.08, 6);
+  floor.propose(1.0);
+  floor.accepted(25, 0);
+  EXPECT_DOUBLE_EQ(floor.next(), 0.08);
+  // Without a target: growth after every accepted step, whatever it took.
+  StepControl plain(0.1, 6, 1.5, 1e-6);
+  plain.propose(1.0);
+  ASSERT_EQ(plain.cut(), StepControl::Cut::Ok);
+  plain.propose(1.0);
+  plain.accepted(25, 3);
+  EXPECT_DOUBLE_EQ(plain.next(), 0.075);
+  EXPECT_TRUE(plain.reason().empty());
+}
+
+// The deck's target reaches the run: the 20% stretch in 2 static steps from u_n (predictor
+// none: the first takes 6 iterations) at T = 4 takes more, smaller steps and ends at the
+// same equilibrium (hyperelastic statics do not depend on the path).
+TEST(StepControl, TargetIterationsRefinesTheRunToTheSameSolution) {
+  const std::string none = param("predictor", "string", "none");
+  const RunResult plain = run_block("follow_off", 2, none);
+  const RunResult follow = run_block("follow_on", 2, none + param("target iterations", "int", "4"));
+  ASSERT_TRUE(plain.converged && follow.converged);
+  std::printf("[stepping] target iterations 4: %d steps (%d Newton) against %d steps (%d Newton) without\n", follow.steps,
+              follow.newton_iterations, plain.steps, plain.newton_iterations);
+  EXPECT_EQ(plain.steps, 2);
+  EXPECT_GT(follow.steps, plain.steps);
+  EXPECT_EQ(follow.cutbacks, 0);
+  EXPECT_LT(rel_diff(follow.displacement, plain.displacement), 1e-8);
 }
