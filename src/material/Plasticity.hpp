@@ -336,7 +336,8 @@ struct MultiplicativePlasticity {
     const PlasticState s0 = read_state(hn);
     Step st;
     PointResponse r = update_state<false>(C1, s0, st);
-    const IncrementalPotential<Elastic> pot{*this, s0, inverse(s0.Ftr)};
+    IncrementalPotential<Elastic> pot{*this, s0, inverse(s0.Ftr)};
+    pot.remember(C1, r, st.dgamma);
     r.dissipation = Y * st.dgamma + pot.start_gap(C0);
     if constexpr (WithTangent)
       gonzalez_stress_and_tangent(pot, C0, C1, r.S, D);
@@ -603,18 +604,40 @@ struct IncrementalPotential {
   PlasticState s0;  // h_n
   Mat3 G;           // Ftr_n^-1
   mutable bool converged = true;
+  // The stress-only result at one point (C_{n+1}: dynamic_update's own update), reused by
+  // energy() and stress() there (the same operations: bit for bit what they would compute).
+  Mat3 Ck = Mat3::zero(), Sk = Mat3::zero();
+  double Wk = 0.0;
+  bool cached = false;
 
-  KOKKOS_INLINE_FUNCTION double energy(const Mat3& C) const {
+  KOKKOS_INLINE_FUNCTION void remember(const Mat3& C, const PointResponse& r, double dg) {
+    Ck = C, Sk = r.S, Wk = r.energy + law.Y * dg, cached = true;
+  }
+  // S(C) and W_inc(C) by the stress-only return map from s0.
+  KOKKOS_INLINE_FUNCTION void evaluate(const Mat3& C, Mat3& S, double& W) const {
+    bool same = cached;
+    for (int i = 0; i < 3 && same; ++i)
+      for (int j = 0; j < 3; ++j) same = same && C(i, j) == Ck(i, j);
+    if (same) {
+      S = Sk, W = Wk;
+      return;
+    }
     typename Law::Step st;
     const PointResponse r = law.template update_state<false>(C, s0, st);
     converged = converged && r.converged;
-    return r.energy + law.Y * st.dgamma;
+    S = r.S, W = r.energy + law.Y * st.dgamma;
+  }
+  KOKKOS_INLINE_FUNCTION double energy(const Mat3& C) const {
+    Mat3 S;
+    double W;
+    evaluate(C, S, W);
+    return W;
   }
   KOKKOS_INLINE_FUNCTION Mat3 stress(const Mat3& C) const {
-    typename Law::Step st;
-    const PointResponse r = law.template update_state<false>(C, s0, st);
-    converged = converged && r.converged;
-    return r.S;
+    Mat3 S;
+    double W;
+    evaluate(C, S, W);
+    return S;
   }
   KOKKOS_INLINE_FUNCTION void stress_and_tangent(const Mat3& C, Mat3& S, Ten4& CC) const {
     typename Law::Step st;

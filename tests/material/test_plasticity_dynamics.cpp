@@ -250,7 +250,7 @@ TEST(PlasticDynamics, MomentumStressStaysOnTheYieldSurface) {
     }
     std::printf("[ measured ] mu = %.3g, Y = %.3g, H = %.3g: max (|M(Sigma)|_H - (Y + H alpha))/Y incremental %.2e, lagged %.2e\n",
                 2.0 * (m0.elastic.C1 + m0.elastic.C2), m0.Y, m0.H, over[0], over[1]);
-    EXPECT_GT(over[1], 0.1);  // the lagged step overshoots by more than 10% of Y
-    EXPECT_LT(over[0], 0.1 * over[1]);
+    EXPECT_GT(over[1], 0.1);   // the lagged step overshoots by more than 10% of Y
+    EXPECT_LT(over[0], 1e-4);  // measured <= 7.8e-6 (Gonzalez's O(|dC|^2) correction)
   }
 }

@@ -644,7 +644,7 @@ TEST(PlasticityFE, DynamicImpactMomentumStressAgainstTheYieldSurface) {
     EXPECT_LT(r->balance, 1e-12);
   }
   EXPECT_GT(lag.overshoot, 0.1);
-  EXPECT_LT(inc.overshoot, 1e-2 * lag.overshoot);
+  EXPECT_LT(inc.overshoot, 1e-4);  // measured -4.9e-5: below the surface by the half step's hardening
 }
 
 // ---- Order of the dynamic step in dt on a smooth plastic flow.
@@ -688,11 +688,11 @@ double max_diff(const std::vector<double>& a, const std::vector<double>& b) {
 }  // namespace
 
 // Observed order in dt of the incremental step: the final displacement at 8, 16, 32 steps
-// against 256 steps (4 steps: 4.6e-3 m); the lagged step at 32 steps against the same reference. Measured
-// (incremental: 4.6e-3, 2.0e-3, 7.9e-4, 3.1e-4 m, orders 1.2, 1.4, 1.4; lagged 1.0e-3 m at
-// 32 steps; with 1024 reference steps and 8..64 steps: incremental orders 1.3, 1.3, 1.2,
-// lagged 3.3e-3, 2.1e-3, 1.1e-3, 5.7e-4 m, orders 0.67, 0.89, 0.98): first order (the
-// return map is backward Euler), the incremental step 3-4 times more accurate at equal dt.
+// against 256 steps. Measured: 2.0e-3, 7.9e-4, 3.1e-4 m, orders 1.4, 1.4 (4 steps: 4.6e-3 m;
+// against 1024 steps, 8..64 steps: orders 1.3, 1.3, 1.2; the lagged step 3.3e-3, 2.1e-3,
+// 1.1e-3, 5.7e-4 m against its own 1024 steps, orders 0.67, 0.89, 0.98, and 1.2e-3 m at 32
+// steps against the incremental reference): first order (the return map is backward
+// Euler), the incremental step 3-4 times more accurate at equal dt.
 TEST(PlasticityFE, DynamicStepOrderInTimeOnASmoothPlasticFlow) {
   const std::vector<double> ref = pulled_cube(256, "incremental potential");
   ASSERT_FALSE(ref.empty());
@@ -703,13 +703,8 @@ TEST(PlasticityFE, DynamicStepOrderInTimeOnASmoothPlasticFlow) {
     ASSERT_EQ(u.size(), ref.size());
     e[k] = max_diff(u, ref);
   }
-  const std::vector<double> lag = pulled_cube(32, "lagged");
-  ASSERT_EQ(lag.size(), ref.size());
-  const double el = max_diff(lag, ref);
   std::cout << "[ plastic ] incremental potential: max |u - u_ref| at 8/16/32 steps " << e[1] << " " << e[2] << " " << e[3]
-            << " m; observed orders " << std::log2(e[1] / e[2]) << " " << std::log2(e[2] / e[3]) << "; lagged at 32 steps " << el
-            << " m\n";
+            << " m; observed orders " << std::log2(e[1] / e[2]) << " " << std::log2(e[2] / e[3]) << "\n";
   EXPECT_GT(std::log2(e[1] / e[2]), 0.9);
   EXPECT_GT(std::log2(e[2] / e[3]), 0.9);
-  EXPECT_GT(el, 2.0 * e[3]);
 }
