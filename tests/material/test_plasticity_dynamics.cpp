@@ -4,7 +4,8 @@
 // one-step energy identity with Dp = Y dg >= 0, the tangent D = dSigma/dC1 against central
 // differences (plastic steps, steps crossing the yield surface, both schemes), the elastic
 // steps of the two schemes alike, and the momentum stress against the yield surface along a
-// driven loading path: the lagged step overshoots it, the incremental one does not.
+// driven loading path: the lagged step overshoots it, the incremental one does not; the same
+// identity and tangent for the neo-Hookean plasticity law.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -253,4 +254,65 @@ TEST(PlasticDynamics, MomentumStressStaysOnTheYieldSurface) {
     EXPECT_GT(over[1], 0.1);   // the lagged step overshoots by more than 10% of Y
     EXPECT_LT(over[0], 1e-4);  // measured <= 7.8e-6 (Gonzalez's O(|dC|^2) correction)
   }
+}
+
+// The neo-Hookean plasticity law (the same template over another elastic law): energy
+// identity with Dp = Y dg, and D = dSigma/dC1 against central differences, on random walks.
+TEST(PlasticDynamics, NeoHookeanPlasticityIdentityAndTangent) {
+  using N = stentor::NeoHookeanPlasticity;
+  const N laws[] = {{stentor::NeoHookean{1.0, 1.5}, 0.05, 0.0}, {stentor::NeoHookean{1.0, 1.5}, 0.05, 0.4}};
+  std::mt19937 rng(53);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  double identity = 0.0, tangent = 0.0;
+  int plastic = 0;
+  for (const N& m : laws)
+    for (int w = 0; w < 5; ++w) {
+      double hn[N::kNumHist], h1[N::kNumHist], scratch[N::kNumHist];
+      double* p = hn;
+      stentor::init_history<N>(p);
+      Mat3 F = Mat3::identity();
+      for (int k = 0; k < 15; ++k) {
+        Mat3 F1 = F;
+        do {
+          F1 = F;
+          for (int i = 0; i < 3; ++i)
+            for (int j = 0; j < 3; ++j) F1(i, j) += 0.03 * u(rng);
+        } while (stentor::det(F1) < 0.5);
+        const Mat3 C0 = stentor::right_cauchy_green(F), C1 = stentor::right_cauchy_green(F1);
+        Ten4 D, Dd;
+        const PointResponse r = m.dynamic_update<true>(C0, C1, static_cast<const double*>(hn), static_cast<double*>(h1), D);
+        ASSERT_TRUE(r.converged);
+        const double psi_n = m.frozen_potential(static_cast<const double*>(hn)).energy(C0) +
+                             0.5 * m.H * hn[N::kAlpha] * hn[N::kAlpha];
+        const double dg = h1[N::kAlpha] - hn[N::kAlpha];
+        EXPECT_NEAR(r.dissipation, m.Y * dg, 1e-14 * m.Y);
+        identity = std::fmax(identity, std::fabs(r.energy - psi_n - (0.5 * ddot(r.S, C1 - C0) - r.dissipation)) /
+                                           (std::fabs(psi_n) + std::fabs(r.energy) + r.dissipation));
+        if (dg > 0.0) {
+          ++plastic;
+          const double h = 1e-7;
+          double err = 0.0, ref = 0.0;
+          for (int K = 0; K < 3; ++K)
+            for (int L = K; L < 3; ++L) {
+              const Mat3 E = sym_unit(K, L);
+              const Mat3 Sp = m.dynamic_update<false>(C0, C1 + h * E, static_cast<const double*>(hn), static_cast<double*>(scratch), Dd).S;
+              const Mat3 Sm = m.dynamic_update<false>(C0, C1 - h * E, static_cast<const double*>(hn), static_cast<double*>(scratch), Dd).S;
+              for (int I = 0; I < 3; ++I)
+                for (int J = 0; J < 3; ++J) {
+                  const double an = 0.5 * (D(I, J, K, L) + D(I, J, L, K));
+                  err = std::fmax(err, std::fabs((Sp(I, J) - Sm(I, J)) / (2.0 * h) - an));
+                  ref = std::fmax(ref, std::fabs(an));
+                }
+            }
+          tangent = std::fmax(tangent, err / ref);
+        }
+        F = F1;
+        for (int i = 0; i < N::kNumHist; ++i) hn[i] = h1[i];
+      }
+    }
+  std::printf("[ measured ] neo-Hookean plasticity: energy identity %.2e, |D - FD|/|D| %.2e, %d plastic steps\n", identity,
+              tangent, plastic);
+  EXPECT_GT(plastic, 50);
+  EXPECT_LT(identity, 1e-11);
+  EXPECT_LT(tangent, 1e-5);
 }
