@@ -611,14 +611,11 @@ struct IncrementalPotential {
   bool cached = false;
 
   KOKKOS_INLINE_FUNCTION void remember(const Mat3& C, const PointResponse& r, double dg) {
-    Ck = C, Sk = r.S, Wk = r.energy + law.Y * dg, cached = true;
+    Ck = C, Sk = r.S, Wk = r.energy + law.Y * dg, cached = true, in1 = dg == 0.0;
   }
   // S(C) and W_inc(C) by the stress-only return map from s0.
   KOKKOS_INLINE_FUNCTION void evaluate(const Mat3& C, Mat3& S, double& W) const {
-    bool same = cached;
-    for (int i = 0; i < 3 && same; ++i)
-      for (int j = 0; j < 3; ++j) same = same && C(i, j) == Ck(i, j);
-    if (same) {
+    if (cached && same(C, Ck)) {
       S = Sk, W = Wk;
       return;
     }
@@ -646,17 +643,35 @@ struct IncrementalPotential {
     S = r.S;
     CC = r.CC;
   }
+  // Ce^tr of C inside the yield surface (the trial test of update_state, f^tr <= 0); the
+  // answers at C_n (start_gap) and C_{n+1} (remember: dg = 0, which also counts a trial point
+  // outside by less than the return map's tolerance, 1e-12 of Y, where it does not flow) are
+  // reused.
+  Mat3 C0k = Mat3::zero();
+  int in0 = -1;  // trial test at C0k: 1 inside, 0 outside, -1 not evaluated
+  bool in1 = false;      // at Ck
+  KOKKOS_INLINE_FUNCTION static bool same(const Mat3& a, const Mat3& b) {
+    bool e = true;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) e = e && a(i, j) == b(i, j);
+    return e;
+  }
+  KOKKOS_INLINE_FUNCTION bool inside(const Mat3& C) const {
+    if (cached && same(C, Ck)) return in1;
+    if (in0 >= 0 && same(C, C0k)) return in0 == 1;
+    return law.mandel_hill_norm(tmul(G, matmul(C, G))) - (law.Y + law.H * s0.alpha) <= 0.0;
+  }
   // True where the three samples are elastic (W_inc = the smooth frozen potential there).
   KOKKOS_INLINE_FUNCTION bool smooth_between(const Mat3& C0, const Mat3& C1) const {
-    const double Yn = law.Y + law.H * s0.alpha;
-    const Mat3 Cm = 0.5 * (C0 + C1);
-    return law.mandel_hill_norm(tmul(G, matmul(C0, G))) <= Yn && law.mandel_hill_norm(tmul(G, matmul(Cm, G))) <= Yn &&
-           law.mandel_hill_norm(tmul(G, matmul(C1, G))) <= Yn;
+    return inside(C0) && inside(0.5 * (C0 + C1)) && inside(C1);
   }
   // Psi(C0, h_n) - W_inc(C0) >= 0: 0 when h_n is admissible at C0 (always after a converged step,
   // whose state satisfies the yield condition at C_n); otherwise the algorithmic dissipation of
-  // the return map at C0 minus Y dg, >= 1/2 H dg^2 (Plasticity.hpp header).
-  KOKKOS_INLINE_FUNCTION double start_gap(const Mat3& C0) const {
+  // the return map at C0 minus Y dg, >= 1/2 H dg^2 (Plasticity.hpp header). Call it once.
+  KOKKOS_INLINE_FUNCTION double start_gap(const Mat3& C0) {
+    in0 = inside(C0) ? 1 : 0;
+    C0k = C0;
+    if (in0 == 1) return 0.0;
     typename Law::Step st;
     const PointResponse r = law.template update_state<false>(C0, s0, st);
     converged = converged && r.converged;
