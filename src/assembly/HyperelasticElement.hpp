@@ -111,30 +111,34 @@ KOKKOS_INLINE_FUNCTION void gonzalez_dPdF(const Mat3& Fv, const Mat3& F1, const 
         }
 }
 
-// Energy-dissipative midpoint step of a law with history (docs/plasticity.md): the update
-// at C_{n+1} gives the state h_{n+1}, Psi_{n+1} and D; the stress is Gonzalez's discrete
-// gradient Sigma(C_n, C_{n+1}) of the law's frozen-state potential C -> Psi(C, h_n)
-// (for the plasticity law W(G^T C G), G = Ftr_n^-1), so that
-// Psi_{n+1} - Psi_n = 1/2 Sigma : (C_{n+1} - C_n) - D exactly for a law whose update
-// satisfies the identity of MaterialState.hpp. P = F_{n+1/2} Sigma; Sigma does not depend
-// on the update, so A is the plain Gonzalez one.
+// Energy-dissipative midpoint step of a law with history (docs/plasticity.md, "Dynamics"):
+// the law's own dynamic_update (plasticity: the discrete gradient of the incremental potential,
+// the stress from the return map inside the step) or, for a law without one, the update at
+// C_{n+1} (state h_{n+1}, Psi_{n+1}, D) with Gonzalez's discrete gradient Sigma(C_n, C_{n+1})
+// of the frozen-state potential C -> Psi(C, h_n). Either way
+// Psi_{n+1} - Psi_n = 1/2 Sigma : (C_{n+1} - C_n) - D, P = F_{n+1/2} Sigma and A from
+// D = dSigma/dC_{n+1}.
 template <bool WithTangent, class Law>
 KOKKOS_INLINE_FUNCTION bool history_gonzalez(const Law& law, const Mat3& Fv, const Mat3& F1, const Mat3& C0, const Mat3& C1,
                                              const double* hn, double* h1, double wq, Mat3& P, Ten4& A, double& energy,
                                              double& plastic) {
-  const PointResponse pr = law.template update<false>(C1, hn, h1);  // CC unused: stress-only
+  Ten4 D;
+  PointResponse pr;
+  if constexpr (HasDynamicUpdate<Law>::value) {
+    pr = law.template dynamic_update<WithTangent>(C0, C1, hn, h1, D);
+  } else {
+    pr = law.template update<false>(C1, hn, h1);  // CC unused: stress-only
+    const auto frozen = law.frozen_potential(hn);
+    if (WithTangent)
+      gonzalez_stress_and_tangent(frozen, C0, C1, pr.S, D);
+    else
+      pr.S = gonzalez_stress(frozen, C0, C1);
+  }
   if (!pr.converged) return false;
   energy += wq * pr.energy;
   plastic += wq * pr.dissipation;
-  const auto frozen = law.frozen_potential(hn);
-  Mat3 Sig;
-  Ten4 D;
-  if (WithTangent)
-    gonzalez_stress_and_tangent(frozen, C0, C1, Sig, D);
-  else
-    Sig = gonzalez_stress(frozen, C0, C1);
-  P = matmul(Fv, Sig);
-  if (WithTangent) gonzalez_dPdF(Fv, F1, Sig, D, A);
+  P = matmul(Fv, pr.S);
+  if (WithTangent) gonzalez_dPdF(Fv, F1, pr.S, D, A);
   return true;
 }
 

@@ -899,7 +899,7 @@ void DeckReader::read_fibres(const ParameterList& sub, const ListSpec& ls, const
 }
 
 // The parameters of the laws with Gauss-point history: `yield stress` (required, > 0) and
-// `hardening` of the plasticity models, `saturation damage` and `damage energy scale`
+// `hardening` and `plastic dynamic step` of the plasticity models, `saturation damage` and `damage energy scale`
 // (both required) of neo-Hookean damage; none of them with another model.
 void DeckReader::read_inelastic(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const {
   const auto needs = [&](const char* key, bool ok, const char* models) {
@@ -913,12 +913,14 @@ void DeckReader::read_inelastic(const ParameterList& sub, const ListSpec& ls, co
   };
   needs("yield stress", m.plastic(), "Ciarlet-Geymonat plasticity or neo-Hookean plasticity");
   needs("hardening", m.plastic(), "Ciarlet-Geymonat plasticity or neo-Hookean plasticity");
+  needs("plastic dynamic step", m.plastic(), "Ciarlet-Geymonat plasticity or neo-Hookean plasticity");
   needs("saturation damage", m.damage(), "neo-Hookean damage");
   needs("damage energy scale", m.damage(), "neo-Hookean damage");
   if (m.plastic()) {
     require_for_model("yield stress");
     m.yield_stress = get_double(sub, ls, "yield stress");
     m.hardening = get_double(sub, ls, "hardening");
+    m.lagged_plastic_dynamics = get_string(sub, ls, "plastic dynamic step") == "lagged";
   }
   if (m.damage()) {
     require_for_model("saturation damage");

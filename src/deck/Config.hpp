@@ -69,6 +69,9 @@ struct MaterialConfig {
   double viscosity = 0;                   // "viscosity" eta (Curnier), >= 0; unused in statics
   double yield_stress = 0;                // "yield stress" Y [Pa], > 0 (plasticity only)
   double hardening = 0;                   // "hardening" H [Pa], >= 0 (plasticity only)
+  // "plastic dynamic step" = lagged: the Gonzalez step's stress at the frozen plastic state of the
+  // step's start (default `incremental potential`: the incremental potential's discrete gradient).
+  bool lagged_plastic_dynamics = false;
   // neo-Hookean damage (material/Damage.hpp): "saturation damage" d_inf in [0, 1) and
   // "damage energy scale" beta [Pa] > 0 of d = d_inf (1 - exp(-alpha / beta)).
   double saturation_damage = 0, damage_energy_scale = 0;

@@ -194,6 +194,14 @@ std::vector<ListSpec> build_schema() {
            "and `neo-Hookean plasticity`: the yield stress is Y + H alpha (alpha the equivalent plastic strain); "
            "0 is perfect plasticity.")
            .ge(0.0),
+       str("plastic dynamic step", "incremental potential",
+           "Stress of the momentum equation in the `gonzalez` dynamic step of `Ciarlet-Geymonat plasticity` and "
+           "`neo-Hookean plasticity` (docs/plasticity.md, Dynamics): `incremental potential`, the discrete "
+           "gradient of the return map's incremental potential (the plastic flow of the step inside the stress, "
+           "plastic dissipation Y dalpha); `lagged`, the discrete gradient of the elastic energy at the plastic "
+           "state of the step's start (the flow enters the stress one step late, overshooting the yield surface). "
+           "Both keep the energy balance exact.")
+           .one_of({"incremental potential", "lagged"}),
        dbl("saturation damage", 0.0,
            "d_inf [-] of `neo-Hookean damage` (required there, not allowed with other models): the damage d = "
            "d_inf (1 - exp(-alpha / beta)) tends to it as the largest virgin energy alpha grows; 0 is the "

@@ -53,9 +53,10 @@ inline ElasticLaw elastic_law(const MaterialConfig& m) {
 // The law of a deck material.
 inline Material make_material(const MaterialConfig& m) {
   if (m.model == "Ciarlet-Geymonat plasticity")
-    return CiarletGeymonatPlasticity{CiarletGeymonat{m.C1, m.C2, m.D}, m.yield_stress, m.hardening};
+    return CiarletGeymonatPlasticity{CiarletGeymonat{m.C1, m.C2, m.D}, m.yield_stress, m.hardening,
+                                     m.lagged_plastic_dynamics};
   if (m.model == "neo-Hookean plasticity")
-    return NeoHookeanPlasticity{NeoHookean{m.mu, m.lambda}, m.yield_stress, m.hardening};
+    return NeoHookeanPlasticity{NeoHookean{m.mu, m.lambda}, m.yield_stress, m.hardening, m.lagged_plastic_dynamics};
   if (m.model == "neo-Hookean damage")
     return NeoHookeanDamage{NeoHookean{m.mu, m.lambda}, m.saturation_damage, m.damage_energy_scale};
   return elastic_law(m);

@@ -38,6 +38,7 @@
 // when the moduli are in Pa).
 #pragma once
 #include <type_traits>
+#include <utility>
 
 #include "stentor/tensor.hpp"
 
@@ -68,6 +69,20 @@ template <class Law>
 struct LawHistorySize<Law, std::void_t<decltype(Law::kNumHist)>> : std::integral_constant<int, Law::kNumHist> {};
 template <class Law>
 inline constexpr bool kHasHistory = LawHistorySize<Law>::value > 0;
+
+// A law with history may define its own Gonzalez dynamic step (Plasticity.hpp):
+//   template <bool WithTangent, class HIn, class HOut>
+//   PointResponse dynamic_update(const Mat3& C_n, const Mat3& C_np1, const HIn& h_n,
+//                                const HOut& h_np1, Ten4& D) const;
+// S = the stress Sigma of the momentum equation, D = dSigma/dC_np1, and
+// Psi_{n+1} - Psi_n = 1/2 Sigma : (C_np1 - C_n) - dissipation. Without it the kernel takes the
+// discrete gradient of frozen_potential(h_n) (HyperelasticElement.hpp, history_gonzalez).
+template <class Law, class = void>
+struct HasDynamicUpdate : std::false_type {};
+template <class Law>
+struct HasDynamicUpdate<Law, std::void_t<decltype(std::declval<const Law&>().template dynamic_update<true>(
+                                 Mat3(), Mat3(), static_cast<const double*>(nullptr), static_cast<double*>(nullptr),
+                                 std::declval<Ten4&>()))>> : std::true_type {};
 
 // Fills a history row with the declared initial values.
 template <class Material, class Row>

@@ -74,12 +74,16 @@
 //   Psi_{n+1} - Psi_n = [W(Ce^tr) - W(Ce_n)] - Dp,
 // where the elastic-predictor work W(Ce^tr) - W(Ce_n) = 1/2 Sigma : (C_{n+1} - C_n) exactly
 // with Sigma the Gonzalez discrete gradient (DiscreteGradient.hpp) of the frozen-state
-// potential C -> W(G^T C G) (FrozenPlasticPotential below) — the building block of an
-// Armero (2006)-type energy-dissipative dynamic update.
+// potential C -> W(G^T C G) (FrozenPlasticPotential below): the lagged dynamic step.
+// The default dynamic step (dynamic_update) takes the discrete gradient of the incremental
+// potential W_inc(C) = Psi(C, return map) + Y dg instead (IncrementalPotential below), whose
+// gradient is the return-map stress: the plastic flow of the step is in the momentum stress,
+// and Dp = Y dg exactly.
 #pragma once
 #include <cmath>
 
 #include "material/CiarletGeymonat.hpp"
+#include "material/DiscreteGradient.hpp"
 #include "material/MaterialState.hpp"
 #include "material/NeoHookean.hpp"
 #include "material/SymEigen.hpp"
@@ -260,6 +264,9 @@ struct FrozenPotential {
 
 using FrozenPlasticPotential = FrozenPotential<CiarletGeymonat>;
 
+template <class Elastic>
+struct IncrementalPotential;
+
 // Isotropic elasticity (Elastic: CiarletGeymonat or NeoHookean) with von Mises (Hill-norm)
 // multiplicative plasticity and linear isotropic hardening. Y, H and the moduli in the
 // same stress unit (Pa).
@@ -268,6 +275,10 @@ struct MultiplicativePlasticity {
   Elastic elastic;
   double Y;        // initial yield stress, > 0 [Pa]
   double H = 0.0;  // linear isotropic hardening modulus, >= 0 [Pa]; 0: perfect plasticity
+  // The Gonzalez dynamic step (dynamic_update): false, the discrete gradient of the incremental
+  // potential (stress from the return map inside the step); true, the lagged step (discrete
+  // gradient of the elastic potential at the frozen state h_n). Deck: `plastic dynamic step`.
+  bool lagged_dynamics = false;
 
   // History layout: Ftr row-major (9), alpha, then output-only values of the last update.
   enum : int { kFtr = 0, kAlpha = 9, kMandelHill = 10, kYielding = 11, kDissipation = 12 };
@@ -296,19 +307,64 @@ struct MultiplicativePlasticity {
   // elastic tangent. Measured in docs/performance.md ("Plastic assembly").
   template <bool WithTangent = true, class HIn, class HOut>
   KOKKOS_INLINE_FUNCTION PointResponse update(const Mat3& C, const HIn& hn, const HOut& h1) const {
+    Step st;
+    const PointResponse r = update_state<WithTangent>(C, read_state(hn), st);
+    write_state(st, hn, r.dissipation, h1);
+    return r;
+  }
+
+  // Gonzalez (energy-dissipative) dynamic step from C0 = C_n to C1 = C_{n+1} (docs/plasticity.md,
+  // "Dynamics"): the state h_{n+1} of the return map at C1, Psi_{n+1} and the step's dissipation,
+  // with r.S = Sigma the stress of the momentum equation (P = F_{n+1/2} Sigma) and, WithTangent,
+  // D = dSigma/dC1 (r.CC unset). Sigma is Gonzalez's discrete gradient of the incremental
+  // potential W_inc(C; h_n) (IncrementalPotential below, the default) or, lagged_dynamics, of
+  // the frozen elastic potential W(G^T C G) (FrozenPotential). Both close
+  //   Psi_{n+1} - Psi_n = 1/2 Sigma : (C1 - C0) - Dp,  Dp >= 0;
+  // the incremental one with Dp = Y dg (+ a gap >= 0 that is 0 when h_n is admissible at C0).
+  template <bool WithTangent, class HIn, class HOut>
+  KOKKOS_INLINE_FUNCTION PointResponse dynamic_update(const Mat3& C0, const Mat3& C1, const HIn& hn,
+                                                      const HOut& h1, Ten4& D) const {
+    if (lagged_dynamics) {
+      PointResponse r = update<false>(C1, hn, h1);
+      const FrozenPotential<Elastic> frozen = frozen_potential(hn);
+      if constexpr (WithTangent)
+        gonzalez_stress_and_tangent(frozen, C0, C1, r.S, D);
+      else
+        r.S = gonzalez_stress(frozen, C0, C1);
+      return r;
+    }
+    const PlasticState s0 = read_state(hn);
+    Step st;
+    PointResponse r = update_state<false>(C1, s0, st);
+    IncrementalPotential<Elastic> pot{*this, s0, inverse(s0.Ftr)};
+    pot.remember(C1, r, st.dgamma);
+    r.dissipation = Y * st.dgamma + pot.start_gap(C0);
+    if constexpr (WithTangent)
+      gonzalez_stress_and_tangent(pot, C0, C1, r.S, D);
+    else
+      r.S = gonzalez_stress(pot, C0, C1);
+    r.converged = r.converged && pot.converged;
+    write_state(st, hn, r.dissipation, h1);
+    return r;
+  }
+
+  template <class HIn>
+  KOKKOS_INLINE_FUNCTION static PlasticState read_state(const HIn& hn) {
     PlasticState s0;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) s0.Ftr(i, j) = hn[kFtr + 3 * i + j];
     s0.alpha = hn[kAlpha];
-    Step st;
-    const PointResponse r = update_state<WithTangent>(C, s0, st);
+    return s0;
+  }
+
+  template <class HIn, class HOut>
+  KOKKOS_INLINE_FUNCTION static void write_state(const Step& st, const HIn& hn, double dissipation, const HOut& h1) {
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) h1[kFtr + 3 * i + j] = st.state.Ftr(i, j);
     h1[kAlpha] = st.state.alpha;
     h1[kMandelHill] = st.mandel_hill;
     h1[kYielding] = st.dgamma > 0.0 ? 1.0 : 0.0;
-    h1[kDissipation] = hn[kDissipation] + r.dissipation;
-    return r;
+    h1[kDissipation] = hn[kDissipation] + dissipation;
   }
 
   // The elastic potential at the frozen state of history row hn: C -> W(G^T C G),
@@ -521,6 +577,105 @@ struct MultiplicativePlasticity {
               }
             CC(i, j, k, l) = v;
           }
+  }
+};
+
+// Incremental potential of the return map from the state s0 = h_n (the variational form of the
+// update, Ortiz–Stainier 1999; its discrete gradient is the energy-momentum step of Noels,
+// Stainier & Ponthot 2006; docs/plasticity.md, "Dynamics"):
+//   W_inc(C) = min_{p trace-free} W(et(C) - p) + 1/2 H (alpha_n + |p|')^2 + Y |p|',
+// |p|' = sqrt(2/3) |p| = dg, et(C) the principal log strains of Ce^tr = G^T C G. The
+// functional is convex in p (W convex in principal log strains), and its minimiser is the
+// return map (the stationarity condition is |tau(e)|_H = Y + H alpha, p = dg n), so
+//   W_inc(C) = Psi(C, return map) + Y dg(C),
+// and by the envelope theorem dW_inc/det = tau(e_{n+1}) (tau . dn = 0, tau . n = Y + H alpha):
+// 2 dW_inc/dC is the return-map stress S(C) and 4 d2W_inc/dC2 its consistent tangent CC. So
+// gonzalez_stress / gonzalez_stress_and_tangent (DiscreteGradient.hpp) apply to it:
+// 1/2 Sigma : (C1 - C0) = W_inc(C1) - W_inc(C0) with Sigma a discrete mean of return-mapped
+// (admissible) stresses along the segment. W_inc is C^1 only where the segment crosses the
+// yield surface (CC jumps there), so Simpson's form of the discrete gradient (which assumes a
+// smooth W) is taken only where Ce^tr of the three samples C0, Cm, C1 is inside the yield surface;
+// otherwise g is the energy difference itself. `converged` records a failed return map at any
+// sample.
+template <class Elastic>
+struct IncrementalPotential {
+  using Law = MultiplicativePlasticity<Elastic>;
+  Law law;
+  PlasticState s0;  // h_n
+  Mat3 G;           // Ftr_n^-1
+  mutable bool converged = true;
+  // The stress-only result at one point (C_{n+1}: dynamic_update's own update), reused by
+  // energy() and stress() there (the same operations: bit for bit what they would compute).
+  Mat3 Ck = Mat3::zero(), Sk = Mat3::zero();
+  double Wk = 0.0;
+  bool cached = false;
+
+  KOKKOS_INLINE_FUNCTION void remember(const Mat3& C, const PointResponse& r, double dg) {
+    Ck = C, Sk = r.S, Wk = r.energy + law.Y * dg, cached = true, in1 = dg == 0.0;
+  }
+  // S(C) and W_inc(C) by the stress-only return map from s0.
+  KOKKOS_INLINE_FUNCTION void evaluate(const Mat3& C, Mat3& S, double& W) const {
+    if (cached && same(C, Ck)) {
+      S = Sk, W = Wk;
+      return;
+    }
+    typename Law::Step st;
+    const PointResponse r = law.template update_state<false>(C, s0, st);
+    converged = converged && r.converged;
+    S = r.S, W = r.energy + law.Y * st.dgamma;
+  }
+  KOKKOS_INLINE_FUNCTION double energy(const Mat3& C) const {
+    Mat3 S;
+    double W;
+    evaluate(C, S, W);
+    return W;
+  }
+  KOKKOS_INLINE_FUNCTION Mat3 stress(const Mat3& C) const {
+    Mat3 S;
+    double W;
+    evaluate(C, S, W);
+    return S;
+  }
+  KOKKOS_INLINE_FUNCTION void stress_and_tangent(const Mat3& C, Mat3& S, Ten4& CC) const {
+    typename Law::Step st;
+    const PointResponse r = law.template update_state<true>(C, s0, st);
+    converged = converged && r.converged;
+    S = r.S;
+    CC = r.CC;
+  }
+  // Ce^tr of C inside the yield surface (the trial test of update_state, f^tr <= 0); the
+  // answers at C_n (start_gap) and C_{n+1} (remember: dg = 0, which also counts a trial point
+  // outside by less than the return map's tolerance, 1e-12 of Y, where it does not flow) are
+  // reused.
+  Mat3 C0k = Mat3::zero();
+  int in0 = -1;  // trial test at C0k: 1 inside, 0 outside, -1 not evaluated
+  bool in1 = false;      // at Ck
+  KOKKOS_INLINE_FUNCTION static bool same(const Mat3& a, const Mat3& b) {
+    bool e = true;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) e = e && a(i, j) == b(i, j);
+    return e;
+  }
+  KOKKOS_INLINE_FUNCTION bool inside(const Mat3& C) const {
+    if (cached && same(C, Ck)) return in1;
+    if (in0 >= 0 && same(C, C0k)) return in0 == 1;
+    return law.mandel_hill_norm(tmul(G, matmul(C, G))) - (law.Y + law.H * s0.alpha) <= 0.0;
+  }
+  // True where the three samples are elastic (W_inc = the smooth frozen potential there).
+  KOKKOS_INLINE_FUNCTION bool smooth_between(const Mat3& C0, const Mat3& C1) const {
+    return inside(C0) && inside(0.5 * (C0 + C1)) && inside(C1);
+  }
+  // Psi(C0, h_n) - W_inc(C0) >= 0: 0 when h_n is admissible at C0 (always after a converged step,
+  // whose state satisfies the yield condition at C_n); otherwise the algorithmic dissipation of
+  // the return map at C0 minus Y dg, >= 1/2 H dg^2 (Plasticity.hpp header). Call it once.
+  KOKKOS_INLINE_FUNCTION double start_gap(const Mat3& C0) {
+    in0 = inside(C0) ? 1 : 0;
+    C0k = C0;
+    if (in0 == 1) return 0.0;
+    typename Law::Step st;
+    const PointResponse r = law.template update_state<false>(C0, s0, st);
+    converged = converged && r.converged;
+    return st.dgamma > 0.0 ? std::fmax(0.0, r.dissipation - law.Y * st.dgamma) : 0.0;
   }
 };
 
