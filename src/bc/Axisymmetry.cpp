@@ -19,7 +19,11 @@ void check_axisymmetric_deck(const Config& cfg) {
   if (cfg.mesh.dimension == 3)
     throw InputError(cfg.deck_path + ": 'Problem->kinematics' = axisymmetric needs a 2D mesh in the (r, z) half plane; "
                      "'Mesh->dimension' is 3");
-  if (!cfg.contact.empty()) throw InputError(refused(cfg, "'Contact->" + cfg.contact.front().name + "'"));
+  // Node-to-segment pairs and rigid obstacles (2D profiles: surfaces of revolution) are
+  // supported; mortar's segment integrals have no 2 pi r weights.
+  for (const auto& c : cfg.contact)
+    if (!c.master.empty() && c.discretization == "mortar")
+      throw InputError(refused(cfg, "'Contact->" + c.name + "->discretization' = mortar"));
   if (cfg.output.metrics.enabled) throw InputError(refused(cfg, "'Output->Stent Metrics'"));
   const auto& w = cfg.initial.angular_velocity;
   if (w[0] != 0.0 || w[1] != 0.0 || w[2] != 0.0)

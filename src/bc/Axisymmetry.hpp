@@ -11,7 +11,7 @@ namespace stentor {
 inline const char* axis_set_name() { return "axis"; }
 
 // What axisymmetric runs do not support (yet), refused with an InputError naming the
-// parameter: contact and rigid obstacles, stent metrics, initial angular velocities,
+// parameter: mortar contact, stent metrics, initial angular velocities,
 // Holzapfel-Gasser-Ogden fibres about another axis than the mesh's y axis, a boundary
 // condition named like the axis set, a 3D Mesh->dimension. No-op for other kinematics.
 void check_axisymmetric_deck(const Config& cfg);

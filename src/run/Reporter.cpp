@@ -252,7 +252,7 @@ void Reporter::open() {
       std::vector<std::string> master_groups;
       for (const ContactPairConfig& c : cfg_.contact)
         if (!c.master.empty()) master_groups.push_back(c.master);
-      if (cfg_.output.fields && !master_groups.empty()) master_surface_ = std::make_unique<SurfaceProjection>(m_.mesh, master_groups);
+      if (cfg_.output.fields && !master_groups.empty()) master_surface_ = std::make_unique<SurfaceProjection>(m_.mesh, master_groups, cfg_.problem.axisymmetric());
       std::vector<std::string> rigid;  // the rigid pairs, in Contact::rigid_obstacles() order
       for (const ContactPairConfig& c : cfg_.contact)
         if (c.master.empty()) rigid.push_back(c.name);

@@ -10,6 +10,9 @@
 //     ODE; the error falls under mesh refinement.
 //  e. An impulsively loaded ring (Gonzalez): the energy identity per step to 1e-12 of E0, and
 //     E0 = 1/2 rho v^2 2 pi r_c A.
+//  f. The hoop stress in the output's third column, cell volumes of the revolution.
+//  g. Contact pressure on a rigid plane normal to the axis (revolved areas).
+//  h. A ring bouncing on a rigid plane: the energy identity with contact.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -24,6 +27,7 @@
 
 #include "AssemblerFixture.hpp"
 #include "CsvSeries.hpp"
+#include "H5Results.hpp"
 #include "run/Simulation.hpp"
 
 using namespace stentor;
@@ -64,7 +68,8 @@ struct DeckSpec {
   int order = 1;
   bool recombine = false;
   double mu = 1.0, lambda = 3.0, rho = 0.0;
-  std::string bcs, initial;  // raw XML of "Boundary Conditions" / "Initial Conditions" entries
+  std::string bcs, initial, contact;  // raw XML of "Boundary Conditions" / "Initial Conditions" / "Contact" entries
+  bool fields = false;
   bool dynamic = false;
   double end_time = 1.0;
   int steps = 1;
@@ -94,6 +99,7 @@ Config make_deck(const DeckSpec& s, const std::string& tag) {
   x << "</ParameterList></ParameterList>\n";
   if (!s.bcs.empty()) x << "<ParameterList name=\"Boundary Conditions\">" << s.bcs << "</ParameterList>\n";
   if (!s.initial.empty()) x << "<ParameterList name=\"Initial Conditions\">" << s.initial << "</ParameterList>\n";
+  if (!s.contact.empty()) x << "<ParameterList name=\"Contact\">" << s.contact << "</ParameterList>\n";
   x << "<ParameterList name=\"Stepping\">";
   P("end time", "double", s.end_time);
   P("steps", "int", s.steps);
@@ -104,7 +110,7 @@ Config make_deck(const DeckSpec& s, const std::string& tag) {
   x << "</ParameterList>\n<ParameterList name=\"Linear Solver\">";
   P("method", "string", "direct");
   x << "</ParameterList>\n<ParameterList name=\"Output\">";
-  P("fields", "bool", "false");
+  P("fields", "bool", s.fields ? "true" : "false");
   P("basename", "string", "run");
   x << "</ParameterList>\n</ParameterList>\n";
   return read_deck(write_file(tag + ".xml", x.str()));
@@ -534,4 +540,86 @@ TEST(Axisymmetric, CellFieldsGiveTheHoopStressAndRevolvedVolumes) {
   EXPECT_GT(cf.cell_ids.size(), 8u);
   EXPECT_LT(err, 1e-13);
   EXPECT_NEAR(volume, kPi, 1e-13);
+}
+
+// ---------------------------------------------------------------------------------------
+// g. Contact with rigid obstacles (2D profiles: surfaces of revolution). A solid cylinder
+// (R = H = 1, nodes on the axis) pressed by a dead traction p = 0.2 on its top onto the
+// rigid plane z = 0 (frictionless): the homogeneous state of uniaxial compression, so the
+// contact pressure (the force per revolved reference area, mesh/SurfaceProjection.hpp) is
+// p at every node of the base.
+namespace {
+
+std::string plane_obstacle(const std::string& name, const std::string& slave, double z) {
+  std::ostringstream x;
+  x << "<ParameterList name=\"" << name << "\"><Parameter name=\"slave\" type=\"string\" value=\"" << slave << "\"/>"
+    << "<Parameter name=\"obstacle\" type=\"string\" value=\"plane\"/>"
+    << "<Parameter name=\"point\" type=\"Array(double)\" value=\"{0, " << z << "}\"/>"
+    << "<Parameter name=\"normal\" type=\"Array(double)\" value=\"{0, 1}\"/></ParameterList>";
+  return x.str();
+}
+
+}  // namespace
+
+TEST(Axisymmetric, ContactPressureOnARigidPlaneIsTheTraction) {
+  const double p = 0.2;
+  for (const bool quads : {true, false}) {
+    DeckSpec s;
+    s.mesh = rectangle_geo("solid_contact.geo", 0.0, 1.0, 0.0, 1.0);
+    s.size = 0.25;
+    s.order = quads ? 1 : 2;
+    s.recombine = quads;
+    s.fields = true;
+    s.bcs = "<ParameterList name=\"press\"><Parameter name=\"type\" type=\"string\" value=\"traction\"/>"
+            "<Parameter name=\"boundary\" type=\"string\" value=\"top\"/>"
+            "<Parameter name=\"traction\" type=\"Array(double)\" value=\"{0, -0.2}\"/></ParameterList>";
+    s.contact = plane_obstacle("floor", "bottom", 0.0);
+    const std::string tag = quads ? "contact_quad4" : "contact_tri6";
+    const Config cfg = make_deck(s, tag);
+    run(cfg, tag);
+    stentor::testing::H5Results h5(kDir / tag / "run.h5");
+    const std::string step = "/step_" + std::to_string(h5.times().size() - 1) + "/";
+    const auto X = h5.read("/mesh/coordinates"), pr = h5.read(step + "contact_pressure");
+    ASSERT_EQ(3 * pr.size(), X.size());
+    double err = 0;
+    std::size_t on_base = 0;
+    for (std::size_t n = 0; n < pr.size(); ++n)
+      if (X[3 * n + 1] == 0.0) ++on_base, err = std::max(err, std::abs(pr[n] - p) / p);
+    std::printf("[axisymmetric] %s on a rigid plane: %zu base nodes, max |contact_pressure - p|/p %.1e\n", tag.c_str(), on_base, err);
+    EXPECT_GT(on_base, 4u);
+    EXPECT_LT(err, 1e-9) << tag;
+  }
+}
+
+// h. A ring (r in [1, 1.2], z in [0.05, 0.25], quad4) thrown at v = 1 onto the rigid plane
+// z = 0, bouncing off it: Gonzalez with the persistence condition, the energy identity per step.
+TEST(Axisymmetric, RingImpactOnARigidPlaneConservesEnergy) {
+  DeckSpec s;
+  s.mesh = rectangle_geo("ring_impact.geo", 1.0, 1.2, 0.05, 0.25);
+  s.size = 0.05;
+  s.recombine = true;
+  s.rho = 1.0;
+  s.dynamic = true;
+  s.end_time = 0.6;
+  s.steps = 60;
+  s.initial = "<Parameter name=\"velocity\" type=\"Array(double)\" value=\"{0, -1}\"/>";
+  s.contact = plane_obstacle("floor", "bottom", 0.0);
+  const Config cfg = make_deck(s, "ring_impact");
+  RunOptions opts;
+  opts.output_dir = (kDir / "ring_impact").string();
+  RunResult res;
+  ASSERT_EQ(run_simulation(cfg, opts, &res), 0);
+  const Series e = read_csv(kDir / "ring_impact" / "run_energy.csv");
+  const double E0 = e["total"][0];
+  double bal = 0, drift = 0, vz_end = 0;
+  for (std::size_t i = 0; i < e.rows(); ++i) {
+    bal = std::max(bal, std::abs(e["balance_residual"][i]));
+    drift = std::max(drift, std::abs(e["total"][i] + e["friction_dissipation"][i] - e["contact_work"][i] - E0));
+  }
+  vz_end = e["momentum_y"][e.rows() - 1];
+  std::printf("[axisymmetric] ring impact: E0 %.6e, max |balance| %.2e E0, max |E - E0 - W_contact| %.2e E0, contact work at the end "
+              "%.2e E0, axial momentum %.4e -> %.4e\n",
+              E0, bal / E0, drift / E0, e["contact_work"][e.rows() - 1] / E0, e["momentum_y"][0], vz_end);
+  EXPECT_LT(bal, 1e-12 * E0);
+  EXPECT_GT(vz_end, 0.0);  // it bounced
 }
