@@ -13,6 +13,7 @@
 //  f. The hoop stress in the output's third column, cell volumes of the revolution.
 //  g. Contact pressure on a rigid plane normal to the axis (revolved areas).
 //  h. A ring bouncing on a rigid plane: the energy identity with contact.
+//  i. Node-to-segment contact between two bodies: the contact pressure of a stacked pair.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -61,7 +62,7 @@ std::string rectangle_geo(const std::string& name, double r0, double r1, double 
   return write_file(name, g.str());
 }
 
-// What a deck needs besides its mesh, material (neo-Hookean mu, lambda) and body "wall".
+// What a deck needs besides its mesh and material (neo-Hookean mu, lambda; every body's).
 struct DeckSpec {
   std::string mesh;
   double size = 0.0;
@@ -70,6 +71,7 @@ struct DeckSpec {
   double mu = 1.0, lambda = 3.0, rho = 0.0;
   std::string bcs, initial, contact;  // raw XML of "Boundary Conditions" / "Initial Conditions" / "Contact" entries
   bool fields = false;
+  std::vector<std::string> bodies{"wall"};  // the mesh's surface groups
   bool dynamic = false;
   double end_time = 1.0;
   int steps = 1;
@@ -94,9 +96,13 @@ Config make_deck(const DeckSpec& s, const std::string& tag) {
   P("mu", "double", s.mu);
   P("lambda", "double", s.lambda);
   P("density", "double", s.rho);
-  x << "</ParameterList></ParameterList>\n<ParameterList name=\"Bodies\"><ParameterList name=\"wall\">";
-  P("material", "string", "m");
-  x << "</ParameterList></ParameterList>\n";
+  x << "</ParameterList></ParameterList>\n<ParameterList name=\"Bodies\">";
+  for (const std::string& b : s.bodies) {
+    x << "<ParameterList name=\"" << b << "\">";
+    P("material", "string", "m");
+    x << "</ParameterList>";
+  }
+  x << "</ParameterList>\n";
   if (!s.bcs.empty()) x << "<ParameterList name=\"Boundary Conditions\">" << s.bcs << "</ParameterList>\n";
   if (!s.initial.empty()) x << "<ParameterList name=\"Initial Conditions\">" << s.initial << "</ParameterList>\n";
   if (!s.contact.empty()) x << "<ParameterList name=\"Contact\">" << s.contact << "</ParameterList>\n";
@@ -622,4 +628,63 @@ TEST(Axisymmetric, RingImpactOnARigidPlaneConservesEnergy) {
               E0, bal / E0, drift / E0, e["contact_work"][e.rows() - 1] / E0, e["momentum_y"][0], vz_end);
   EXPECT_LT(bal, 1e-12 * E0);
   EXPECT_GT(vz_end, 0.0);  // it bounced
+}
+
+// i. Two solid cylinders (R = 1, heights 1) stacked on the axis, the lower one's base held
+// axially, a dead traction p = 0.2 pressing the upper one's top (matching P1 meshes): the
+// node-to-segment pair carries the homogeneous compression, so the upper body's
+// contact_pressure is p at every node of its base and the lower body's
+// contact_master_traction is (0, -p) at every node of its top.
+TEST(Axisymmetric, NodeToSegmentContactBetweenStackedCylinders) {
+  DeckSpec s;
+  s.mesh = write_file("stacked.geo", R"(
+Point(1) = {0, 0, 0, 0.25};
+Point(2) = {1, 0, 0, 0.25};
+Point(3) = {1, 1, 0, 0.25};
+Point(4) = {0, 1, 0, 0.25};
+Point(5) = {0, 1, 0, 0.25};
+Point(6) = {1, 1, 0, 0.25};
+Point(7) = {1, 2, 0, 0.25};
+Point(8) = {0, 2, 0, 0.25};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 5};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Curve Loop(2) = {5, 6, 7, 8}; Plane Surface(2) = {2};
+Physical Surface("lower") = {1};
+Physical Surface("upper") = {2};
+Physical Curve("base") = {1};
+Physical Curve("lower_top") = {3};
+Physical Curve("upper_base") = {5};
+Physical Curve("upper_top") = {7};
+)");
+  s.recombine = true;
+  s.fields = true;
+  s.bodies = {"lower", "upper"};
+  s.bcs = dirichlet("hold", "base", "y", "") +
+          "<ParameterList name=\"press\"><Parameter name=\"type\" type=\"string\" value=\"traction\"/>"
+          "<Parameter name=\"boundary\" type=\"string\" value=\"upper_top\"/>"
+          "<Parameter name=\"traction\" type=\"Array(double)\" value=\"{0, -0.2}\"/></ParameterList>";
+  s.contact = "<ParameterList name=\"stack\"><Parameter name=\"slave\" type=\"string\" value=\"upper_base\"/>"
+              "<Parameter name=\"master\" type=\"string\" value=\"lower_top\"/></ParameterList>";
+  run(make_deck(s, "stacked"), "stacked");
+  stentor::testing::H5Results h5(kDir / "stacked" / "run.h5");
+  const std::string step = "/step_" + std::to_string(h5.times().size() - 1) + "/";
+  const auto X = h5.read("/mesh/coordinates"), pr = h5.read(step + "contact_pressure"), st = h5.read(step + "contact_status"),
+             tm = h5.read(step + "contact_master_traction");
+  ASSERT_EQ(3 * pr.size(), X.size());
+  ASSERT_EQ(tm.size(), X.size());
+  const double p = 0.2;
+  double err = 0;
+  std::size_t slave = 0, master = 0;
+  for (std::size_t n = 0; n < pr.size(); ++n) {
+    if (X[3 * n + 1] != 1.0) continue;
+    if (st[n] >= 0.0) ++slave, err = std::max(err, std::abs(pr[n] - p) / p);  // a slave node: on the upper body's base
+    else ++master, err = std::max({err, std::abs(tm[3 * n]) / p, std::abs(tm[3 * n + 1] + p) / p});
+  }
+  std::printf("[axisymmetric] stacked cylinders: %zu slave, %zu master nodes, max relative error of contact_pressure and "
+              "contact_master_traction %.1e\n",
+              slave, master, err);
+  EXPECT_GT(slave, 4u);
+  EXPECT_GT(master, 4u);
+  EXPECT_LT(err, 1e-9);
 }
