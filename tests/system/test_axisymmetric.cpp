@@ -15,6 +15,7 @@
 //  h. A ring bouncing on a rigid plane: the energy identity with contact.
 //  i. Node-to-segment contact between two bodies: the contact pressure of a stacked pair.
 //  j. Plasticity and fibres in the axisymmetric kernel: global tangents against differences.
+//  k. A spinning cylinder (centrifugal body force field) against linear elasticity.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -741,4 +742,42 @@ TEST(Axisymmetric, PlasticityAndFibresTangentAgainstFiniteDifferences) {
     EXPECT_LT(c.rel, 1e-6) << model;
     if (model == "neo-Hookean plasticity") EXPECT_GT(c.plastic, 0.0);
   }
+}
+
+// ---------------------------------------------------------------------------------------
+// k. A long solid cylinder (radius b = 1, u_z = 0 on its ends) spinning about its axis,
+// loaded by the centrifugal body force rho omega^2 r e_r (a field, dead), small strain
+// (rho omega^2 b^2 / mu = 1e-4): linear elasticity gives, with M = lambda + 2 mu,
+//   u_r = rho omega^2 r / (8 M) [(2 lambda + 3 mu)/(lambda + mu) b^2 - r^2], u_z = 0
+// (sigma_rr(b) = 0 holds only with the hoop term lambda u_r/r); P2 meshes touching the axis,
+// h halved. u_z is 0 up to the discretisation error of the unstructured triangles.
+TEST(Axisymmetric, SpinningCylinderAgainstLinearElasticity) {
+  const double mu = 1.0, lambda = 3.0, rw2 = 1e-4, b = 1.0, M = lambda + 2 * mu;
+  auto ur = [=](double r) { return rw2 * r / (8 * M) * ((2 * lambda + 3 * mu) / (lambda + mu) * b * b - r * r); };
+  std::vector<double> err;
+  for (const double h : {0.25, 0.125}) {
+    DeckSpec s;
+    s.mesh = rectangle_geo("spin.geo", 0.0, b, 0.0, 0.25);
+    s.size = h;
+    s.order = 2;
+    s.bcs = dirichlet("base", "bottom", "y", "") + dirichlet("lid", "top", "y", "") +
+            "<ParameterList name=\"spin\"><Parameter name=\"type\" type=\"string\" value=\"body force\"/>"
+            "<Parameter name=\"force\" type=\"Array(double)\" value=\"{1, 0}\"/></ParameterList>";
+    const std::string tag = "spin_" + std::to_string(h);
+    Config cfg = make_deck(s, tag);
+    for (auto& l : cfg.loads)
+      if (l.type == LoadConfig::Type::BodyForce) l.field = [=](const double* X) { return std::array<double, 3>{rw2 * X[0], 0.0, 0.0}; };
+    const RunResult res = run(cfg, tag);
+    double e = 0, uz = 0;
+    for (std::size_t n = 0; n < res.mesh.num_nodes(); ++n) {
+      e = std::max(e, std::abs(res.displacement[3 * n] - ur(res.mesh.x[3 * n])));
+      uz = std::max(uz, std::abs(res.displacement[3 * n + 1]));
+    }
+    std::printf("[axisymmetric] spinning cylinder P2 h = %.3f: u_r(b) %.6e, max |u_r - u_r,exact| / u_r(b) %.2e, max |u_z| / u_r(b) %.1e\n", h,
+                ur(b), e / ur(b), uz / ur(b));
+    err.push_back(e / ur(b));
+    EXPECT_LT(uz, 1e-3 * ur(b));
+  }
+  EXPECT_LT(err[0], 1e-3);
+  EXPECT_LT(err[1], 0.5 * err[0]);
 }
