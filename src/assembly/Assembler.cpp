@@ -8,6 +8,7 @@
 #include <Teuchos_CommHelpers.hpp>
 
 #include "assembly/HyperelasticElement.hpp"
+#include "assembly/PressureElement.hpp"
 #include "material/SymEigen.hpp"
 
 namespace stentor {
@@ -74,7 +75,11 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
 
 Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& cfg, const Loads& loads,
                      const std::vector<int>& block_material, const std::vector<Material>& laws)
-    : dist_(dist), loads_(loads), dim_(dist.dim()) {
+    : dist_(dist), loads_(loads), dim_(dist.dim()),
+      kin_(cfg.problem.axisymmetric() ? Kinematics::Axisymmetric : Kinematics::Cartesian) {
+  if (kin_ == Kinematics::Axisymmetric && dim_ != 2)
+    throw InputError(cfg.deck_path + ": 'Problem->kinematics' = axisymmetric needs a 2D mesh in the (r, z) half plane; the mesh is " +
+                     std::to_string(dim_) + "D");
   if (laws.size() != cfg.materials.size())
     throw std::logic_error("Assembler: " + std::to_string(laws.size()) + " laws for " + std::to_string(cfg.materials.size()) +
                            " materials");
@@ -353,7 +358,8 @@ void Assembler::setup_loads(const Mesh& mesh) {
         }
         for (int g = 0; g < q.n; ++g) {
           shape_functions(fl.facet_type, q.xi[g], N, dN);
-          const double dA = facet_measure_and_normal(dim_, nn, X, dN, n);
+          double dA = facet_measure_and_normal(dim_, nn, X, dN, n);
+          dA = volume_weight(kin_, dA, reference_radius(kin_, nn, N, X));  // axisymmetric: the revolved area
           for (int a = 0; a < nn; ++a)
             for (int d = 0; d < dim_; ++d) f(l[a] * dim_ + d, 0) += q.w[g] * dA * N[a] * fl.traction[static_cast<std::size_t>(d)];
         }
@@ -392,7 +398,7 @@ void Assembler::setup_loads(const Mesh& mesh) {
           for (int d = 0; d < 3; ++d) X[a][d] = Xh(conn(c, a), d);
         for (int g = 0; g < q.n; ++g) {
           shape_functions(lb.type, q.xi[g], N, dN);
-          const double detJ = reference_gradients(dim_, nn, X, dN, dNdX);
+          const double detJ = volume_weight(kin_, reference_gradients(dim_, nn, X, dN, dNdX), reference_radius(kin_, nn, N, X));
           std::array<double, 3> force = bf.force;
           if (bf.field) {
             double xq[3] = {0, 0, 0};
@@ -437,6 +443,7 @@ const la::RCP<la::CrsMatrix>& Assembler::mass() {
   auto Ml = M_overlap->getLocalMatrixDevice();
   Kokkos::deep_copy(Ml.values, 0.0);
   const int dim = dim_;
+  const Kinematics kin = kin_;
   auto X = dist_.coords();
   for (const auto& lb : dist_.blocks()) {
     const std::size_t nc = lb.cell_ids.size();
@@ -455,7 +462,7 @@ const la::RCP<la::CrsMatrix>& Assembler::mass() {
             for (int d = 0; d < 3; ++d) Xe[a][d] = X(l, d);
             for (int d = 0; d < dim; ++d) dofs[a * dim + d] = l * dim + d;
           }
-          mass_element(dim, type, nn, Xe, rho, q, me);
+          mass_element(dim, kin, type, nn, Xe, rho, q, me);
           for (int i = 0; i < nn * dim; ++i) Ml.sumIntoValues(dofs[i], dofs, nn * dim, me[i], true, true);
         });
   }
@@ -475,6 +482,7 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
   rext_overlap_->putScalar(0.0);
   Kokkos::deep_copy(failures_, 0);
   const int dim = dim_;
+  const Kinematics kin = kin_;
   auto flags = dirichlet_flag_;
   auto fails = failures_;
   auto X = dist_.coords();
@@ -531,10 +539,10 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
           double ec = 0.0, dc = 0.0, pc = 0.0;
           int status;
           if constexpr (H)
-            status = solid_element<T>(dim, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc,
+            status = solid_element<T>(dim, kin, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc,
                                       CellHistory{&hn(c * ngp, 0), &h1(c * ngp, 0), nh}, &pc);
           else
-            status = solid_element<T>(dim, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc);
+            status = solid_element<T>(dim, kin, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc);
           if (status != kElementOk) {
             Kokkos::atomic_increment(&fails(status == kElementInverted ? 0 : status == kElementLocalFailure ? 2 : 1));
             return;
@@ -581,8 +589,7 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
     }
 
     // Follower pressure p on the current surface (configuration u_n + theta (u - u_n)):
-    // r_a += p N_a n da, n da = orientation * (x_,xi_y, -x_,xi_x) dxi in 2D,
-    // (x_,xi x x_,eta) dxi deta in 3D; tangent from d(n da)/du, times theta.
+    // assembly/PressureElement.hpp.
     const double theta = has_old ? in.pressure_theta : 1.0;
     for (const auto& pl : pressures_) {
       const double p = pl.pressure * pl.ramp(in.load_time, in.end_time);
@@ -597,55 +604,13 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
       Kokkos::parallel_for(
           "stentor::follower_pressure", Kokkos::RangePolicy<la::ExecSpace>(0, nf), KOKKOS_LAMBDA(const int f) {
             double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], re[kMaxCellDofs], ke[kMaxCellDofs][kMaxCellDofs];
-            double N[kMaxCellNodes], dN[kMaxCellNodes][3];
             int dofs[kMaxCellDofs];
             gather_cell(f, nn, dim, conn, X, uv, Xe, Ue, dofs);
             if (theta != 1.0)
               for (int a = 0; a < nn; ++a)
                 for (int d = 0; d < dim; ++d) Ue[a][d] = theta * Ue[a][d] + (1.0 - theta) * u0v(dofs[a * dim] + d, 0);
             const int nd = nn * dim;
-            for (int i = 0; i < nd; ++i) {
-              re[i] = 0.0;
-              for (int j = 0; j < nd; ++j) ke[i][j] = 0.0;
-            }
-            const double ps = p * orient(f);
-            for (int g = 0; g < q.n; ++g) {
-              shape_functions(type, q.xi[g], N, dN);
-              double t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0};
-              for (int a = 0; a < nn; ++a)
-                for (int d = 0; d < 3; ++d) {
-                  t1[d] += dN[a][0] * (Xe[a][d] + Ue[a][d]);
-                  t2[d] += dN[a][1] * (Xe[a][d] + Ue[a][d]);
-                }
-              const double w = q.w[g] * ps;
-              const double wt = w * theta;
-              if (dim == 2) {
-                const double n[2] = {t1[1], -t1[0]};
-                for (int a = 0; a < nn; ++a) {
-                  re[a * 2 + 0] += w * N[a] * n[0];
-                  re[a * 2 + 1] += w * N[a] * n[1];
-                  for (int b = 0; b < nn; ++b) {
-                    ke[a * 2 + 0][b * 2 + 1] += wt * N[a] * dN[b][0];
-                    ke[a * 2 + 1][b * 2 + 0] -= wt * N[a] * dN[b][0];
-                  }
-                }
-              } else {
-                const double n[3] = {t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]};
-                for (int a = 0; a < nn; ++a)
-                  for (int i = 0; i < 3; ++i) {
-                    re[a * 3 + i] += w * N[a] * n[i];
-                    for (int b = 0; b < nn; ++b)
-                      for (int k = 0; k < 3; ++k) {
-                        // d(t1 x t2)_i/du_bk = dN_b,xi (e_k x t2)_i + dN_b,eta (t1 x e_k)_i
-                        double ek_x_t2 = 0.0, t1_x_ek = 0.0;
-                        const int i1 = (i + 1) % 3, i2 = (i + 2) % 3;
-                        if (k == i1) { ek_x_t2 = t2[i2]; t1_x_ek = -t1[i2]; }
-                        if (k == i2) { ek_x_t2 = -t2[i1]; t1_x_ek = t1[i1]; }
-                        ke[a * 3 + i][b * 3 + k] += wt * N[a] * (dN[b][0] * ek_x_t2 + dN[b][1] * t1_x_ek);
-                      }
-                  }
-              }
-            }
+            pressure_element(dim, kin, type, nn, Xe, Ue, p * orient(f), theta, q, re, ke);
             if (T)
               scatter<true, true>(nd, dofs, re, ke, rxv, Kl, flags);
             else
@@ -805,6 +770,7 @@ namespace {
 template <class UView>
 struct CellFieldBlock {
   int dim, nn, ngp, nx;
+  Kinematics kin;
   CellType type;
   QuadRule q;
   Kokkos::View<int**, Kokkos::LayoutRight, la::ExecSpace> conn;
@@ -832,8 +798,10 @@ Kokkos::View<double**, Kokkos::LayoutRight, la::ExecSpace> cell_fields_of_block(
         double Jm = 0.0, vol = 0.0, acc[kMaxHistoryColumns > 0 ? kMaxHistoryColumns : 1] = {};
         for (int g = 0; g < a.q.n; ++g) {
           shape_functions(a.type, a.q.xi[g], N, dN);
-          const double w = a.q.w[g] * reference_gradients(a.dim, a.nn, Xe, dN, dNdX);
-          const Mat3 F = deformation_gradient(a.dim, a.nn, Ue, dNdX);
+          const double detJ = reference_gradients(a.dim, a.nn, Xe, dN, dNdX);
+          const double R = reference_radius(a.kin, a.nn, N, Xe);
+          const double w = volume_weight(a.kin, a.q.w[g] * detJ, R);
+          const Mat3 F = point_deformation_gradient(a.dim, a.kin, a.nn, N, R, Ue, dNdX);
           const double J = det(F);
           vol += w;
           Jm += w * J;
@@ -904,7 +872,7 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u, const CellFiel
     const Material& law = block_law_[static_cast<std::size_t>(lb.volume_block)];
     // With history: the kernels' Gauss points (the stiffness rule), where the rows live.
     const bool has_hist = history_layout(law).size > 0;
-    CellFieldBlock<decltype(uv)> a{dim_, lb.nodes_per_cell, has_hist ? history_[bi].ngp : 0, nx, lb.type,
+    CellFieldBlock<decltype(uv)> a{dim_, lb.nodes_per_cell, has_hist ? history_[bi].ngp : 0, nx, kin_, lb.type,
                                    make_rule(lb.type, has_hist ? stiffness_quadrature_degree(lb.type)
                                                                : quad_degree_[static_cast<std::size_t>(lb.volume_block)]),
                                    lb.conn, dist_.coords(), uv, has_hist ? history_[bi].committed : HistoryView(),

@@ -128,7 +128,9 @@ class Assembler {
   // two laws once; 0 in blocks whose law lacks it); `extra` holds extra_names.size()
   // values per cell. The stress of a block with history is that of the committed state
   // (the law's frozen_potential at the committed row).
-  // `volume`: reference volume of each cell (the Gauss weights' sum; 2D: per unit thickness).
+  // `volume`: reference volume of each cell (the Gauss weights' sum; 2D: per unit thickness;
+  // axisymmetric: the ring the cell sweeps, 2 pi int R dA). Axisymmetric stress and strains are
+  // in (r, z, theta): the third diagonal entry (zz of the output) is the hoop component.
   // On request (a deck pays only for what it asks): per Gauss point, averaged as the stress,
   //   green_lagrange: E = (C - I)/2, 6 per cell in the stress order (xx, yy, zz, xy, yz, xz);
   //   log_strain: the spatial Hencky strain ln V = ln(b)/2, b = F F^T (material/SymEigen.hpp), 6 per cell;
@@ -164,6 +166,7 @@ class Assembler {
   const Distribution& dist_;
   const Loads& loads_;
   int dim_;
+  Kinematics kin_;                          // Problem->kinematics (axisymmetric: 2 pi R weights, hoop strain)
   std::vector<Material> block_law_;         // per mesh volume block (material/MaterialRegistry.hpp)
   std::vector<double> block_density_, block_eta_;
   std::vector<int> quad_degree_;            // per mesh volume block: mass, body force, output

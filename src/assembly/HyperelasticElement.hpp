@@ -1,9 +1,16 @@
 // Element residual and tangent of finite-strain hyperelasticity, one cell at a time.
 // Called from the Kokkos element loop (Assembler.cpp); everything lives on the stack.
 //
-//   r_(a,i)        = sum_q  P_iJ dN_a/dX_J  w_q detJ_q
-//   K_(a,i),(b,k)  = sum_q  dN_a/dX_J A_iJkL dN_b/dX_L  w_q detJ_q,   A = dP/dF
-// 2D is plane strain: F_33 = 1, per unit thickness; only in-plane dofs are assembled.
+//   r_(a,i)        = sum_q  P_iJ dF_iJ/du_(a,i)  w_q detJ_q
+//   K_(a,i),(b,k)  = sum_q  dF_jJ/du_(a,i) A_jJlL dF_lL/du_(b,k)  w_q detJ_q,   A = dP/dF
+// (F is linear in u, so these are the exact derivatives of the stored energy).
+// 2D meshes are read by their Kinematics (Problem->kinematics):
+//   plane strain: F_33 = 1, per unit thickness; dF_iJ/du_(a,i) = dN_a/dX_J;
+//   axisymmetric: (x, y) = (r, z), the third direction is the hoop one,
+//     F_33 = F_thth = 1 + u_r/R at the reference radius R = sum_a N_a X_a,r of the point,
+//     dF_33/du_(a,r) = N_a/R (the hoop row of B), and every volume integral carries
+//     2 pi R: forces, energies and masses are those of the full revolution (docs/axisymmetric.md).
+// Only in-plane dofs are assembled.
 #pragma once
 #include "fem/CellType.hpp"
 #include "fem/Geometry.hpp"
@@ -56,6 +63,40 @@ KOKKOS_INLINE_FUNCTION Mat3 deformation_gradient(int dim, int nn, const double (
   for (int a = 0; a < nn; ++a)
     for (int i = 0; i < dim; ++i)
       for (int J = 0; J < dim; ++J) F(i, J) += U[a][i] * dNdX[a][J];
+  return F;
+}
+
+// How a cell's fields are read: Cartesian (3D, or 2D plane strain) or Axisymmetric (a 2D
+// mesh in the (r, z) half plane, x = r >= 0, y = z; the third direction is the hoop one).
+enum class Kinematics : int { Cartesian = 0, Axisymmetric = 1 };
+
+constexpr double kTwoPi = 6.283185307179586476925286766559005768;
+
+// Reference radius R = sum_a N_a X_a,r at a point (0 for Cartesian kinematics). Positive at
+// the interior (Gauss) points of a cell of positive area in r >= 0, nodes on the axis
+// included: nothing divides by a nodal radius.
+KOKKOS_INLINE_FUNCTION double reference_radius(Kinematics kin, int nn, const double* N, const double (*X)[3]) {
+  double R = 0.0;
+  if (kin == Kinematics::Axisymmetric)
+    for (int a = 0; a < nn; ++a) R += N[a] * X[a][0];
+  return R;
+}
+
+// Volume measure of a point with quadrature weight times detJ `wdetJ`: axisymmetric, the
+// ring it sweeps about the axis (2 pi R wdetJ); Cartesian, wdetJ (per unit thickness in 2D).
+KOKKOS_INLINE_FUNCTION double volume_weight(Kinematics kin, double wdetJ, double R) {
+  return kin == Kinematics::Axisymmetric ? kTwoPi * R * wdetJ : wdetJ;
+}
+
+// F at a point: deformation_gradient, and axisymmetric the hoop stretch F_33 = 1 + u_r/R.
+KOKKOS_INLINE_FUNCTION Mat3 point_deformation_gradient(int dim, Kinematics kin, int nn, const double* N, double R,
+                                                       const double (*U)[3], const double (*dNdX)[3]) {
+  Mat3 F = deformation_gradient(dim, nn, U, dNdX);
+  if (kin == Kinematics::Axisymmetric) {
+    double ur = 0.0;
+    for (int a = 0; a < nn; ++a) ur += N[a] * U[a][0];
+    F(2, 2) += ur / R;
+  }
   return F;
 }
 
@@ -142,8 +183,148 @@ KOKKOS_INLINE_FUNCTION bool history_gonzalez(const Law& law, const Mat3& Fv, con
   return true;
 }
 
+// Curnier viscosity at the evaluation configuration Fv: P^v = Fv S^v, S^v = 2 eta (C1 - C0)/dt,
+// added to P (and its derivative with respect to F1 to A); the dissipation times wq to `dissipation`.
+template <bool WithTangent>
+KOKKOS_INLINE_FUNCTION void add_viscous_stress(const ElementTime& et, const Mat3& Fv, const Mat3& F1, const Mat3& C0,
+                                               const Mat3& C1, double wq, Mat3& P, Ten4& A, double& dissipation) {
+  const Mat3 Sv = curnier_viscous_stress(et.eta, C0, C1, et.dt);
+  dissipation += wq * curnier_dissipation(et.eta, C0, C1, et.dt);
+  P = P + matmul(Fv, Sv);
+  if (!WithTangent) return;
+  // dP^v_iJ/dF1_kL = c delta_ik Sv_LJ + (2 eta/dt) (Fv_iL F1_kJ + (Fv F1^T)_ik delta_JL), c = dFv/dF1.
+  const double c = (et.eval == StressEval::EndPoint) ? 1.0 : 0.5;
+  const double e2 = 2.0 * et.eta / et.dt;
+  Mat3 FvF1t;
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) FvF1t(i, k) = Fv(i, 0) * F1(k, 0) + Fv(i, 1) * F1(k, 1) + Fv(i, 2) * F1(k, 2);
+  for (int i = 0; i < 3; ++i)
+    for (int J = 0; J < 3; ++J)
+      for (int k = 0; k < 3; ++k)
+        for (int L = 0; L < 3; ++L) {
+          double v = e2 * Fv(i, L) * F1(k, J);
+          if (J == L) v += e2 * FvF1t(i, k);
+          if (i == k) v += c * Sv(L, J);
+          A(i, J, k, L) += v;
+        }
+}
+
+// Hyperelastic P at the evaluation configuration (F_{n+1}, or F_{n+1/2} for Midpoint) or by
+// Gonzalez's discrete gradient, and (WithTangent) A = dP/dF_{n+1}. False if Fv is inverted.
+template <bool WithTangent, class Law>
+KOKKOS_INLINE_FUNCTION bool elastic_point(const Law& matq, const ElementTime& et, const Mat3& Fv, const Mat3& F1,
+                                          const Mat3& C0, const Mat3& C1, Mat3& P, Ten4& A) {
+  if (et.eval == StressEval::EndPoint || et.eval == StressEval::Midpoint) {
+    if (!(det(Fv) > 0.0)) return false;
+    const Mat3 Cv = tmul(Fv, Fv);
+    Mat3 S;
+    Ten4 CC;
+    if (WithTangent)
+      matq.stress_and_tangent(Cv, S, CC);
+    else
+      S = matq.stress(Cv);
+    P = matmul(Fv, S);
+    if (WithTangent) {
+      spatial_tangent_dPdF(Fv, S, CC, A);
+      if (et.eval == StressEval::Midpoint)  // dF_{n+1/2}/dF_{n+1} = 1/2
+        for (int i = 0; i < 3; ++i)
+          for (int J = 0; J < 3; ++J)
+            for (int k = 0; k < 3; ++k)
+              for (int L = 0; L < 3; ++L) A(i, J, k, L) *= 0.5;
+    }
+    return true;
+  }
+  // Gonzalez: P = F_{n+1/2} Sigma, Sigma = Sigma_algo(C_n, C_{n+1}), D = dSigma/dC_{n+1}.
+  Mat3 Sig;
+  Ten4 D;
+  if (WithTangent)
+    gonzalez_stress_and_tangent(matq, C0, C1, Sig, D);
+  else
+    Sig = gonzalez_stress(matq, C0, C1);
+  P = matmul(Fv, Sig);
+  if (WithTangent) gonzalez_dPdF(Fv, F1, Sig, D, A);
+  return true;
+}
+
+// P and A of one Gauss point g from F_n (F0, used when et.has_old) and F_{n+1} (F1): the
+// law's scheme (with history: end point or history_gonzalez), then viscosity. Adds the
+// point's energy, viscous and (history) plastic dissipation times wq. Returns kElementOk
+// or the failure.
+template <bool WithTangent, class Law, class Hist>
+KOKKOS_INLINE_FUNCTION int point_stress(const Law& matq, const ElementTime& et, const Mat3& F0, const Mat3& F1,
+                                        const Hist& hist, int g, double wq, Mat3& P, Ten4& A, double& energy,
+                                        double& dissipation, double* plastic) {
+  if (!(det(F1) > 0.0)) return kElementInverted;
+  const Mat3 C1 = tmul(F1, F1);
+  Mat3 Fv = F1, C0 = C1;
+  if constexpr (!Hist::kActive) energy += wq * matq.energy(C1);
+  if (et.has_old) {
+    C0 = tmul(F0, F0);
+    if (et.eval != StressEval::EndPoint) Fv = 0.5 * (F0 + F1);
+  }
+  if constexpr (Hist::kActive) {
+    // End point (statics, Newmark, HHT) or the energy-dissipative Gonzalez step; the deck
+    // refuses the plain midpoint rule with history.
+    const bool ok = et.eval == StressEval::Gonzalez
+                        ? history_gonzalez<WithTangent>(matq, Fv, F1, C0, C1, hist.n(g), hist.np1(g), wq, P, A, energy, *plastic)
+                        : history_point<WithTangent>(matq, F1, hist.n(g), hist.np1(g), wq, P, A, energy, *plastic);
+    if (!ok) return kElementLocalFailure;
+  } else if (!elastic_point<WithTangent>(matq, et, Fv, F1, C0, C1, P, A)) {
+    return kElementInverted;
+  }
+  if (et.eta > 0.0) add_viscous_stress<WithTangent>(et, Fv, F1, C0, C1, wq, P, A, dissipation);
+  return kElementOk;
+}
+
+// Adds one point's r_(a,i) = wq P : dF/du_(a,i) and K = wq dF/du_(a,i) : A : dF/du_(b,k).
+// dF_iJ/du_(a,k) = delta_ik dN_a/dX_J, plus axisymmetric the hoop entry dF_33/du_(a,r) = N_a/R.
+template <bool WithTangent>
+KOKKOS_INLINE_FUNCTION void add_point(int dim, Kinematics kin, int nn, const double* N, const double (*dNdX)[3], double R,
+                                      double wq, const Mat3& P, const Ten4& A, double* re, double (*ke)[kMaxCellDofs]) {
+  const bool axi = kin == Kinematics::Axisymmetric;
+  double h[kMaxCellNodes];  // N_a/R: the hoop row of B
+  for (int a = 0; a < nn; ++a) h[a] = axi ? N[a] / R : 0.0;
+  for (int a = 0; a < nn; ++a)
+    for (int i = 0; i < dim; ++i) {
+      double s = 0.0;
+      for (int J = 0; J < dim; ++J) s += P(i, J) * dNdX[a][J];
+      if (axi && i == 0) s += P(2, 2) * h[a];
+      re[a * dim + i] += wq * s;
+    }
+  if (!WithTangent) return;
+  // G[i][k][L] = wq dF_jJ/du_(a,i) A_jJkL, then K += G dN_b/dX_L; axisymmetric also
+  // Gh[i] = wq dF_jJ/du_(a,i) A_jJ33 and K_(a,i),(b,r) += Gh[i] N_b/R (the hoop column).
+  for (int a = 0; a < nn; ++a) {
+    double G[3][3][3], Gh[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < dim; ++i) {
+      for (int k = 0; k < dim; ++k)
+        for (int L = 0; L < dim; ++L) {
+          double s = 0.0;
+          for (int J = 0; J < dim; ++J) s += dNdX[a][J] * A(i, J, k, L);
+          if (axi && i == 0) s += h[a] * A(2, 2, k, L);
+          G[i][k][L] = wq * s;
+        }
+      if (axi) {
+        double s = 0.0;
+        for (int J = 0; J < dim; ++J) s += dNdX[a][J] * A(i, J, 2, 2);
+        if (i == 0) s += h[a] * A(2, 2, 2, 2);
+        Gh[i] = wq * s;
+      }
+    }
+    for (int b = 0; b < nn; ++b)
+      for (int i = 0; i < dim; ++i)
+        for (int k = 0; k < dim; ++k) {
+          double s = 0.0;
+          for (int L = 0; L < dim; ++L) s += G[i][k][L] * dNdX[b][L];
+          if (axi && k == 0) s += Gh[i] * h[b];
+          ke[a * dim + i][b * dim + k] += s;
+        }
+  }
+}
+
 // Element internal force (and its derivative with respect to u_{n+1}):
-//   r_(a,i) = sum_q P_iJ dN_a/dX_J w detJ,  K = dr/du_{n+1} = sum_q dN_a/dX_J A_iJkL dN_b/dX_L w detJ.
+//   r_(a,i) = sum_q P : dF/du_(a,i) dV,  K = dr/du_{n+1} = sum_q dF/du_(a,i) : A : dF/du_(b,k) dV,
+// dV = w detJ (axisymmetric: 2 pi R w detJ).
 // `energy` = int W(C_{n+1}) (with history: int Psi_{n+1}); `dissipation` = int S^v : (C_{n+1} - C_n)/2
 // = int eta |dC|^2/dt; `plastic` += int D_p of the step (laws with history only).
 // Mat is a hyperelastic law (ElasticLaw: the dispatch over every law, or one law such as
@@ -151,10 +332,11 @@ KOKKOS_INLINE_FUNCTION bool history_gonzalez(const Law& law, const Mat3& Fv, con
 // e.g. CiarletGeymonatPlasticity, NeoHookeanDamage) with Hist = CellHistory; with history
 // the stress is evaluated at the end point, or by history_gonzalez for the Gonzalez scheme.
 template <bool WithTangent, class Mat = CiarletGeymonat, class Hist = NoHistory>
-KOKKOS_INLINE_FUNCTION int solid_element(int dim, CellType type, int nn, const double (*X)[3], const double (*U)[3],
-                                         const double (*U0)[3], const Mat& mat, const ElementTime& et,
-                                         const QuadRule& q, double* re, double (*ke)[kMaxCellDofs], double& energy,
-                                         double& dissipation, const Hist& hist = Hist{}, double* plastic = nullptr) {
+KOKKOS_INLINE_FUNCTION int solid_element(int dim, Kinematics kin, CellType type, int nn, const double (*X)[3],
+                                         const double (*U)[3], const double (*U0)[3], const Mat& mat,
+                                         const ElementTime& et, const QuadRule& q, double* re, double (*ke)[kMaxCellDofs],
+                                         double& energy, double& dissipation, const Hist& hist = Hist{},
+                                         double* plastic = nullptr) {
   const int nd = nn * dim;
   for (int i = 0; i < nd; ++i) {
     re[i] = 0.0;
@@ -168,120 +350,32 @@ KOKKOS_INLINE_FUNCTION int solid_element(int dim, CellType type, int nn, const d
     shape_functions(type, q.xi[g], N, dN);
     const double detJ = reference_gradients(dim, nn, X, dN, dNdX);
     if (!(detJ > 0.0)) return kElementDegenerate;
-    const double wq = q.w[g] * detJ;
+    const double R = reference_radius(kin, nn, N, X);
+    if (kin == Kinematics::Axisymmetric && !(R > 0.0)) return kElementDegenerate;
+    const double wq = volume_weight(kin, q.w[g] * detJ, R);
     const Mat matq = law_at_point(mat, nn, N, X);  // fibre directions at this point, if the law has them
-    const Mat3 F1 = deformation_gradient(dim, nn, U, dNdX);
-    if (!(det(F1) > 0.0)) return kElementInverted;
-    const Mat3 C1 = tmul(F1, F1);
-    Mat3 P, Fv = F1, C0 = C1;
+    const Mat3 F1 = point_deformation_gradient(dim, kin, nn, N, R, U, dNdX);
+    const Mat3 F0 = et.has_old ? point_deformation_gradient(dim, kin, nn, N, R, U0, dNdX) : F1;
+    Mat3 P;
     Ten4 A;
-    if constexpr (!Hist::kActive) energy += wq * matq.energy(C1);
-    if (et.has_old) {
-      const Mat3 F0 = deformation_gradient(dim, nn, U0, dNdX);
-      C0 = tmul(F0, F0);
-      if (et.eval != StressEval::EndPoint) Fv = 0.5 * (F0 + F1);
-    }
-    if constexpr (Hist::kActive) {
-      // End point (statics, Newmark, HHT) or the energy-dissipative Gonzalez step; the deck
-      // refuses the plain midpoint rule with history.
-      const bool ok = et.eval == StressEval::Gonzalez
-                          ? history_gonzalez<WithTangent>(matq, Fv, F1, C0, C1, hist.n(g), hist.np1(g), wq, P, A, energy, *plastic)
-                          : history_point<WithTangent>(matq, F1, hist.n(g), hist.np1(g), wq, P, A, energy, *plastic);
-      if (!ok) return kElementLocalFailure;
-    } else if (et.eval == StressEval::EndPoint || et.eval == StressEval::Midpoint) {
-      // Stress of the evaluation configuration Fv (F_{n+1} or F_{n+1/2}).
-      if (!(det(Fv) > 0.0)) return kElementInverted;
-      const Mat3 Cv = tmul(Fv, Fv);
-      Mat3 S;
-      Ten4 CC;
-      if (WithTangent)
-        matq.stress_and_tangent(Cv, S, CC);
-      else
-        S = matq.stress(Cv);
-      P = matmul(Fv, S);
-      if (WithTangent) {
-        spatial_tangent_dPdF(Fv, S, CC, A);
-        if (et.eval == StressEval::Midpoint)  // dF_{n+1/2}/dF_{n+1} = 1/2
-          for (int i = 0; i < 3; ++i)
-            for (int J = 0; J < 3; ++J)
-              for (int k = 0; k < 3; ++k)
-                for (int L = 0; L < 3; ++L) A(i, J, k, L) *= 0.5;
-      }
-    } else {
-      // Gonzalez: P = F_{n+1/2} Sigma, Sigma = Sigma_algo(C_n, C_{n+1}), D = dSigma/dC_{n+1}.
-      //   A_iJkL = 1/2 delta_ik Sigma_LJ + 2 sum_{I,N} Fm_iI D_IJLN F1_kN.
-      Mat3 Sig;
-      Ten4 D;
-      if (WithTangent)
-        gonzalez_stress_and_tangent(matq, C0, C1, Sig, D);
-      else
-        Sig = gonzalez_stress(matq, C0, C1);
-      P = matmul(Fv, Sig);
-      if (WithTangent) gonzalez_dPdF(Fv, F1, Sig, D, A);
-    }
-    if (et.eta > 0.0) {
-      // Curnier viscosity at the evaluation configuration: P^v = Fv S^v, S^v = 2 eta (C1 - C0)/dt.
-      const Mat3 Sv = curnier_viscous_stress(et.eta, C0, C1, et.dt);
-      dissipation += wq * curnier_dissipation(et.eta, C0, C1, et.dt);
-      P = P + matmul(Fv, Sv);
-      if (WithTangent) {
-        // dP^v_iJ/dF1_kL = c delta_ik Sv_LJ + (2 eta/dt) (Fv_iL F1_kJ + (Fv F1^T)_ik delta_JL), c = dFv/dF1.
-        const double c = (et.eval == StressEval::EndPoint) ? 1.0 : 0.5;
-        const double e2 = 2.0 * et.eta / et.dt;
-        Mat3 FvF1t;
-        for (int i = 0; i < 3; ++i)
-          for (int k = 0; k < 3; ++k) FvF1t(i, k) = Fv(i, 0) * F1(k, 0) + Fv(i, 1) * F1(k, 1) + Fv(i, 2) * F1(k, 2);
-        for (int i = 0; i < 3; ++i)
-          for (int J = 0; J < 3; ++J)
-            for (int k = 0; k < 3; ++k)
-              for (int L = 0; L < 3; ++L) {
-                double v = e2 * Fv(i, L) * F1(k, J);
-                if (J == L) v += e2 * FvF1t(i, k);
-                if (i == k) v += c * Sv(L, J);
-                A(i, J, k, L) += v;
-              }
-      }
-    }
-    for (int a = 0; a < nn; ++a)
-      for (int i = 0; i < dim; ++i) {
-        double s = 0.0;
-        for (int J = 0; J < dim; ++J) s += P(i, J) * dNdX[a][J];
-        re[a * dim + i] += wq * s;
-      }
-    if (WithTangent) {
-      // G[a][i][k][L] = dN_a/dX_J A_iJkL, then K += G dN_b/dX_L.
-      for (int a = 0; a < nn; ++a) {
-        double G[3][3][3];
-        for (int i = 0; i < dim; ++i)
-          for (int k = 0; k < dim; ++k)
-            for (int L = 0; L < dim; ++L) {
-              double s = 0.0;
-              for (int J = 0; J < dim; ++J) s += dNdX[a][J] * A(i, J, k, L);
-              G[i][k][L] = wq * s;
-            }
-        for (int b = 0; b < nn; ++b)
-          for (int i = 0; i < dim; ++i)
-            for (int k = 0; k < dim; ++k) {
-              double s = 0.0;
-              for (int L = 0; L < dim; ++L) s += G[i][k][L] * dNdX[b][L];
-              ke[a * dim + i][b * dim + k] += s;
-            }
-      }
-    }
+    const int status = point_stress<WithTangent>(matq, et, F0, F1, hist, g, wq, P, A, energy, dissipation, plastic);
+    if (status != kElementOk) return status;
+    add_point<WithTangent>(dim, kin, nn, N, dNdX, R, wq, P, A, re, ke);
   }
   return kElementOk;
 }
 
-// Consistent mass of one cell: M_(a,i),(b,k) = delta_ik int rho N_a N_b dV.
-KOKKOS_INLINE_FUNCTION void mass_element(int dim, CellType type, int nn, const double (*X)[3], double rho, const QuadRule& q,
-                                         double (*ke)[kMaxCellDofs]) {
+// Consistent mass of one cell: M_(a,i),(b,k) = delta_ik int rho N_a N_b dV (axisymmetric dV = 2 pi R dA).
+KOKKOS_INLINE_FUNCTION void mass_element(int dim, Kinematics kin, CellType type, int nn, const double (*X)[3], double rho,
+                                         const QuadRule& q, double (*ke)[kMaxCellDofs]) {
   const int nd = nn * dim;
   for (int i = 0; i < nd; ++i)
     for (int j = 0; j < nd; ++j) ke[i][j] = 0.0;
   double N[kMaxCellNodes], dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
   for (int g = 0; g < q.n; ++g) {
     shape_functions(type, q.xi[g], N, dN);
-    const double w = rho * q.w[g] * reference_gradients(dim, nn, X, dN, dNdX);
+    double w = rho * q.w[g] * reference_gradients(dim, nn, X, dN, dNdX);
+    if (kin == Kinematics::Axisymmetric) w *= kTwoPi * reference_radius(kin, nn, N, X);
     for (int a = 0; a < nn; ++a)
       for (int b = 0; b < nn; ++b)
         for (int i = 0; i < dim; ++i) ke[a * dim + i][b * dim + i] += w * N[a] * N[b];

@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "bc/Axisymmetry.hpp"
 #include "mesh/MeshPart.hpp"
 
 namespace stentor {
@@ -146,6 +147,19 @@ Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
         break;
       }
     }
+  }
+  if (cfg.problem.axisymmetric()) {
+    // u_r = 0 on the axis (prepare_axisymmetric_mesh put its nodes at x = 0 exactly); the
+    // set is there (perhaps empty) in every axisymmetric run, on every rank alike.
+    DirichletSet d;
+    d.name = axis_set_name();
+    d.group = "(nodes at r = 0)";
+    for (std::size_t i = 0; i < mesh.num_stored_nodes(); ++i)
+      if (mesh.x[3 * i] == 0.0) d.nodes.push_back(mesh.stored_node(i));
+    std::sort(d.nodes.begin(), d.nodes.end());
+    d.components = {true, false, false};
+    d.ramp.kind = Ramp::Kind::Constant;
+    loads.dirichlet.push_back(std::move(d));
   }
   return loads;
 }

@@ -26,8 +26,9 @@ using contact::dot3;
 // Tributary (lumped) reference area of each node of a boundary group: the row sums of the
 // facet mass matrix scaled diagonally (HRZ), so quadratic facets get positive areas. They
 // scale the deck's per-area c_normal and c_tangent; the output's contact pressure is a
-// projection on the surface instead (mesh/SurfaceProjection.hpp).
-std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group) {
+// projection on the surface instead (mesh/SurfaceProjection.hpp). Axisymmetric: the areas of
+// the revolved facets (dA = 2 pi r ds).
+std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group, bool axisymmetric) {
   std::map<GId, double> area;
   for (const CellBlock* b : boundary_blocks(mesh, group)) {
     if (cell_dim(b->type) != mesh.dim - 1) continue;
@@ -49,6 +50,11 @@ std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group
             t2[c] += dN[a][1] * x;
           }
         double J = std::sqrt(dot3(t1, t1));
+        if (axisymmetric) {
+          double r = 0.0;
+          for (int a = 0; a < nn; ++a) r += N[a] * mesh.coord(b->conn[f * nn + a])[0];
+          J *= 2.0 * 3.14159265358979323846 * r;
+        }
         if (mesh.dim == 3) {
           const double cr[3] = {t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]};
           J = std::sqrt(dot3(cr, cr));
@@ -74,7 +80,7 @@ std::unique_ptr<Contact> Contact::create(const Config& cfg, const Mesh& mesh, co
 Contact::~Contact() = default;
 
 Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, const Assembler& assembler)
-    : dim_(mesh.dim), end_time_(cfg.stepping.end_time), dist_(dist) {
+    : dim_(mesh.dim), axi_(cfg.problem.axisymmetric()), end_time_(cfg.stepping.end_time), dist_(dist) {
   model_size_ = mesh.bounding_box().diagonal();
   gap_tol_ = 1e-12 * model_size_;
   mixed_analysis_ = cfg.any_dynamic() && cfg.any_static();
@@ -143,8 +149,8 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
   if (pc.formulation == "persistence" && !cfg.any_dynamic())  // static stages with the pair active: refused by the deck reader
     throw InputError(where + "->formulation = persistence needs a dynamic analysis ('Problem->analysis' = dynamic); use gap in statics");
   const std::vector<GId> nodes = boundary_nodes(mesh, pc.slave);  // throws InputError naming the group
-  const auto areas = tributary_areas(mesh, pc.slave);
-  p.surface = std::make_unique<SurfaceProjection>(mesh, std::vector<std::string>{pc.slave});
+  const auto areas = tributary_areas(mesh, pc.slave, axi_);
+  p.surface = std::make_unique<SurfaceProjection>(mesh, std::vector<std::string>{pc.slave}, axi_);
   long excluded = 0, partial = 0;
   for (GId g : nodes) {
     if (std::binary_search(master_set.begin(), master_set.end(), g)) {
@@ -222,7 +228,7 @@ void Contact::setup_master_maps(const Mesh& mesh, const std::vector<GId>& surfac
   master_area_.assign(master_nodes_.size(), 0.0);
   for (const auto& p : pairs_)
     if (p.master)
-      for (const auto& [g, a] : tributary_areas(mesh, p.cfg.master)) {
+      for (const auto& [g, a] : tributary_areas(mesh, p.cfg.master, axi_)) {
         const int pos = master_pos(g);
         if (pos >= 0) master_area_[static_cast<std::size_t>(pos)] = a;
       }

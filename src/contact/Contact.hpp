@@ -259,6 +259,7 @@ class Contact {
                    std::map<la::GO, Row>& g_far) const;
 
   int dim_;
+  bool axi_;  // Problem->kinematics = axisymmetric: tributary and projection areas of revolved facets
   double end_time_ = 1.0, t0_ = 0.0, t1_ = 0.0, dt_ = 1.0, dt_last_ = 0.0, gap_tol_ = 0.0, model_size_ = 0.0;
   bool changed_ = true;
   const Distribution& dist_;

@@ -775,6 +775,7 @@ void DeckReader::read_problem(const ParameterList& pl) {
   cfg_.problem.analysis = get_string(pl, ls, "analysis");
   cfg_.problem.assembly = get_string(pl, ls, "assembly");
   cfg_.problem.units = get_string(pl, ls, "units");
+  cfg_.problem.kinematics = get_string(pl, ls, "kinematics");
 }
 
 void DeckReader::read_mesh(const ParameterList& pl) {

@@ -41,7 +41,11 @@ struct ProblemConfig {
   std::string analysis = "static";   // "Problem"->"analysis": "static" | "dynamic"
   std::string assembly = "atomic";   // "Problem"->"assembly": "atomic" | "coloring" (thread-safe sums)
   std::string units = "SI";          // "Problem"->"units": SI | mm-N-s | mm-g-ms | none (plot labels only)
+  // "Problem"->"kinematics": how a 2D mesh is read, "plane strain" | "axisymmetric" ((x, y) = (r, z),
+  // full-revolution forces and energies; docs/axisymmetric.md). A 3D mesh takes "plane strain" (the default).
+  std::string kinematics = "plane strain";
   bool dynamic() const { return analysis == "dynamic"; }
+  bool axisymmetric() const { return kinematics == "axisymmetric"; }
 };
 
 struct MeshConfig {

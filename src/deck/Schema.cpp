@@ -101,8 +101,17 @@ std::vector<ListSpec> build_schema() {
                         "The deck's unit system, used only to label plots (nothing is converted: every value is "
                         "taken as given). `SI`: m, kg, s, N, Pa, J; `mm-N-s`: mm, t (tonne), s, N, MPa, mJ; "
                         "`mm-g-ms`: mm, g, ms, N, MPa, mJ; `none`: a dimensionless deck, plots without units. "
-                        "In 2D (plane strain) forces and energies are per unit thickness (N/m, J/m in SI).")
-                        .one_of({"SI", "mm-N-s", "mm-g-ms", "none"})}));
+                        "In 2D plane strain forces and energies are per unit thickness (N/m, J/m in SI); "
+                        "axisymmetric ones are those of the full revolution (N, J).")
+                        .one_of({"SI", "mm-N-s", "mm-g-ms", "none"}),
+                    str("kinematics", "plane strain",
+                        "How a 2D mesh is read. `plane strain`: F_zz = 1, per unit thickness. `axisymmetric`: the "
+                        "mesh is a meridian section in the half plane x = r >= 0, y = z (the axis of revolution); "
+                        "the hoop stretch is 1 + u_r/r, volumes, areas, masses, loads, reactions and energies are "
+                        "those of the full revolution (2 pi r), nodes on the axis (r = 0) get u_r = 0, and the "
+                        "output's zz components are the hoop (theta theta) ones (docs/axisymmetric.md). A 3D mesh "
+                        "takes the default.")
+                        .one_of({"plane strain", "axisymmetric"})}));
 
   s.push_back(list(
       "Mesh", "Mesh", "The gmsh mesh; physical groups name the bodies and the boundaries.",

@@ -9,7 +9,7 @@ const std::vector<std::string>& unit_systems() {
   return names;
 }
 
-UnitLabels unit_labels(const std::string& system, int dim) {
+UnitLabels unit_labels(const std::string& system, int dim, bool axisymmetric) {
   UnitLabels u;
   if (system == "SI") {
     u = {"m", "kg", "s", "N", "Pa", "J", "m/s"};
@@ -22,7 +22,7 @@ UnitLabels unit_labels(const std::string& system, int dim) {
   } else {
     throw std::invalid_argument("unknown unit system '" + system + "'");
   }
-  if (dim == 2) {  // plane strain: per unit thickness
+  if (dim == 2 && !axisymmetric) {  // plane strain: per unit thickness
     u.force += "/" + u.length;
     u.energy += "/" + u.length;
   }

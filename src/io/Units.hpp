@@ -9,6 +9,7 @@
 //
 // A 2D model is a plane-strain slice of unit thickness: its forces and energies are per
 // unit thickness (force/length, energy/length: N/m and J/m in SI, N/mm and mJ/mm in mm).
+// An axisymmetric 2D model is the full revolution of its section: forces and energies as in 3D.
 #pragma once
 #include <string>
 #include <vector>
@@ -20,9 +21,9 @@ struct UnitLabels {
 };
 
 // The labels of `system` (one of unit_systems(), case as in the schema) for a model of
-// dimension `dim` (2: force and energy per unit thickness). Throws std::invalid_argument
-// for an unknown system (the deck reader has already checked it).
-UnitLabels unit_labels(const std::string& system, int dim);
+// dimension `dim` (2: force and energy per unit thickness, unless `axisymmetric`). Throws
+// std::invalid_argument for an unknown system (the deck reader has already checked it).
+UnitLabels unit_labels(const std::string& system, int dim, bool axisymmetric = false);
 
 // The names accepted by unit_labels, in the schema's order.
 const std::vector<std::string>& unit_systems();

@@ -36,7 +36,7 @@ double area_element(const Mesh& mesh, const CellBlock& b, std::size_t f, const d
 
 }  // namespace
 
-SurfaceProjection::SurfaceProjection(const Mesh& mesh, const std::vector<std::string>& groups) {
+SurfaceProjection::SurfaceProjection(const Mesh& mesh, const std::vector<std::string>& groups, bool axisymmetric) {
   std::vector<const CellBlock*> facets;
   std::set<GId> nodes;  // of every cell of the groups
   for (const std::string& g : std::set<std::string>(groups.begin(), groups.end()))
@@ -48,12 +48,13 @@ SurfaceProjection::SurfaceProjection(const Mesh& mesh, const std::vector<std::st
   vertex_area_.assign(nodes_.size(), 0.0);
   edge_of_.assign(nodes_.size(), {-1, -1});
   for (const CellBlock* b : facets)
-    for (std::size_t f = 0; f < b->num_cells(); ++f) add_facet(mesh, *b, f);
+    for (std::size_t f = 0; f < b->num_cells(); ++f) add_facet(mesh, *b, f, axisymmetric);
 }
 
 // Facet f's share of its vertices' areas int L_v dA (with the facet's own, possibly
 // curved, geometry; degree 4 is exact on straight facets), and its mid-edge nodes' edges.
-void SurfaceProjection::add_facet(const Mesh& mesh, const CellBlock& b, std::size_t f) {
+// Axisymmetric: the revolved facet, dA = 2 pi r ds (r = x at the point).
+void SurfaceProjection::add_facet(const Mesh& mesh, const CellBlock& b, std::size_t f, bool axisymmetric) {
   const int nn = b.nodes_per_cell;
   const CellType vt = vertex_type(b.type);
   const int nv = cell_num_nodes(vt);
@@ -65,7 +66,12 @@ void SurfaceProjection::add_facet(const Mesh& mesh, const CellBlock& b, std::siz
     double N[kMaxCellNodes], dN[kMaxCellNodes][3], L[kMaxCellNodes];
     shape_functions(b.type, qp[q], N, dN);
     shape_functions(vt, qp[q], L, nullptr);
-    const double w = qw[q] * area_element(mesh, b, f, dN);
+    double w = qw[q] * area_element(mesh, b, f, dN);
+    if (axisymmetric) {
+      double r = 0.0;
+      for (int a = 0; a < nn; ++a) r += N[a] * mesh.coord(b.conn[f * nn + a])[0];
+      w *= 2.0 * 3.14159265358979323846 * r;
+    }
     for (int v = 0; v < nv; ++v) vertex_area_[static_cast<std::size_t>(at[v])] += w * L[v];
   }
   if (b.type == CellType::Line3) edge_of_[static_cast<std::size_t>(at[2])] = {at[0], at[1]};

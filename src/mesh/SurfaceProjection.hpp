@@ -32,8 +32,9 @@ namespace stentor {
 class SurfaceProjection {
  public:
   // The facets (cells of dimension mesh.dim - 1) of the named boundary groups (a group
-  // named twice counts once); throws InputError naming a missing group.
-  SurfaceProjection(const Mesh& mesh, const std::vector<std::string>& groups);
+  // named twice counts once); throws InputError naming a missing group. `axisymmetric`: a
+  // 2D mesh's (r, z) section, areas of the revolved facets (dA = 2 pi r ds).
+  SurfaceProjection(const Mesh& mesh, const std::vector<std::string>& groups, bool axisymmetric = false);
 
   // The groups' nodes (of all their cells), sorted: the order of f and p in project().
   const std::vector<GId>& nodes() const { return nodes_; }
@@ -45,7 +46,7 @@ class SurfaceProjection {
   std::vector<double> project(const std::vector<double>& f, int k) const;
 
  private:
-  void add_facet(const Mesh& mesh, const CellBlock& b, std::size_t f);
+  void add_facet(const Mesh& mesh, const CellBlock& b, std::size_t f, bool axisymmetric);
 
   std::vector<GId> nodes_;
   std::vector<double> vertex_area_;                  // a_v per node of nodes() (0: not a facet vertex)

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <string>
 
+#include "bc/Axisymmetry.hpp"
 #include "mesh/MeshComm.hpp"
 #include "mesh/MeshPart.hpp"
 #include "mesh/MeshQuery.hpp"
@@ -75,10 +76,13 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
     Timers::Scope s{timers, "mesh"};
     // One rank reads (and meshes) the whole mesh; on several ranks it then sends each its
     // part (cells, their neighbours, the boundary groups: mesh/MeshPart.hpp).
+    check_axisymmetric_deck(cfg);
     if (nranks == 1) {
       mesh = read_mesh_on_root(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
+      prepare_axisymmetric_mesh(cfg, mesh);
     } else {
       mesh = read_mesh_on_root_only(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
+      on_root([&] { prepare_axisymmetric_mesh(cfg, mesh); }, MPI_COMM_WORLD);
       double whole_mb = static_cast<double>(mesh.bytes()) / 1e6;
       MPI_Bcast(&whole_mb, 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
       // Boundary groups read whole on every rank: contact surfaces, the stent metrics' groups.

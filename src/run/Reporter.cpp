@@ -171,6 +171,9 @@ void Reporter::print_model() {
   for (std::size_t b = 0; b < mesh.volumes.size(); ++b)
     out_ << (b ? ", " : "") << mesh.volumes[b].name << ": " << mesh.block_cells(b) << " " << cell_name(mesh.volumes[b].type);
   out_ << ")\n";
+  if (cfg_.problem.axisymmetric())
+    out_ << "  kinematics axisymmetric: x = r, y = z; forces, reactions and energies of the full revolution (2 pi r), "
+            "u_r = 0 on the axis, stress zz = hoop\n";
   out_ << "  parallel " << m_.nranks << " MPI rank(s), Kokkos " << la::ExecSpace::name() << " x " << la::ExecSpace().concurrency()
        << " thread(s), " << cfg_.problem.assembly << " assembly\n";
   if (m_.nranks > 1) {
@@ -252,7 +255,7 @@ void Reporter::open() {
       std::vector<std::string> master_groups;
       for (const ContactPairConfig& c : cfg_.contact)
         if (!c.master.empty()) master_groups.push_back(c.master);
-      if (cfg_.output.fields && !master_groups.empty()) master_surface_ = std::make_unique<SurfaceProjection>(m_.mesh, master_groups);
+      if (cfg_.output.fields && !master_groups.empty()) master_surface_ = std::make_unique<SurfaceProjection>(m_.mesh, master_groups, cfg_.problem.axisymmetric());
       std::vector<std::string> rigid;  // the rigid pairs, in Contact::rigid_obstacles() order
       for (const ContactPairConfig& c : cfg_.contact)
         if (c.master.empty()) rigid.push_back(c.name);

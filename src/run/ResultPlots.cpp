@@ -206,7 +206,7 @@ std::vector<std::string> write_result_plots(const Model& m, const std::string& s
   const auto& systems = unit_systems();  // a Config built in code may hold any string
   const bool known = std::find(systems.begin(), systems.end(), m.cfg.problem.units) != systems.end();
   if (!known) std::cerr << "plots: unknown Problem->units '" << m.cfg.problem.units << "', plots without units\n";
-  const UnitLabels u = unit_labels(known ? m.cfg.problem.units : "none", m.dim);
+  const UnitLabels u = unit_labels(known ? m.cfg.problem.units : "none", m.dim, m.cfg.problem.axisymmetric());
   PlotTable h;
   if (read_csv_table(stem + "_history.csv", h) && h.find("time") >= 0 && h.rows() > 0) {
     prepend_initial_row(h, m, init);

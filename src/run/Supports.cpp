@@ -122,10 +122,12 @@ std::vector<std::string> unsupported_bodies(const Config& cfg, const Mesh& mesh,
   MPI_Allreduce(MPI_IN_PLACE, contact.data(), static_cast<int>(nb), MPI_INT, MPI_MAX, comm);
   for (std::size_t k = 0; k < nb; ++k) {
     if (cb.names[k].empty() || contact[k]) continue;
+    // Axisymmetric: the only rigid motion is along the axis (y); r is held by the hoop stiffness.
+    const bool axi = cfg.problem.axisymmetric();
     std::string free_dirs;
-    for (int c = 0; c < mesh.dim; ++c)
+    for (int c = axi ? 1 : 0; c < mesh.dim; ++c)
       if (!cb.held[k][static_cast<std::size_t>(c)]) free_dirs += std::string(free_dirs.empty() ? "" : ", ") + "xyz"[c];
-    const bool rotation = free_dirs.empty() && !cb.several[k];
+    const bool rotation = free_dirs.empty() && !cb.several[k] && !axi;
     if (free_dirs.empty() && !rotation) continue;
     lines.push_back("warning: static analysis: " + cb.who(k) + ": " +
                     (rotation ? std::string("every support is at one node, so the body can rotate about it")

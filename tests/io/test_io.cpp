@@ -865,6 +865,10 @@ TEST(Units, LabelsPerSystemAndPerThicknessIn2D) {
   EXPECT_EQ(none.force, "");
   EXPECT_EQ(with_unit("force", none.force), "force");
   EXPECT_EQ(with_unit("force", si2.force), "force [N/m]");
+  // Axisymmetric: the full revolution, forces and energies as in 3D.
+  const UnitLabels axi = unit_labels("SI", 2, true);
+  EXPECT_EQ(axi.force, "N");
+  EXPECT_EQ(axi.energy, "J");
   for (const std::string& s : unit_systems()) EXPECT_NO_THROW(unit_labels(s, 3)) << s;
   EXPECT_THROW(unit_labels("cgs", 3), std::invalid_argument);
 }

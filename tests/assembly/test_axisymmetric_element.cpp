@@ -1,0 +1,227 @@
+// Axisymmetric element kernels (assembly/HyperelasticElement.hpp, assembly/PressureElement.hpp;
+// docs/axisymmetric.md) one cell at a time:
+//  - the residual is the derivative of the stored energy and the tangent that of the residual
+//    (central finite differences), tri3, tri6 and quad4, cells away from and touching the axis,
+//    end point and Gonzalez stresses, with viscosity;
+//  - the follower-pressure tangent against finite differences of its residual (revolved edge);
+//  - volumes and masses of the full revolution (Pappus), and the hoop stretch 1 + u_r/R.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "assembly/HyperelasticElement.hpp"
+#include "assembly/PressureElement.hpp"
+#include "material/NeoHookean.hpp"
+
+using namespace stentor;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Cell {
+  CellType type;
+  int nn;
+  double X[kMaxCellNodes][3];
+};
+
+// A distorted cell with its lowest-left node at r = r0 (r0 = 0: an edge on the axis).
+Cell make_cell(CellType t, double r0) {
+  Cell c{t, cell_num_nodes(t), {}};
+  const double tri[6][2] = {{0, 0}, {0.9, 0.1}, {0.2, 0.8}, {0.45, 0.05}, {0.55, 0.45}, {0.1, 0.4}};
+  const double quad[4][2] = {{0, 0}, {1.0, 0.1}, {0.9, 0.8}, {0.0, 0.7}};
+  for (int a = 0; a < c.nn; ++a) {
+    const double* p = t == CellType::Quad4 ? quad[a] : tri[a];
+    c.X[a][0] = r0 + (a == 0 || (t == CellType::Quad4 && a == 3) ? 0.0 : p[0]);
+    c.X[a][1] = p[1];
+    c.X[a][2] = 0.0;
+  }
+  if (t == CellType::Tri3 || t == CellType::Tri6) c.X[2][0] = r0 + (r0 == 0.0 ? 0.0 : 0.2), c.X[5][0] = r0 + (r0 == 0.0 ? 0.0 : 0.1);
+  return c;
+}
+
+// A smooth displacement of the cell's nodes (stretch, shear, hoop) times amp, u_r = 0 on the axis.
+void displacement(const Cell& c, double amp, double phase, double (*U)[3]) {
+  for (int a = 0; a < c.nn; ++a) {
+    const double r = c.X[a][0], z = c.X[a][1];
+    U[a][0] = amp * (0.12 * r + 0.07 * r * z + phase * r * r);
+    U[a][1] = amp * (-0.05 * z + 0.06 * std::sin(r + z) + phase * z * z);
+    U[a][2] = 0.0;
+  }
+}
+
+struct Eval {
+  std::vector<double> r;
+  std::vector<std::vector<double>> K;
+  double energy = 0.0, dissipation = 0.0;
+  int status = 0;
+};
+
+Eval eval(const Cell& c, const double (*U)[3], const double (*U0)[3], const ElementTime& et) {
+  const NeoHookean law{1.0, 3.0};
+  const QuadRule q = make_rule(c.type, stiffness_quadrature_degree(c.type));
+  double re[kMaxCellDofs], ke[kMaxCellDofs][kMaxCellDofs];
+  Eval e;
+  e.status = solid_element<true>(2, Kinematics::Axisymmetric, c.type, c.nn, c.X, U, U0, law, et, q, re, ke, e.energy, e.dissipation);
+  const int nd = 2 * c.nn;
+  e.r.assign(re, re + nd);
+  for (int i = 0; i < nd; ++i) e.K.emplace_back(ke[i], ke[i] + nd);
+  return e;
+}
+
+// max |K - FD(r)| / max |K| and max |r - FD(E)| / max |r| at U (U0 = u_n when et.has_old);
+// the largest of each is kept in `worst` (tangent, residual).
+void expect_consistent(const Cell& c, const ElementTime& et, const char* what, double* worst) {
+  double U[kMaxCellNodes][3], U0[kMaxCellNodes][3];
+  displacement(c, 1.0, 0.03, U);
+  displacement(c, 0.7, -0.02, U0);
+  const Eval e = eval(c, U, U0, et);
+  ASSERT_EQ(e.status, kElementOk) << what;
+  const int nd = 2 * c.nn;
+  const double h = 1e-6;
+  double kmax = 0, kerr = 0, rmax = 0, rerr = 0;
+  for (int j = 0; j < nd; ++j) {
+    double Up[kMaxCellNodes][3], Um[kMaxCellNodes][3];
+    std::copy(&U[0][0], &U[0][0] + 3 * kMaxCellNodes, &Up[0][0]);
+    std::copy(&U[0][0], &U[0][0] + 3 * kMaxCellNodes, &Um[0][0]);
+    Up[j / 2][j % 2] += h, Um[j / 2][j % 2] -= h;
+    const Eval p = eval(c, Up, U0, et), m = eval(c, Um, U0, et);
+    for (int i = 0; i < nd; ++i) {
+      kmax = std::max(kmax, std::abs(e.K[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]));
+      kerr = std::max(kerr, std::abs(e.K[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] -
+                                     (p.r[static_cast<std::size_t>(i)] - m.r[static_cast<std::size_t>(i)]) / (2 * h)));
+    }
+    rmax = std::max(rmax, std::abs(e.r[static_cast<std::size_t>(j)]));
+    rerr = std::max(rerr, std::abs(e.r[static_cast<std::size_t>(j)] - (p.energy - m.energy) / (2 * h)));
+  }
+  EXPECT_GT(kmax, 0.1) << what;
+  EXPECT_LT(kerr / kmax, 1e-7) << what << ": tangent against FD of the residual";
+  worst[0] = std::max(worst[0], kerr / kmax);
+  if (!et.has_old) worst[1] = std::max(worst[1], rerr / rmax);
+  // The residual is dE/du only for a stress that is the energy's derivative at the end point.
+  if (!et.has_old) {
+    EXPECT_GT(rmax, 1e-3) << what;
+    EXPECT_LT(rerr / rmax, 1e-7) << what << ": residual against FD of the stored energy";
+  }
+}
+
+const CellType kTypes[] = {CellType::Tri3, CellType::Tri6, CellType::Quad4};
+
+}  // namespace
+
+TEST(AxisymmetricElement, ResidualAndTangentAgainstFiniteDifferences) {
+  double worst[2] = {0.0, 0.0};
+  for (CellType t : kTypes)
+    for (double r0 : {0.6, 0.0}) {
+      const Cell c = make_cell(t, r0);
+      SCOPED_TRACE(std::string(cell_name(t)) + (r0 == 0.0 ? " on the axis" : " off the axis"));
+      expect_consistent(c, ElementTime{}, "end point", worst);
+      ElementTime g;
+      g.eval = StressEval::Gonzalez;
+      g.has_old = true;
+      g.dt = 0.1;
+      g.eta = 0.05;
+      expect_consistent(c, g, "Gonzalez with viscosity", worst);
+      ElementTime mid = g;
+      mid.eval = StressEval::Midpoint;
+      mid.eta = 0.0;
+      expect_consistent(c, mid, "midpoint", worst);
+    }
+  std::printf("[axisymmetric element] tri3/tri6/quad4, on and off the axis: max |K - FD(r)|/max|K| %.1e, "
+              "max |r - FD(E)|/max|r| %.1e\n",
+              worst[0], worst[1]);
+}
+
+// A cell whose edge lies on the axis: the nodes there carry no hoop strain of their own
+// (their N_a/R stays bounded at the Gauss points), the values are finite.
+TEST(AxisymmetricElement, CellOnTheAxisIsFinite) {
+  for (CellType t : kTypes) {
+    const Cell c = make_cell(t, 0.0);
+    double U[kMaxCellNodes][3];
+    displacement(c, 1.0, 0.0, U);
+    const Eval e = eval(c, U, U, ElementTime{});
+    ASSERT_EQ(e.status, kElementOk) << cell_name(t);
+    for (double v : e.r) EXPECT_TRUE(std::isfinite(v)) << cell_name(t);
+    for (const auto& row : e.K)
+      for (double v : row) EXPECT_TRUE(std::isfinite(v)) << cell_name(t);
+    EXPECT_TRUE(std::isfinite(e.energy));
+  }
+}
+
+// Homogeneous u_r = a r, u_z = b z: F = diag(1 + a, 1 + b, 1 + a) at every point, so the
+// energy is W(F) times the revolved volume, and the mass matrix sums to rho times that
+// volume per direction (Pappus: 2 pi times the centroid's radius times the area).
+TEST(AxisymmetricElement, HomogeneousStateAndRevolvedVolume) {
+  const NeoHookean law{1.0, 3.0};
+  const double a = 0.08, b = -0.04, rho = 2.5;
+  for (CellType t : kTypes) {
+    const Cell c = make_cell(t, 0.3);
+    double U[kMaxCellNodes][3];
+    for (int n = 0; n < c.nn; ++n) U[n][0] = a * c.X[n][0], U[n][1] = b * c.X[n][1], U[n][2] = 0.0;
+    // Area and first moment by the shoelace formula over the straight-sided outline.
+    const int corners = t == CellType::Quad4 ? 4 : 3;
+    double A = 0, Sr = 0;
+    for (int i = 0; i < corners; ++i) {
+      const double* p = c.X[i];
+      const double* q = c.X[(i + 1) % corners];
+      const double cr = p[0] * q[1] - q[0] * p[1];
+      A += 0.5 * cr;
+      Sr += cr * (p[0] + q[0]) / 6.0;
+    }
+    const double volume = 2 * kPi * Sr;
+    ASSERT_GT(A, 0.0);
+    const Eval e = eval(c, U, U, ElementTime{});
+    ASSERT_EQ(e.status, kElementOk);
+    Mat3 F = Mat3::identity();
+    F(0, 0) = 1 + a, F(1, 1) = 1 + b, F(2, 2) = 1 + a;
+    const double W = law.energy(tmul(F, F));
+    // Tri3 integrates the energy with one point (exact here: the integrand is W times R).
+    EXPECT_NEAR(e.energy, W * volume, 1e-13 * W * volume) << cell_name(t);
+    double M[kMaxCellDofs][kMaxCellDofs];
+    mass_element(2, Kinematics::Axisymmetric, t, c.nn, c.X, rho, make_rule(t, default_quadrature_degree(t)), M);
+    double total = 0;
+    for (int i = 0; i < 2 * c.nn; i += 2)
+      for (int j = 0; j < 2 * c.nn; j += 2) total += M[i][j];
+    EXPECT_NEAR(total, rho * volume, 1e-13 * rho * volume) << cell_name(t);
+  }
+}
+
+// Follower pressure on a revolved edge: the residual is p times the current ring's normal
+// area, and the tangent (theta = 1/2) matches finite differences of it.
+TEST(AxisymmetricElement, PressureTangentAgainstFiniteDifferences) {
+  for (CellType t : {CellType::Line2, CellType::Line3}) {
+    const int nn = cell_num_nodes(t);
+    double X[kMaxCellNodes][3] = {{0.7, 0.2, 0}, {1.3, 0.9, 0}, {1.05, 0.5, 0}};
+    double U[kMaxCellNodes][3] = {{0.05, -0.02, 0}, {0.11, 0.03, 0}, {0.09, 0.02, 0}};
+    const QuadRule q = make_rule(t, 2 * cell_order(t) + 1);
+    const double p = 1.7, theta = 0.5;
+    double re[kMaxCellDofs], ke[kMaxCellDofs][kMaxCellDofs];
+    pressure_element(2, Kinematics::Axisymmetric, t, nn, X, U, p, theta, q, re, ke);
+    const double h = 1e-6;
+    double err = 0, kmax = 0;
+    for (int j = 0; j < 2 * nn; ++j) {
+      double rp[kMaxCellDofs], rm[kMaxCellDofs], kd[kMaxCellDofs][kMaxCellDofs];
+      U[j / 2][j % 2] += h;
+      pressure_element(2, Kinematics::Axisymmetric, t, nn, X, U, p, theta, q, rp, kd);
+      U[j / 2][j % 2] -= 2 * h;
+      pressure_element(2, Kinematics::Axisymmetric, t, nn, X, U, p, theta, q, rm, kd);
+      U[j / 2][j % 2] += h;
+      for (int i = 0; i < 2 * nn; ++i) {
+        kmax = std::max(kmax, std::abs(ke[i][j]));
+        err = std::max(err, std::abs(ke[i][j] - theta * (rp[i] - rm[i]) / (2 * h)));
+      }
+    }
+    EXPECT_GT(kmax, 0.1);
+    EXPECT_LT(err / kmax, 1e-8) << cell_name(t);
+    std::printf("[axisymmetric element] pressure on a revolved %s: |K - theta FD(r)|/max|K| %.1e\n", cell_name(t), err / kmax);
+    if (t == CellType::Line2) {
+      // Straight edge from x0 to x1: sum_a r_a = p 2 pi int x_r (dz, -dr) = p pi (r0 + r1) (z1 - z0, -(r1 - r0)).
+      const double r0 = X[0][0] + U[0][0], z0 = X[0][1] + U[0][1], r1 = X[1][0] + U[1][0], z1 = X[1][1] + U[1][1];
+      EXPECT_NEAR(re[0] + re[2], p * kPi * (r0 + r1) * (z1 - z0), 1e-13);
+      EXPECT_NEAR(re[1] + re[3], -p * kPi * (r0 + r1) * (r1 - r0), 1e-13);
+    }
+  }
+}

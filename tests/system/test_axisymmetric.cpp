@@ -1,0 +1,783 @@
+// Axisymmetric analysis (Problem->kinematics = axisymmetric, docs/axisymmetric.md): meshes in
+// the (r, z) half plane, x = r, y = z, forces and energies of the full revolution.
+//  a. The global residual and tangent (follower pressure, dead traction, body force included)
+//     against central finite differences, and the internal force against those of the energy.
+//  b. Patch test: u_r = a r, u_z = b z + c on distorted tri3/tri6/quad4 meshes touching the axis.
+//  c. Uniaxial stretch of a solid cylinder with a free mantle: the lateral stretch of the
+//     closed form at every node, the end reaction P_zz pi R^2 (the whole ring).
+//  d. Thick-walled cylinder (u_z = 0: plane strain along the axis) and sphere under internal
+//     follower pressure at finite strain, against shooting solutions of the radial equilibrium
+//     ODE; the error falls under mesh refinement.
+//  e. An impulsively loaded ring (Gonzalez): the energy identity per step to 1e-12 of E0, and
+//     E0 = 1/2 rho v^2 2 pi r_c A.
+//  f. The hoop stress in the output's third column, cell volumes of the revolution.
+//  g. Contact pressure on a rigid plane normal to the axis (revolved areas).
+//  h. A ring bouncing on a rigid plane: the energy identity with contact.
+//  i. Node-to-segment contact between two bodies: the contact pressure of a stacked pair.
+//  j. Plasticity and fibres in the axisymmetric kernel: global tangents against differences.
+//  k. A spinning cylinder (centrifugal body force field) against linear elasticity.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "AssemblerFixture.hpp"
+#include "CsvSeries.hpp"
+#include "H5Results.hpp"
+#include "run/Simulation.hpp"
+
+using namespace stentor;
+using stentor::testing::AssemblerFixture;
+using stentor::testing::read_csv;
+using stentor::testing::Series;
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "axisymmetric";
+
+std::string write_file(const std::string& name, const std::string& text) {
+  fs::create_directories(kDir);
+  const fs::path p = kDir / name;
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+// A rectangle [r0, r1] x [z0, z1] with groups inner (r = r0), outer, bottom, top; body "wall".
+std::string rectangle_geo(const std::string& name, double r0, double r1, double z0, double z1) {
+  std::ostringstream g;
+  g.precision(17);
+  g << "Point(1) = {" << r0 << ", " << z0 << ", 0, 1};\nPoint(2) = {" << r1 << ", " << z0 << ", 0, 1};\n"
+    << "Point(3) = {" << r1 << ", " << z1 << ", 0, 1};\nPoint(4) = {" << r0 << ", " << z1 << ", 0, 1};\n"
+    << "Line(1) = {1, 2};\nLine(2) = {2, 3};\nLine(3) = {3, 4};\nLine(4) = {4, 1};\n"
+    << "Curve Loop(1) = {1, 2, 3, 4};\nPlane Surface(1) = {1};\n"
+    << "Physical Surface(\"wall\") = {1};\nPhysical Curve(\"bottom\") = {1};\nPhysical Curve(\"outer\") = {2};\n"
+    << "Physical Curve(\"top\") = {3};\nPhysical Curve(\"inner\") = {4};\n";
+  return write_file(name, g.str());
+}
+
+// What a deck needs besides its mesh and material (neo-Hookean mu, lambda; every body's).
+struct DeckSpec {
+  std::string mesh;
+  double size = 0.0;
+  int order = 1;
+  bool recombine = false;
+  double mu = 1.0, lambda = 3.0, rho = 0.0;
+  std::string bcs, initial, contact;  // raw XML of "Boundary Conditions" / "Initial Conditions" / "Contact" entries
+  bool fields = false;
+  std::vector<std::string> bodies{"wall"};  // the mesh's surface groups
+  std::string model = "neo-Hookean", material_xml;  // the law and its parameters besides mu, lambda, density
+  bool dynamic = false;
+  double end_time = 1.0;
+  int steps = 1;
+};
+
+Config make_deck(const DeckSpec& s, const std::string& tag) {
+  std::ostringstream x;
+  x.precision(17);
+  auto P = [&](const char* n, const char* t, const auto& v) {
+    x << "<Parameter name=\"" << n << "\" type=\"" << t << "\" value=\"" << v << "\"/>";
+  };
+  x << "<ParameterList name=\"stentor\">\n<ParameterList name=\"Problem\">";
+  P("kinematics", "string", "axisymmetric");
+  P("analysis", "string", s.dynamic ? "dynamic" : "static");
+  x << "</ParameterList>\n<ParameterList name=\"Mesh\">";
+  P("file", "string", s.mesh);
+  P("size", "double", s.size);
+  P("order", "int", s.order);
+  P("recombine", "bool", s.recombine ? "true" : "false");
+  x << "</ParameterList>\n<ParameterList name=\"Materials\"><ParameterList name=\"m\">";
+  P("model", "string", s.model);
+  P("mu", "double", s.mu);
+  P("lambda", "double", s.lambda);
+  P("density", "double", s.rho);
+  x << s.material_xml << "</ParameterList></ParameterList>\n<ParameterList name=\"Bodies\">";
+  for (const std::string& b : s.bodies) {
+    x << "<ParameterList name=\"" << b << "\">";
+    P("material", "string", "m");
+    x << "</ParameterList>";
+  }
+  x << "</ParameterList>\n";
+  if (!s.bcs.empty()) x << "<ParameterList name=\"Boundary Conditions\">" << s.bcs << "</ParameterList>\n";
+  if (!s.initial.empty()) x << "<ParameterList name=\"Initial Conditions\">" << s.initial << "</ParameterList>\n";
+  if (!s.contact.empty()) x << "<ParameterList name=\"Contact\">" << s.contact << "</ParameterList>\n";
+  x << "<ParameterList name=\"Stepping\">";
+  P("end time", "double", s.end_time);
+  P("steps", "int", s.steps);
+  x << "</ParameterList>\n<ParameterList name=\"Newton\">";
+  P("relative residual tolerance", "double", 1e-13);
+  P("absolute residual tolerance", "double", 1e-14);
+  P("max iterations", "int", 30);
+  x << "</ParameterList>\n<ParameterList name=\"Linear Solver\">";
+  P("method", "string", "direct");
+  x << "</ParameterList>\n<ParameterList name=\"Output\">";
+  P("fields", "bool", s.fields ? "true" : "false");
+  P("basename", "string", "run");
+  x << "</ParameterList>\n</ParameterList>\n";
+  return read_deck(write_file(tag + ".xml", x.str()));
+}
+
+std::string dirichlet(const std::string& name, const std::string& group, const std::string& comps, const std::string& values) {
+  return "<ParameterList name=\"" + name + "\"><Parameter name=\"type\" type=\"string\" value=\"Dirichlet\"/>" +
+         "<Parameter name=\"boundary\" type=\"string\" value=\"" + group + "\"/>" +
+         "<Parameter name=\"components\" type=\"string\" value=\"" + comps + "\"/>" +
+         (values.empty() ? "" : "<Parameter name=\"values\" type=\"Array(double)\" value=\"{" + values + "}\"/>") +
+         "</ParameterList>";
+}
+
+RunResult run(const Config& cfg, const std::string& tag) {
+  RunOptions opts;
+  opts.output_dir = (kDir / tag).string();
+  RunResult res;
+  EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
+  EXPECT_TRUE(res.converged) << tag;
+  return res;
+}
+
+// Reaction of the Dirichlet set named `name` (the run's sets: the deck's, then "axis").
+std::array<double, 3> reaction(const Config& cfg, const RunResult& res, const std::string& name) {
+  std::size_t d = 0;
+  for (const auto& l : cfg.loads)
+    if (l.type == LoadConfig::Type::Dirichlet) {
+      if (l.name == name) return res.reactions[d];
+      ++d;
+    }
+  if (name == "axis") return res.reactions[d];
+  ADD_FAILURE() << "no Dirichlet set " << name;
+  return {0, 0, 0};
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------
+// a. Ring section r in [0.5, 1.5], z in [0, 1] (P2 triangles): follower pressure 0.3 on the
+// inner side, a dead traction on the top, a body force; u a smooth finite deformation.
+namespace {
+
+struct FdCheck {
+  double rel = 0, dE = 0, fv = 0, plastic = 0;  // |K v - FD|/|K v|, dE/dv, f_int.v, the trial state's plastic dissipation
+};
+
+// Tangent and internal force at a smooth finite deformation u (times amp) along v,
+// against central differences (h = 1e-6) of the residual and of the stored energy.
+FdCheck global_fd(const AssemblerFixture& f, double amp) {
+  const auto map = f.dist->owned_map();
+  la::Vector u(map), v(map), up(map), um(map), r(map), rp(map), rm(map), Kv(map), fint(map), fd(map);
+  {
+    auto uh = u.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    auto vh = v.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (la::LO l = 0; l < f.dist->num_owned_nodes(); ++l) {
+      const double* X = f.mesh.coord(f.dist->global_node(l));
+      uh(2 * l, 0) = amp * (0.1 * X[0] + 0.05 * X[0] * X[1] - 0.03 * X[1] * X[1]);
+      uh(2 * l + 1, 0) = amp * (-0.04 * X[1] + 0.06 * std::sin(X[0] + 2 * X[1]));
+      vh(2 * l, 0) = std::cos(3 * X[0] + X[1]);
+      vh(2 * l + 1, 0) = std::sin(X[0] - 2 * X[1]);
+    }
+  }
+  FdCheck c;
+  const Assembler::Stats st = f.as->assemble(u, 1.0, 1.0, r, true);
+  EXPECT_EQ(st.inverted, 0);
+  c.plastic = st.plastic_dissipation;
+  fint.update(1.0, f.as->static_residual(), 1.0, f.as->external_force(), 0.0);
+  f.as->matrix()->apply(v, Kv);
+  const double h = 1e-6;
+  up.update(1.0, u, h, v, 0.0);
+  um.update(1.0, u, -h, v, 0.0);
+  const double Ep = f.as->assemble(up, 1.0, 1.0, rp, false).energy, Em = f.as->assemble(um, 1.0, 1.0, rm, false).energy;
+  fd.update(0.5 / h, rp, -0.5 / h, rm, 0.0);
+  fd.update(-1.0, Kv, 1.0);
+  c.rel = fd.normInf() / Kv.normInf();
+  c.dE = (Ep - Em) / (2 * h);
+  c.fv = fint.dot(v);
+  return c;
+}
+
+const char* kRingFdLoads =
+    "<ParameterList name=\"p\"><Parameter name=\"type\" type=\"string\" value=\"pressure\"/>"
+    "<Parameter name=\"boundary\" type=\"string\" value=\"inner\"/><Parameter name=\"pressure\" type=\"double\" value=\"0.3\"/></ParameterList>"
+    "<ParameterList name=\"t\"><Parameter name=\"type\" type=\"string\" value=\"traction\"/>"
+    "<Parameter name=\"boundary\" type=\"string\" value=\"top\"/><Parameter name=\"traction\" type=\"Array(double)\" value=\"{0.1, 0.2}\"/></ParameterList>"
+    "<ParameterList name=\"g\"><Parameter name=\"type\" type=\"string\" value=\"body force\"/>"
+    "<Parameter name=\"force\" type=\"Array(double)\" value=\"{0.05, -0.3}\"/></ParameterList>";
+
+}  // namespace
+
+TEST(Axisymmetric, GlobalTangentAndForcesAgainstFiniteDifferences) {
+  DeckSpec s;
+  s.mesh = rectangle_geo("ring_fd.geo", 0.5, 1.5, 0.0, 1.0);
+  s.size = 0.35;
+  s.order = 2;
+  s.bcs = kRingFdLoads;
+  const AssemblerFixture f(make_deck(s, "ring_fd"));
+  const auto map = f.dist->owned_map();
+  la::Vector r(map);
+  const FdCheck c = global_fd(f, 1.0);
+  std::printf("[axisymmetric] global FD: |K v - FD|/|K v| = %.2e; dE/dv %.12e, f_int.v %.12e\n", c.rel, c.dE, c.fv);
+  EXPECT_LT(c.rel, 1e-7);
+  EXPECT_NEAR(c.dE, c.fv, 1e-8 * std::abs(c.fv));
+  // The external force's z sum at u = 0: the traction 0.2 on the top ring (area
+  // pi (1.5^2 - 0.5^2)) and the body force -0.3 on the volume (pi (1.5^2 - 0.5^2) 1); the
+  // pressure on the straight inner cylinder has no z component.
+  double fz = 0.0;
+  const double ring = kPi * (1.5 * 1.5 - 0.5 * 0.5);
+  la::Vector zero(map);
+  f.as->assemble(zero, 1.0, 1.0, r, false);
+  {
+    auto fh = f.as->external_force().getLocalViewHost(Tpetra::Access::ReadOnly);
+    fz = 0.0;
+    for (la::LO l = 0; l < f.dist->num_owned_nodes(); ++l) fz += fh(2 * l + 1, 0);
+  }
+  EXPECT_NEAR(fz, 0.2 * ring - 0.3 * ring, 1e-12);
+}
+
+// ---------------------------------------------------------------------------------------
+// b. A distorted section touching the axis (curved top, embedded points of very different
+// sizes), u = (a r, b z + c) prescribed on its whole boundary: F = diag(1 + a, 1 + b, 1 + a)
+// everywhere, P constant with P_rr = P_thth, so the radial equilibrium
+// dP_rr/dR + (P_rr - P_thth)/R = 0 holds and u is the exact solution, in every element space.
+TEST(Axisymmetric, PatchTestOnDistortedMeshesTouchingTheAxis) {
+  const std::string geo = write_file("patch.geo", R"(
+Point(1) = {0, 0, 0, 0.22};
+Point(2) = {1, 0.1, 0, 0.3};
+Point(3) = {1.1, 0.9, 0, 0.12};
+Point(4) = {0, 0.8, 0, 0.25};
+Point(5) = {0.55, 1.05, 0, 0.2};
+Point(6) = {0.31, 0.43, 0, 0.03};
+Point(7) = {0.74, 0.27, 0, 0.06};
+Point(8) = {0.62, 0.71, 0, 0.04};
+Line(1) = {1, 2};
+Line(2) = {2, 3};
+Spline(3) = {3, 5, 4};
+Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Point{6, 7, 8} In Surface{1};
+Physical Surface("wall") = {1};
+Physical Curve("bottom") = {1};
+Physical Curve("outer") = {2};
+Physical Curve("top") = {3};
+Physical Curve("axis_side") = {4};
+)");
+  const double a = 0.07, b = -0.05, c = 0.02;
+  auto exact = [=](const double* X) { return std::array<double, 3>{a * X[0], b * X[1] + c, 0.0}; };
+  struct Case {
+    int order;
+    bool recombine;
+  };
+  for (const Case k : {Case{1, false}, Case{2, false}, Case{1, true}}) {
+    DeckSpec s;
+    s.mesh = geo;
+    s.order = k.order;
+    s.recombine = k.recombine;
+    for (const char* g : {"bottom", "outer", "top", "axis_side"}) s.bcs += dirichlet(std::string("u_") + g, g, "x y", "");
+    const std::string tag = "patch_p" + std::to_string(k.order) + (k.recombine ? "_quad" : "_tri");
+    Config cfg = make_deck(s, tag);
+    for (auto& l : cfg.loads) l.field = exact;
+    const RunResult res = run(cfg, tag);
+    double err = 0, scale = 0;
+    std::size_t on_axis = 0;
+    for (std::size_t n = 0; n < res.mesh.num_nodes(); ++n) {
+      const auto ue = exact(&res.mesh.x[3 * n]);
+      on_axis += res.mesh.x[3 * n] == 0.0;
+      for (int d = 0; d < 2; ++d) {
+        err = std::max(err, std::abs(res.displacement[3 * n + d] - ue[d]));
+        scale = std::max(scale, std::abs(ue[d]));
+      }
+    }
+    std::printf("[axisymmetric] patch %s: %zu nodes (%zu on the axis), max |u - u_exact| / max |u_exact| = %.2e\n", tag.c_str(),
+                res.mesh.num_nodes(), on_axis, err / scale);
+    EXPECT_GT(on_axis, 3u);
+    EXPECT_LT(err / scale, 1e-11) << tag;
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// c. Solid cylinder R = 1, H = 1 (nodes on the axis), bottom u_z = 0, top u_z = delta, mantle
+// free: the homogeneous state F = diag(s, l, s), l = 1 + delta, with the mantle stress-free,
+//   P_rr = mu (s - 1/s) + lambda ln(s^2 l)/s = 0  (solved by Newton below),
+// and the end force P_zz pi R^2, P_zz = mu (l - 1/l) + lambda ln(s^2 l)/l: the full ring.
+TEST(Axisymmetric, UniaxialStretchOfASolidCylinder) {
+  const double mu = 1.0, lambda = 3.0, delta = 0.2, l = 1 + delta;
+  double sl = 1.0;
+  for (int i = 0; i < 50; ++i) {
+    const double lnJ = std::log(sl * sl * l);
+    const double g = mu * (sl - 1 / sl) + lambda * lnJ / sl;
+    const double dg = mu * (1 + 1 / (sl * sl)) + lambda * (2 - lnJ) / (sl * sl);
+    sl -= g / dg;
+  }
+  const double Pzz = mu * (l - 1 / l) + lambda * std::log(sl * sl * l) / l;
+  for (const bool quads : {true, false}) {
+    DeckSpec s;
+    s.mesh = rectangle_geo("solid.geo", 0.0, 1.0, 0.0, 1.0);
+    s.size = 0.25;
+    s.order = quads ? 1 : 2;
+    s.recombine = quads;
+    s.steps = 2;
+    s.bcs = dirichlet("base", "bottom", "y", "") + dirichlet("pull", "top", "y", "0.2");
+    const std::string tag = quads ? "solid_quad4" : "solid_tri6";
+    const Config cfg = make_deck(s, tag);
+    const RunResult res = run(cfg, tag);
+    double err = 0;
+    for (std::size_t n = 0; n < res.mesh.num_nodes(); ++n) {
+      const double R = res.mesh.x[3 * n], Z = res.mesh.x[3 * n + 1];
+      err = std::max({err, std::abs(res.displacement[3 * n] - (sl - 1) * R), std::abs(res.displacement[3 * n + 1] - delta * Z)});
+    }
+    const double F = reaction(cfg, res, "pull")[1], F_exact = Pzz * kPi;
+    std::printf("[axisymmetric] uniaxial %s: lateral stretch %.12f, max |u - u_exact| %.2e; end force %.12e (P_zz pi R^2 %.12e), "
+                "axis reaction %.1e\n",
+                tag.c_str(), sl, err, F, F_exact, reaction(cfg, res, "axis")[0]);
+    EXPECT_LT(err, 1e-11);
+    EXPECT_NEAR(F, F_exact, 1e-10 * F_exact);
+    EXPECT_NEAR(reaction(cfg, res, "base")[1], -F_exact, 1e-10 * F_exact);
+    EXPECT_LT(std::abs(reaction(cfg, res, "axis")[0]), 1e-10 * F_exact);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// d. Thick-walled cylinder and sphere, ri = 1, ro = 2, under internal follower pressure p on
+// the bore, compressible neo-Hookean (mu = 1, lambda = 3), at finite strain. The cylinder has
+// u_z = 0 on its ends (plane strain along z, p = 0.3); the sphere (p = 0.5) is the quarter
+// annulus x, y >= 0 of the (r, z) plane with u_z = 0 on the equator and its poles on the axis.
+// The reference: the radial deformation r(R), stretches l_r = r', l_t = r/R (n = 1 hoop
+// direction for the cylinder, where l_z = 1; n = 2 for the sphere), J = l_r l_t^n,
+//   P_r = mu (l_r - 1/l_r) + lambda ln J / l_r,  P_t = mu (l_t - 1/l_t) + lambda ln J / l_t,
+//   dP_r/dR = n (P_t - P_r)/R,  P_r(ri) = -p l_t(ri)^n (Cauchy sigma_rr = -p),  P_r(ro) = 0,
+// shot from r(ri) = a (l_r from P_r by safeguarded Newton, RK4 with 4000 steps, a by bisection).
+namespace {
+
+struct RadialSolution {
+  double a = 0, b = 0;  // deformed inner and outer radius
+};
+
+struct Shell {
+  int n;  // hoop directions: 1 cylinder, 2 sphere
+  double mu, lambda, p, ri, ro;
+  double radial_stress(double lr, double lt) const { return mu * (lr - 1 / lr) + lambda * std::log(lr * std::pow(lt, n)) / lr; }
+  double hoop_stress(double lr, double lt) const { return mu * (lt - 1 / lt) + lambda * std::log(lr * std::pow(lt, n)) / lt; }
+  // l_r with P_r(l_r, lt) = P: P_r increases with l_r while ln J < 1 + mu/lambda; Newton
+  // safeguarded by the bracket [lo, hi] (bisection when a Newton step leaves it).
+  double radial_stretch(double P, double lt) const {
+    double lo = 1e-8, hi = 1.0;
+    while (radial_stress(hi, lt) < P) hi *= 2;
+    double lr = 0.5 * (lo + hi);
+    for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+      const double g = radial_stress(lr, lt) - P;
+      if (g == 0.0) break;
+      (g > 0 ? hi : lo) = lr;
+      const double dg = mu * (1 + 1 / (lr * lr)) + lambda * (1 - std::log(lr * std::pow(lt, n))) / (lr * lr);
+      const double next = lr - g / dg;
+      lr = (dg > 0 && next > lo && next < hi) ? next : 0.5 * (lo + hi);
+    }
+    return lr;
+  }
+  // Integrates the ODE from ri (r = a) to ro; returns (r(ro), P_r(ro)).
+  std::array<double, 2> shoot(double a) const {
+    auto rhs = [&](double R, const std::array<double, 2>& y) {
+      const double lt = y[0] / R, lr = radial_stretch(y[1], lt);
+      return std::array<double, 2>{lr, n * (hoop_stress(lr, lt) - y[1]) / R};
+    };
+    const int steps = 4000;
+    const double h = (ro - ri) / steps;
+    std::array<double, 2> y{a, -p * std::pow(a / ri, n)};
+    for (int i = 0; i < steps; ++i) {
+      const double R = ri + i * h;
+      const auto k1 = rhs(R, y);
+      const auto k2 = rhs(R + h / 2, {y[0] + h / 2 * k1[0], y[1] + h / 2 * k1[1]});
+      const auto k3 = rhs(R + h / 2, {y[0] + h / 2 * k2[0], y[1] + h / 2 * k2[1]});
+      const auto k4 = rhs(R + h, {y[0] + h * k3[0], y[1] + h * k3[1]});
+      for (int k = 0; k < 2; ++k) y[k] += h / 6 * (k1[k] + 2 * k2[k] + 2 * k3[k] + k4[k]);
+    }
+    return y;
+  }
+  RadialSolution solve() const {
+    double lo = ri, hi = 3 * ri;
+    for (int i = 0; i < 60; ++i) {
+      const double m = 0.5 * (lo + hi);
+      (shoot(m)[1] < 0 ? lo : hi) = m;
+    }
+    RadialSolution s;
+    s.a = 0.5 * (lo + hi);
+    s.b = shoot(s.a)[0];
+    return s;
+  }
+};
+
+std::string pressure_on(const std::string& group, double p) {
+  std::ostringstream x;
+  x.precision(17);
+  x << "<ParameterList name=\"p\"><Parameter name=\"type\" type=\"string\" value=\"pressure\"/>"
+    << "<Parameter name=\"boundary\" type=\"string\" value=\"" << group << "\"/><Parameter name=\"pressure\" type=\"double\" value=\""
+    << p << "\"/></ParameterList>";
+  return x.str();
+}
+
+struct MeshChoice {
+  int order;
+  bool recombine;
+  double size;
+};
+
+// Largest relative error of the deformed (cylindrical or spherical) radius of the nodes on the
+// inner and outer boundaries, with the deck of `s` on each mesh choice.
+std::vector<double> shell_errors(const Shell& sh, DeckSpec s, const std::vector<MeshChoice>& meshes, const std::string& name) {
+  const RadialSolution ref = sh.solve();
+  std::printf("[axisymmetric] thick %s p = %.2f: ODE inner radius %.10f, outer radius %.10f\n", name.c_str(), sh.p, ref.a, ref.b);
+  EXPECT_GT(ref.a, 1.2);  // a finite strain: the bore grows by more than 20 %
+  std::vector<double> err;
+  for (const MeshChoice m : meshes) {
+    s.size = m.size, s.order = m.order, s.recombine = m.recombine;
+    const std::string tag = name + "_p" + std::to_string(m.order) + "_" + std::to_string(m.size);
+    const Config cfg = make_deck(s, tag);
+    const RunResult res = run(cfg, tag);
+    double e = 0;
+    for (std::size_t k = 0; k < res.mesh.num_nodes(); ++k) {
+      const double* X = &res.mesh.x[3 * k];
+      const double R = sh.n == 1 ? X[0] : std::hypot(X[0], X[1]);
+      const double r = sh.n == 1 ? X[0] + res.displacement[3 * k] : std::hypot(X[0] + res.displacement[3 * k], X[1] + res.displacement[3 * k + 1]);
+      if (std::abs(R - sh.ri) < 1e-9) e = std::max(e, std::abs(r - ref.a) / (ref.a - sh.ri));
+      if (std::abs(R - sh.ro) < 1e-9) e = std::max(e, std::abs(r - ref.b) / (ref.b - sh.ro));
+    }
+    std::printf("[axisymmetric] thick %s: max rel. error of the deformed radius at R = %g, %g: %.3e\n", tag.c_str(), sh.ri, sh.ro, e);
+    err.push_back(e);
+  }
+  return err;
+}
+
+}  // namespace
+
+TEST(Axisymmetric, ThickCylinderAgainstTheRadialODE) {
+  const Shell sh{1, 1.0, 3.0, 0.3, 1.0, 2.0};
+  DeckSpec s;
+  s.mesh = rectangle_geo("thick.geo", sh.ri, sh.ro, 0.0, 0.25);
+  s.steps = 4;
+  s.bcs = dirichlet("base", "bottom", "y", "") + dirichlet("lid", "top", "y", "") + pressure_on("inner", sh.p);
+  const auto err = shell_errors(sh, s, {{1, true, 0.125}, {1, true, 0.0625}, {2, false, 0.25}, {2, false, 0.125}}, "cylinder");
+  // Measured: Q1 2.8e-3 -> 1.2e-3, P2 9.6e-5 -> 2.3e-5 as h is halved.
+  EXPECT_LT(err[0], 0.01);
+  EXPECT_LT(err[1], 0.5 * err[0]);
+  EXPECT_LT(err[2], 1e-3);
+  EXPECT_LT(err[3], 0.3 * err[2]);
+  EXPECT_LT(err[3], 1e-4);
+}
+
+TEST(Axisymmetric, ThickSphereAgainstTheRadialODE) {
+  const Shell sh{2, 1.0, 3.0, 0.5, 1.0, 2.0};
+  DeckSpec s;
+  s.mesh = write_file("sphere.geo", R"(
+Point(1) = {0, 0, 0, 1};
+Point(2) = {1, 0, 0, 1};
+Point(3) = {2, 0, 0, 1};
+Point(4) = {0, 2, 0, 1};
+Point(5) = {0, 1, 0, 1};
+Line(1) = {2, 3};
+Circle(2) = {3, 1, 4};
+Line(3) = {4, 5};
+Circle(4) = {5, 1, 2};
+Curve Loop(1) = {1, 2, 3, 4};
+Plane Surface(1) = {1};
+Physical Surface("wall") = {1};
+Physical Curve("equator") = {1};
+Physical Curve("outer") = {2};
+Physical Curve("axis_side") = {3};
+Physical Curve("inner") = {4};
+)");
+  s.steps = 5;
+  s.bcs = dirichlet("equator", "equator", "y", "") + pressure_on("inner", sh.p);
+  const auto err = shell_errors(sh, s, {{1, true, 0.125}, {2, false, 0.25}, {2, false, 0.125}}, "sphere");
+  // Measured: Q1 1.3e-2 at h = 0.125; P2 2.2e-3 -> 3.1e-4 as h is halved.
+  EXPECT_LT(err[0], 0.02);
+  EXPECT_LT(err[1], 0.005);
+  EXPECT_LT(err[2], 0.2 * err[1]);
+}
+
+// ---------------------------------------------------------------------------------------
+// e. Ring r in [1, 1.2], z in [0, 0.2], no support, given a uniform radial velocity v = 0.3 at
+// t = 0: it expands, the hoop stiffness pulls it back, it oscillates. Gonzalez, 40 steps.
+TEST(Axisymmetric, ImpulsivelyLoadedRingConservesEnergy) {
+  DeckSpec s;
+  s.mesh = rectangle_geo("ring.geo", 1.0, 1.2, 0.0, 0.2);
+  s.size = 0.05;
+  s.recombine = true;
+  s.rho = 1.0;
+  s.dynamic = true;
+  s.end_time = 2.0;
+  s.steps = 40;
+  s.initial = "<Parameter name=\"velocity\" type=\"Array(double)\" value=\"{0.3, 0}\"/>";
+  const Config cfg = make_deck(s, "ring_dyn");
+  RunOptions opts;
+  opts.output_dir = (kDir / "ring_dyn").string();
+  RunResult res;
+  ASSERT_EQ(run_simulation(cfg, opts, &res), 0);
+  const Series e = read_csv(kDir / "ring_dyn" / "run_energy.csv");
+  const double E0 = e["total"][0], E0_exact = 0.5 * 0.3 * 0.3 * 2 * kPi * 1.1 * 0.04;
+  double bal = 0, drift = 0, strain = 0;
+  for (std::size_t i = 0; i < e.rows(); ++i) {
+    bal = std::max(bal, std::abs(e["balance_residual"][i]));
+    drift = std::max(drift, std::abs(e["total"][i] - E0));
+    strain = std::max(strain, e["strain"][i]);
+  }
+  std::printf("[axisymmetric] ring: E0 %.15e (1/2 rho v^2 2 pi r_c A = %.15e), max strain energy %.3e E0, max |balance| %.2e E0, "
+              "max |E - E0| %.2e E0\n",
+              E0, E0_exact, strain / E0, bal / E0, drift / E0);
+  EXPECT_NEAR(E0, E0_exact, 1e-13 * E0_exact);
+  EXPECT_GT(strain, 0.5 * E0);  // the kinetic energy is turned into hoop strain and back
+  EXPECT_LT(bal, 1e-12 * E0);
+  EXPECT_LT(drift, 1e-11 * E0);
+}
+
+// ---------------------------------------------------------------------------------------
+// f. The output of a homogeneous state: a solid cylinder (R = H = 1, quad4) at
+// u = (a r, b z), F = diag(1 + a, 1 + b, 1 + a), J = (1 + a)^2 (1 + b). The neo-Hookean
+// Cauchy stress sigma = mu/J (F F^T - I) + lambda ln J / J I has the hoop component
+// sigma_thth = sigma_rr (plane strain would give lambda ln J / J there, F_33 = 1), in the
+// output's third column; the cells' volumes sum to pi R^2 H.
+TEST(Axisymmetric, CellFieldsGiveTheHoopStressAndRevolvedVolumes) {
+  DeckSpec s;
+  s.mesh = rectangle_geo("solid_fields.geo", 0.0, 1.0, 0.0, 1.0);
+  s.size = 0.25;
+  s.recombine = true;
+  const AssemblerFixture f(make_deck(s, "solid_fields"));
+  const double a = 0.06, b = -0.03, mu = 1.0, lambda = 3.0;
+  la::Vector u(f.dist->owned_map());
+  {
+    auto uh = u.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (la::LO l = 0; l < f.dist->num_owned_nodes(); ++l) {
+      const double* X = f.mesh.coord(f.dist->global_node(l));
+      uh(2 * l, 0) = a * X[0];
+      uh(2 * l + 1, 0) = b * X[1];
+    }
+  }
+  const Assembler::CellFields cf = f.as->cell_fields(u);
+  const double J = (1 + a) * (1 + a) * (1 + b), lnJ = std::log(J);
+  const double s_rr = mu / J * ((1 + a) * (1 + a) - 1) + lambda * lnJ / J, s_zz = mu / J * ((1 + b) * (1 + b) - 1) + lambda * lnJ / J;
+  double err = 0, volume = 0;
+  for (std::size_t c = 0; c < cf.cell_ids.size(); ++c) {
+    const double* sig = &cf.stress[6 * c];
+    err = std::max({err, std::abs(sig[0] - s_rr), std::abs(sig[1] - s_zz), std::abs(sig[2] - s_rr), std::abs(sig[3]),
+                    std::abs(sig[4]), std::abs(sig[5])});
+    volume += cf.volume[c];
+  }
+  std::printf("[axisymmetric] fields: %zu cells, sigma_rr = sigma_thth = %.12f, sigma_zz = %.12f, max error %.1e; "
+              "volume %.15f (pi %.15f)\n",
+              cf.cell_ids.size(), s_rr, s_zz, err, volume, kPi);
+  EXPECT_GT(cf.cell_ids.size(), 8u);
+  EXPECT_LT(err, 1e-13);
+  EXPECT_NEAR(volume, kPi, 1e-13);
+}
+
+// ---------------------------------------------------------------------------------------
+// g. Contact with rigid obstacles (2D profiles: surfaces of revolution). A solid cylinder
+// (R = H = 1, nodes on the axis) pressed by a dead traction p = 0.2 on its top onto the
+// rigid plane z = 0 (frictionless): the homogeneous state of uniaxial compression, so the
+// contact pressure (the force per revolved reference area, mesh/SurfaceProjection.hpp) is
+// p at every node of the base.
+namespace {
+
+std::string plane_obstacle(const std::string& name, const std::string& slave, double z) {
+  std::ostringstream x;
+  x << "<ParameterList name=\"" << name << "\"><Parameter name=\"slave\" type=\"string\" value=\"" << slave << "\"/>"
+    << "<Parameter name=\"obstacle\" type=\"string\" value=\"plane\"/>"
+    << "<Parameter name=\"point\" type=\"Array(double)\" value=\"{0, " << z << "}\"/>"
+    << "<Parameter name=\"normal\" type=\"Array(double)\" value=\"{0, 1}\"/></ParameterList>";
+  return x.str();
+}
+
+}  // namespace
+
+TEST(Axisymmetric, ContactPressureOnARigidPlaneIsTheTraction) {
+  const double p = 0.2;
+  for (const bool quads : {true, false}) {
+    DeckSpec s;
+    s.mesh = rectangle_geo("solid_contact.geo", 0.0, 1.0, 0.0, 1.0);
+    s.size = 0.25;
+    s.order = quads ? 1 : 2;
+    s.recombine = quads;
+    s.fields = true;
+    s.bcs = "<ParameterList name=\"press\"><Parameter name=\"type\" type=\"string\" value=\"traction\"/>"
+            "<Parameter name=\"boundary\" type=\"string\" value=\"top\"/>"
+            "<Parameter name=\"traction\" type=\"Array(double)\" value=\"{0, -0.2}\"/></ParameterList>";
+    s.contact = plane_obstacle("floor", "bottom", 0.0);
+    const std::string tag = quads ? "contact_quad4" : "contact_tri6";
+    const Config cfg = make_deck(s, tag);
+    run(cfg, tag);
+    stentor::testing::H5Results h5(kDir / tag / "run.h5");
+    const std::string step = "/step_" + std::to_string(h5.times().size() - 1) + "/";
+    const auto X = h5.read("/mesh/coordinates"), pr = h5.read(step + "contact_pressure");
+    ASSERT_EQ(3 * pr.size(), X.size());
+    double err = 0;
+    std::size_t on_base = 0;
+    for (std::size_t n = 0; n < pr.size(); ++n)
+      if (X[3 * n + 1] == 0.0) ++on_base, err = std::max(err, std::abs(pr[n] - p) / p);
+    std::printf("[axisymmetric] %s on a rigid plane: %zu base nodes, max |contact_pressure - p|/p %.1e\n", tag.c_str(), on_base, err);
+    EXPECT_GT(on_base, 4u);
+    EXPECT_LT(err, 1e-9) << tag;
+  }
+}
+
+// h. A ring (r in [1, 1.2], z in [0.05, 0.25], quad4) thrown at v = 1 onto the rigid plane
+// z = 0, bouncing off it: Gonzalez with the persistence condition, the energy identity per step.
+TEST(Axisymmetric, RingImpactOnARigidPlaneConservesEnergy) {
+  DeckSpec s;
+  s.mesh = rectangle_geo("ring_impact.geo", 1.0, 1.2, 0.05, 0.25);
+  s.size = 0.05;
+  s.recombine = true;
+  s.rho = 1.0;
+  s.dynamic = true;
+  s.end_time = 0.6;
+  s.steps = 60;
+  s.initial = "<Parameter name=\"velocity\" type=\"Array(double)\" value=\"{0, -1}\"/>";
+  s.contact = plane_obstacle("floor", "bottom", 0.0);
+  const Config cfg = make_deck(s, "ring_impact");
+  RunOptions opts;
+  opts.output_dir = (kDir / "ring_impact").string();
+  RunResult res;
+  ASSERT_EQ(run_simulation(cfg, opts, &res), 0);
+  const Series e = read_csv(kDir / "ring_impact" / "run_energy.csv");
+  const double E0 = e["total"][0];
+  double bal = 0, drift = 0, vz_end = 0;
+  for (std::size_t i = 0; i < e.rows(); ++i) {
+    bal = std::max(bal, std::abs(e["balance_residual"][i]));
+    drift = std::max(drift, std::abs(e["total"][i] + e["friction_dissipation"][i] - e["contact_work"][i] - E0));
+  }
+  vz_end = e["momentum_y"][e.rows() - 1];
+  std::printf("[axisymmetric] ring impact: E0 %.6e, max |balance| %.2e E0, max |E - E0 - W_contact| %.2e E0, contact work at the end "
+              "%.2e E0, axial momentum %.4e -> %.4e\n",
+              E0, bal / E0, drift / E0, e["contact_work"][e.rows() - 1] / E0, e["momentum_y"][0], vz_end);
+  EXPECT_LT(bal, 1e-12 * E0);
+  EXPECT_GT(vz_end, 0.0);  // it bounced
+}
+
+// i. Two solid cylinders (R = 1, heights 1) stacked on the axis, the lower one's base held
+// axially, a dead traction p = 0.2 pressing the upper one's top (matching P1 meshes): the
+// node-to-segment pair carries the homogeneous compression, so the upper body's
+// contact_pressure is p at every node of its base and the lower body's
+// contact_master_traction is (0, -p) at every node of its top.
+TEST(Axisymmetric, NodeToSegmentContactBetweenStackedCylinders) {
+  DeckSpec s;
+  s.mesh = write_file("stacked.geo", R"(
+Point(1) = {0, 0, 0, 0.25};
+Point(2) = {1, 0, 0, 0.25};
+Point(3) = {1, 1, 0, 0.25};
+Point(4) = {0, 1, 0, 0.25};
+Point(5) = {0, 1, 0, 0.25};
+Point(6) = {1, 1, 0, 0.25};
+Point(7) = {1, 2, 0, 0.25};
+Point(8) = {0, 2, 0, 0.25};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 5};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Curve Loop(2) = {5, 6, 7, 8}; Plane Surface(2) = {2};
+Physical Surface("lower") = {1};
+Physical Surface("upper") = {2};
+Physical Curve("base") = {1};
+Physical Curve("lower_top") = {3};
+Physical Curve("upper_base") = {5};
+Physical Curve("upper_top") = {7};
+)");
+  s.recombine = true;
+  s.fields = true;
+  s.bodies = {"lower", "upper"};
+  s.bcs = dirichlet("hold", "base", "y", "") +
+          "<ParameterList name=\"press\"><Parameter name=\"type\" type=\"string\" value=\"traction\"/>"
+          "<Parameter name=\"boundary\" type=\"string\" value=\"upper_top\"/>"
+          "<Parameter name=\"traction\" type=\"Array(double)\" value=\"{0, -0.2}\"/></ParameterList>";
+  s.contact = "<ParameterList name=\"stack\"><Parameter name=\"slave\" type=\"string\" value=\"upper_base\"/>"
+              "<Parameter name=\"master\" type=\"string\" value=\"lower_top\"/></ParameterList>";
+  run(make_deck(s, "stacked"), "stacked");
+  stentor::testing::H5Results h5(kDir / "stacked" / "run.h5");
+  const std::string step = "/step_" + std::to_string(h5.times().size() - 1) + "/";
+  const auto X = h5.read("/mesh/coordinates"), pr = h5.read(step + "contact_pressure"), st = h5.read(step + "contact_status"),
+             tm = h5.read(step + "contact_master_traction");
+  ASSERT_EQ(3 * pr.size(), X.size());
+  ASSERT_EQ(tm.size(), X.size());
+  const double p = 0.2;
+  double err = 0;
+  std::size_t slave = 0, master = 0;
+  for (std::size_t n = 0; n < pr.size(); ++n) {
+    if (X[3 * n + 1] != 1.0) continue;
+    if (st[n] >= 0.0) ++slave, err = std::max(err, std::abs(pr[n] - p) / p);  // a slave node: on the upper body's base
+    else ++master, err = std::max({err, std::abs(tm[3 * n]) / p, std::abs(tm[3 * n + 1] + p) / p});
+  }
+  std::printf("[axisymmetric] stacked cylinders: %zu slave, %zu master nodes, max relative error of contact_pressure and "
+              "contact_master_traction %.1e\n",
+              slave, master, err);
+  EXPECT_GT(slave, 4u);
+  EXPECT_GT(master, 4u);
+  EXPECT_LT(err, 1e-9);
+}
+
+// j. The laws with Gauss-point history and with fibres through the same axisymmetric kernel:
+// the ring section of a. with neo-Hookean plasticity (yield stress 0.02: the deformation
+// flows) and with Holzapfel-Gasser-Ogden fibres at +-30 deg to the hoop direction about the
+// axis of revolution; the global tangent against central differences of the residual.
+TEST(Axisymmetric, PlasticityAndFibresTangentAgainstFiniteDifferences) {
+  const std::vector<std::pair<std::string, std::string>> laws = {
+      {"neo-Hookean plasticity",
+       "<Parameter name=\"yield stress\" type=\"double\" value=\"0.02\"/><Parameter name=\"hardening\" type=\"double\" value=\"0.1\"/>"},
+      {"Holzapfel-Gasser-Ogden",
+       "<Parameter name=\"k1\" type=\"double\" value=\"2\"/><Parameter name=\"k2\" type=\"double\" value=\"0.8\"/>"
+       "<Parameter name=\"fibre angle\" type=\"double\" value=\"30\"/>"
+       "<Parameter name=\"axis\" type=\"Array(double)\" value=\"{0, 1, 0}\"/>"
+       "<Parameter name=\"axis point\" type=\"Array(double)\" value=\"{0, 0}\"/>"}};
+  for (const auto& [model, params] : laws) {
+    DeckSpec s;
+    s.mesh = rectangle_geo("ring_fd.geo", 0.5, 1.5, 0.0, 1.0);
+    s.size = 0.35;
+    s.order = 2;
+    s.model = model;
+    s.material_xml = params;
+    s.bcs = kRingFdLoads;
+    const AssemblerFixture f(make_deck(s, "ring_fd_law"));
+    const FdCheck c = global_fd(f, 1.0);
+    std::printf("[axisymmetric] global FD, %s: |K v - FD|/|K v| = %.2e, plastic dissipation of the trial state %.3e\n",
+                model.c_str(), c.rel, c.plastic);
+    EXPECT_LT(c.rel, 1e-6) << model;
+    if (model == "neo-Hookean plasticity") EXPECT_GT(c.plastic, 0.0);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// k. A long solid cylinder (radius b = 1, u_z = 0 on its ends) spinning about its axis,
+// loaded by the centrifugal body force rho omega^2 r e_r (a field, dead), small strain
+// (rho omega^2 b^2 / mu = 1e-4): linear elasticity gives, with M = lambda + 2 mu,
+//   u_r = rho omega^2 r / (8 M) [(2 lambda + 3 mu)/(lambda + mu) b^2 - r^2], u_z = 0
+// (sigma_rr(b) = 0 holds only with the hoop term lambda u_r/r); P2 meshes touching the axis,
+// h halved. u_z is 0 up to the discretisation error of the unstructured triangles.
+TEST(Axisymmetric, SpinningCylinderAgainstLinearElasticity) {
+  const double mu = 1.0, lambda = 3.0, rw2 = 1e-4, b = 1.0, M = lambda + 2 * mu;
+  auto ur = [=](double r) { return rw2 * r / (8 * M) * ((2 * lambda + 3 * mu) / (lambda + mu) * b * b - r * r); };
+  std::vector<double> err;
+  for (const double h : {0.25, 0.125}) {
+    DeckSpec s;
+    s.mesh = rectangle_geo("spin.geo", 0.0, b, 0.0, 0.25);
+    s.size = h;
+    s.order = 2;
+    s.bcs = dirichlet("base", "bottom", "y", "") + dirichlet("lid", "top", "y", "") +
+            "<ParameterList name=\"spin\"><Parameter name=\"type\" type=\"string\" value=\"body force\"/>"
+            "<Parameter name=\"force\" type=\"Array(double)\" value=\"{1, 0}\"/></ParameterList>";
+    const std::string tag = "spin_" + std::to_string(h);
+    Config cfg = make_deck(s, tag);
+    for (auto& l : cfg.loads)
+      if (l.type == LoadConfig::Type::BodyForce) l.field = [=](const double* X) { return std::array<double, 3>{rw2 * X[0], 0.0, 0.0}; };
+    const RunResult res = run(cfg, tag);
+    double e = 0, uz = 0;
+    for (std::size_t n = 0; n < res.mesh.num_nodes(); ++n) {
+      e = std::max(e, std::abs(res.displacement[3 * n] - ur(res.mesh.x[3 * n])));
+      uz = std::max(uz, std::abs(res.displacement[3 * n + 1]));
+    }
+    std::printf("[axisymmetric] spinning cylinder P2 h = %.3f: u_r(b) %.6e, max |u_r - u_r,exact| / u_r(b) %.2e, max |u_z| / u_r(b) %.1e\n", h,
+                ur(b), e / ur(b), uz / ur(b));
+    err.push_back(e / ur(b));
+    EXPECT_LT(uz, 1e-3 * ur(b));
+  }
+  EXPECT_LT(err[0], 1e-3);
+  EXPECT_LT(err[1], 0.5 * err[0]);
+}
