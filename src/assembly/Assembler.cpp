@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
+#include <sstream>
 #include <set>
 #include <unordered_set>
 
@@ -101,6 +103,8 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
   f_ext_ = Teuchos::rcp(new la::Vector(dist.owned_map()));
   work_ = Teuchos::rcp(new la::Vector(dist.owned_map()));
   failures_ = Kokkos::View<int*, la::ExecSpace>("failures", 3);
+  bad_cell_ = Kokkos::View<int*, la::ExecSpace>("bad_cell", 1);
+  for (const auto& v : mesh.volumes) block_names_.push_back(v.name);
   build_graph();
   init_history();
 
@@ -474,6 +478,31 @@ const la::RCP<la::CrsMatrix>& Assembler::mass() {
   return M_;
 }
 
+std::string Assembler::describe_failed(GId gid, std::size_t block, int cell) const {
+  GId loc = gid, glob = 0;
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_MIN, 1, &loc, &glob);
+  // The rank holding that cell sends its block and centre (a sum with zeros elsewhere).
+  double v[4] = {0, 0, 0, 0}, w[4] = {0, 0, 0, 0};
+  if (cell >= 0 && gid == glob) {
+    const auto& lb = dist_.blocks()[block];
+    auto X = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dist_.coords());
+    auto conn = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), lb.conn);
+    const int nn = lb.nodes_per_cell;
+    for (int a = 0; a < nn; ++a)
+      for (int d = 0; d < dim_; ++d) v[d] += X(conn(cell, a), d) / nn;
+    v[3] = static_cast<double>(lb.volume_block) + 1.0;
+  }
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 4, v, w);
+  std::ostringstream os;
+  os.precision(4);
+  os << "cell " << glob;
+  if (w[3] > 0.0) os << " of '" << block_names_[static_cast<std::size_t>(w[3]) - 1] << "'";
+  os << " (reference centre " << w[0] << ", " << w[1];
+  if (dim_ == 3) os << ", " << w[2];
+  os << ")";
+  return os.str();
+}
+
 Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, la::Vector& r, bool with_tangent) {
   u_overlap_->doImport(u, *dist_.importer(), Tpetra::INSERT);
   const bool has_old = in.u_old != nullptr;
@@ -485,6 +514,10 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
   const Kinematics kin = kin_;
   auto flags = dirichlet_flag_;
   auto fails = failures_;
+  auto bad = bad_cell_;
+  GId bad_gid = std::numeric_limits<GId>::max();
+  std::size_t bad_block = 0;
+  int bad_local = -1;
   auto X = dist_.coords();
   DeviceMatrix Kl;
   if (with_tangent) {
@@ -545,6 +578,7 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
             status = solid_element<T>(dim, kin, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc);
           if (status != kElementOk) {
             Kokkos::atomic_increment(&fails(status == kElementInverted ? 0 : status == kElementLocalFailure ? 2 : 1));
+            Kokkos::atomic_fetch_min(&bad(0), c);
             return;
           }
           e += ec;
@@ -581,7 +615,14 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
           }
         }
       };
+      Kokkos::deep_copy(bad, std::numeric_limits<int>::max());
       std::visit(launch, block_law_[static_cast<std::size_t>(lb.volume_block)]);
+      auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), bad);
+      if (bh(0) != std::numeric_limits<int>::max() && lb.cell_ids[static_cast<std::size_t>(bh(0))] < bad_gid) {
+        bad_gid = lb.cell_ids[static_cast<std::size_t>(bh(0))];
+        bad_block = bi;
+        bad_local = bh(0);
+      }
       auto dh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dsum);
       energy += e_block;
       dissipation += dh(0);
@@ -634,7 +675,10 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
   st.dissipation = glob3[1];
   st.plastic_dissipation = glob3[2];
   st.inverted = global_fail[0] + global_fail[2];  // a failed return map is inadmissible like an inverted cell
-  if (st.inverted > 0) return st;
+  if (st.inverted > 0) {
+    st.first_failed = describe_failed(bad_gid, bad_block, bad_local);
+    return st;
+  }
 
   r_static_->putScalar(0.0);
   r_static_->doExport(*r_overlap_, *exporter_, Tpetra::ADD);

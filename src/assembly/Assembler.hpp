@@ -42,6 +42,9 @@ class Assembler {
     double dissipation = 0.0;  // viscous energy dissipated over the step (global; 0 without viscosity)
     double plastic_dissipation = 0.0;  // plastic dissipation int D_p of the step t_n -> t_{n+1} (global; trial state)
     long inverted = 0;         // cells with det F <= 0 at a Gauss point, or whose local return map failed (global)
+    // With inverted > 0: the failed cell of smallest global id, e.g. "cell 812 of 'stent'
+    // (centre 0.1, 0.95, 0)" (the same on every rank).
+    std::string first_failed;
   };
 
   // What a time step adds to the static residual. The defaults give statics:
@@ -204,6 +207,10 @@ class Assembler {
   std::vector<double> dirichlet_r_;  // full residual at owned constrained dofs, last assemble()
   Kokkos::View<int*, la::ExecSpace> dirichlet_flag_;   // per overlap dof
   Kokkos::View<int*, la::ExecSpace> failures_;
+  Kokkos::View<int*, la::ExecSpace> bad_cell_;  // per block: smallest local index of a failed cell
+  std::vector<std::string> block_names_;        // per mesh volume block: its physical name
+  // The failed cell of smallest global id over the ranks (Stats::first_failed); collective.
+  std::string describe_failed(GId gid, std::size_t block, int cell) const;
   std::vector<la::LO> owned_dirichlet_dofs_;
   std::vector<double> owned_dirichlet_value_;           // full value (times ramp of its set)
   std::vector<int> owned_dirichlet_set_;                // the set whose value is prescribed (the last)

@@ -638,9 +638,12 @@ void Reporter::finish(bool failed) {
   plots();
   log_copy::check();
   staging_->commit();
-  out_ << "Results in " << std::filesystem::absolute(out_dir_).string() << "/ (" << cfg_.output.basename << ".xdmf"
-       << (obstacles ? " and " + cfg_.output.basename + "_obstacles.xdmf" : std::string()) << " for ParaView, " << cfg_.output.basename
-       << "_history.csv)\n";
+  // Name only what was written: a deck with Output->fields = false has no XDMF.
+  out_ << "Results in " << std::filesystem::absolute(out_dir_).string() << "/ (";
+  if (cfg_.output.fields)
+    out_ << cfg_.output.basename << ".xdmf" << (obstacles ? " and " + cfg_.output.basename + "_obstacles.xdmf" : std::string())
+         << " for ParaView, ";
+  out_ << cfg_.output.basename << "_history.csv)\n";
 }
 
 }  // namespace stentor

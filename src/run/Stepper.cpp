@@ -18,6 +18,7 @@ bool StepSystem::evaluate(const la::Vector& u, la::Vector& r, bool tangent) {
     if (tangent) K_ = K;
     if (contact_log) *contact_log << contact->iteration_summary() << "\n";
   }
+  if (last.inverted > 0) first_failed = last.first_failed;
   return last.inverted == 0;
 }
 
@@ -129,6 +130,7 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
   bool predicted = false;
   NewtonResult lifted;
   system_.inertia_scale = 0.0;
+  system_.first_failed.clear();
   predict(s, dt, t_new, predicted, lifted);
   NewtonResult nr = newton(s.u);
   if (predicted && !nr.converged && nr.iterations == 0) {  // an inadmissible guess: retry from u_n
@@ -138,6 +140,9 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
   }
   nr.iterations += lifted.iterations;
   nr.linear_iterations += lifted.linear_iterations;
+  // Where: the last inadmissible evaluation's first failed cell.
+  if (!nr.converged && !system_.first_failed.empty() && nr.failure.find("inverted") != std::string::npos)
+    nr.failure += "; where: " + system_.first_failed;
   s.newton_iterations += nr.iterations;
   s.linear_iterations += nr.linear_iterations;
   return nr;

@@ -22,6 +22,7 @@ class StepSystem : public NewtonSystem {
   Contact* contact = nullptr;           // null without a "Contact" sublist
   std::ostream* contact_log = nullptr;  // --verbose: active/stick/slip sets per evaluation
   bool evaluate(const la::Vector& u, la::Vector& r, bool tangent) override;
+  std::string first_failed;  // Assembler::Stats::first_failed of the last inadmissible evaluation in this step
   // The assembler's tangent, or with contact on master surfaces the coupled one.
   la::RCP<la::CrsMatrix> matrix() override { return K_.is_null() ? a_.matrix() : K_; }
   // Newton may stop only once the contact active set did not change in the last evaluation.
