@@ -316,6 +316,7 @@ class DeckReader {
   void read_linear(const ParameterList& pl);
   void read_output(const ParameterList& pl);
   void resolve_output();  // after Contact and Stages: field names and output times
+  void merge_output_interval(OutputConfig& o, double end) const;
   Ramp read_ramp(const ParameterList& pl, const std::string& path, const ListSpec& ls, const std::string& key = "ramp") const;
   void read_contact(const ParameterList& pl);
   void read_stages(const ParameterList& pl, const ParameterList* stepping);
@@ -1416,7 +1417,8 @@ void DeckReader::read_output(const ParameterList& pl) {
   o.fields = get_bool(pl, ls, "fields");
   o.field_list = get_string(pl, ls, "field list");
   o.times = get_array(pl, ls, "times");
-  for (const char* p : {"field list", "times"})
+  o.interval = get_double(pl, ls, "interval");
+  for (const char* p : {"field list", "times", "interval"})
     if (!o.fields && pl.isParameter(p))
       fail("'Output->" + std::string(p) + "' is given but 'Output->fields' is false (no fields are written)");
   o.checkpoint_every = get_int(pl, ls, "checkpoint every");
@@ -1473,6 +1475,24 @@ void DeckReader::resolve_output() {
       fail("'Output->times' must be strictly increasing, got " + num(o.times[i - 1]) + " then " + num(t) + " at positions " +
            std::to_string(i) + ", " + std::to_string(i + 1));
   }
+  merge_output_interval(o, end);
+}
+
+// Output->interval: its multiples in (0, end] merged into Output->times (sorted; a multiple
+// within 1e-10 end time of a given time is the same output).
+void DeckReader::merge_output_interval(OutputConfig& o, double end) const {
+  if (!(o.interval > 0.0)) return;
+  const double count = std::floor(end / o.interval * (1.0 + 1e-12));
+  if (count > 100000.0)
+    fail("'Output->interval' = " + num(o.interval) + " would write " + num(count) + " field outputs over the end time " + num(end) +
+         " (at most 100,000); raise it");
+  std::vector<double> all = o.times;
+  for (long k = 1; k <= static_cast<long>(count); ++k) all.push_back(std::min(end, static_cast<double>(k) * o.interval));
+  std::sort(all.begin(), all.end());
+  const double tol = 1e-10 * end;
+  o.times.clear();
+  for (double t : all)
+    if (o.times.empty() || t > o.times.back() + tol) o.times.push_back(t);
 }
 
 void DeckReader::read_stent_metrics(const ParameterList& sub) {

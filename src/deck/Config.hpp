@@ -206,6 +206,8 @@ struct OutputConfig {
   std::string field_list = "default"; // "Output"->"field list", as given
   std::vector<std::string> field_names;  // ... resolved (deck/OutputFields.hpp); empty when fields is false
   std::vector<double> times;          // "Output"->"times": extra output times, increasing, in (0, end time]
+                                      // (with "interval"'s multiples merged in by resolve_output)
+  double interval = 0.0;              // "Output"->"interval": fields every `interval` of time (0: off)
   bool wants(const std::string& field) const;  // fields on and `field` in field_names
   int checkpoint_every = 0;           // "Output"->"checkpoint every": checkpoint every N accepted steps (0: none)
   std::vector<ProbeConfig> probes;    // "Output"->"Probes"

@@ -490,6 +490,12 @@ std::vector<ListSpec> build_schema() {
                                 "A step that would pass one is shortened to end on it (the steps after it keep "
                                 "their size). Fields are always written at t = 0, at the end of the run and of "
                                 "every stage."),
+                   dbl("interval", 0.0,
+                       "Time [s] between field outputs: fields are also written at every multiple of it up to the end "
+                       "time, merged with `times` (a step that would pass one is shortened to end on it), so the "
+                       "output times are regular whatever the cut-backs. 0: off (`every` counts accepted steps). At "
+                       "most 100,000 outputs.")
+                       .ge(0.0),
                    integer("checkpoint every", 0,
                            "Write a checkpoint (the whole state, `<basename>_checkpoint.h5` in the output folder, "
                            "the one before kept as `<basename>_checkpoint.prev.h5`) every N accepted steps and at the "

@@ -1136,6 +1136,22 @@ TEST_F(Deck, OutputFieldListAndTimesErrors) {
   expect_error(with_output(R"XML(<Parameter name="times" type="Array(double)" value="{0.5, 1.5}"/>)XML"),
                {"'Output->times' must lie in (0, end time = 1], got 1.5 at position 2"});
   expect_error(with_output(R"XML(<Parameter name="times" type="Array(double)" value="{0}"/>)XML"), {"'Output->times' must lie in (0"});
+  expect_error(with_output(R"XML(<Parameter name="interval" type="double" value="1e-6"/>)XML"),
+               {"'Output->interval' = 1e-06 would write 1000000 field outputs", "at most 100,000"});
+  expect_error(with_output(R"XML(<Parameter name="fields" type="bool" value="false"/>
+      <Parameter name="interval" type="double" value="0.1"/>)XML"),
+               {"'Output->interval' is given but 'Output->fields' is false"});
+}
+
+// Output->interval: its multiples up to the end time merged with Output->times, one output
+// per time (0.5 given in both is written once; 0.1 kept; the last multiple is the end time).
+TEST_F(Deck, OutputIntervalMergesWithTimes) {
+  const Config c = read_deck(write(with_output(R"XML(<Parameter name="interval" type="double" value="0.25"/>
+      <Parameter name="times" type="Array(double)" value="{0.1, 0.5}"/>)XML")));
+  EXPECT_EQ(c.output.times, (std::vector<double>{0.1, 0.25, 0.5, 0.75, 1.0}));
+  const Config third = read_deck(write(with_output(R"XML(<Parameter name="interval" type="double" value="0.3333333333333333"/>)XML")));
+  ASSERT_EQ(third.output.times.size(), 3u);  // 1/3, 2/3, and 3 x (1/3) within round-off of the end: the end time
+  EXPECT_DOUBLE_EQ(third.output.times[2], 1.0);
 }
 
 namespace {
