@@ -187,9 +187,9 @@ bool accept_step(Run& r, double dt, const NewtonResult& nr, double end) {
   const auto& out = r.model.cfg.output;
   if (out.fields && (s.step % out.every == 0 || last || output_time_reached(r.model.cfg, t0, s.t)))
     r.reporter.write_fields(s.t, s.u);
-  const double dt_next = s.control.next();
+  const double dt_before = s.control.next();
   s.control.accepted(rec.newton.iterations, rec.contact.events);
-  if (!s.control.reason().empty()) r.reporter.step_size_line(dt_next, s.control.next(), s.control.reason());
+  if (!s.control.reason().empty()) r.reporter.step_size_line(dt_before, s.control.next(), s.control.reason());
   if (out.checkpoint_every > 0 && (s.step % out.checkpoint_every == 0 || last)) checkpoint(r);
   return true;
 }

@@ -141,7 +141,7 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
   nr.iterations += lifted.iterations;
   nr.linear_iterations += lifted.linear_iterations;
   // Where: the last inadmissible evaluation's first failed cell.
-  if (!nr.converged && !system_.first_failed.empty() && nr.failure.find("inverted") != std::string::npos)
+  if (!nr.converged && nr.inadmissible && !system_.first_failed.empty())
     nr.failure += "; where: " + system_.first_failed;
   s.newton_iterations += nr.iterations;
   s.linear_iterations += nr.linear_iterations;

@@ -146,6 +146,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
   la::Vector r(u.getMap()), du(u.getMap()), u_trial(u.getMap()), r_trial(u.getMap());
   if (!sys.evaluate(u, r, true)) {
     res.failure = "inverted elements at the start of the step";
+    res.inadmissible = true;
     return res;
   }
   double rn = r.norm2();
@@ -193,6 +194,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     if (!t.accepted) {
       if (!t.admissible_seen) {
         res.failure = "every line-search trial inverted elements";
+        res.inadmissible = true;
         return res;
       }
       // No decrease along du: take the full step anyway if it is admissible (the residual
@@ -200,8 +202,10 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
       t.alpha = 1.0;
       u_trial.update(1.0, u, t.alpha, du, 0.0);
       sys.step_length(1.0);
-      if (!sys.evaluate(u_trial, r_trial, true) || !std::isfinite(t.rn = r_trial.norm2())) {
+      const bool admissible = sys.evaluate(u_trial, r_trial, true);
+      if (!admissible || !std::isfinite(t.rn = r_trial.norm2())) {
         res.failure = "line search found no admissible decrease";
+        res.inadmissible = !admissible;
         return res;
       }
       t.has_tangent = true;
@@ -236,6 +240,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
       if (log) *log << "    held contact nodes revised: Newton goes on\n";
       if (!sys.evaluate(u, r, true)) {
         res.failure = "the converged point became inadmissible";
+        res.inadmissible = true;
         return res;
       }
       rn = r.norm2();
@@ -246,6 +251,7 @@ NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, c
     // same state, so the same residual).
     if (!t.has_tangent && !sys.evaluate(u, r, true)) {
       res.failure = "the accepted line-search point became inadmissible";
+      res.inadmissible = true;
       return res;
     }
   }

@@ -72,6 +72,7 @@ struct NewtonResult {
   double residual = 0.0, residual0 = 0.0;
   double first_ratio = 0.0;  // |r_1| / |r_0| of the first iteration (0: none done)
   std::string failure;  // why it failed, for the log
+  bool inadmissible = false;  // it failed because an evaluate() found the state inadmissible
 };
 
 // One linear solve of a Newton-like iteration (setup for K, then K x = b at relative
