@@ -459,7 +459,8 @@ void Contact::begin_step(double t_n, double dt, const la::Vector& u_n) {
     for (auto& nd : p.nodes) {
       nd.lam_valid = false;  // the step's first iterate decides from r
       nd.normal_flips = nd.tangent_flips = 0;
-      nd.hold_active = nd.hold_revised = false;
+      nd.hold_active = nd.hold_inactive = false;
+      nd.hold_revisions = 0;
       nd.hold_tangent = 0;
     }
   if (has_master_) {
@@ -550,7 +551,12 @@ contact::LawParams Contact::node_params(const Pair& p, const Slave& nd, const co
   q.cn = p.cfg.c_normal > 0.0 ? p.cfg.c_normal * area : nd.scale * (p.persistence ? lp.dt : 1.0);
   q.ct = p.cfg.c_tangent > 0.0 ? p.cfg.c_tangent * area : nd.scale * lp.dt;
   q.force_active = nd.hold_active;
+  q.force_inactive = nd.hold_inactive;
   q.force_tangent = nd.hold_tangent;
+  if (nd.hold_tangent == contact::Slip) {
+    q.has_slip_dir = true;
+    for (int c = 0; c < 3; ++c) q.slip_dir[c] = nd.hold_dir[c];
+  }
   if (nd.lam_valid) {
     q.has_lam = true;
     const bool active = nd.base_state >= contact::Stick;
@@ -559,41 +565,6 @@ contact::LawParams Contact::node_params(const Pair& p, const Slave& nd, const co
   }
   return q;
 }
-
-// The set of this solve (nd.state) against the last one's (nd.base_state): a node that
-// entered or left contact kFreezeAfter times in the step is held active from now on, one
-// that changed between stick and slip that often is held slipping (verify_held may switch
-// it to sticking once).
-void Contact::count_flips(Slave& nd) {
-  const bool was = nd.base_state >= contact::Stick, is = nd.state >= contact::Stick;
-  if (was != is) ++nd.normal_flips;
-  else if (was && nd.state != nd.base_state) ++nd.tangent_flips;
-  if (nd.normal_flips >= kFreezeAfter && is) nd.hold_active = true;
-  if (nd.tangent_flips >= kFreezeAfter && nd.hold_tangent == 0) nd.hold_tangent = contact::Slip;
-}
-
-namespace {
-// The worst failed condition among the held nodes of one rank (kind 1: tension on a held
-// active node, 2: a held sticking node outside the Coulomb cone, 3: a held slipping node
-// slipping against its friction force).
-struct HeldFailure {
-  double excess = 0.0, value = 0.0, bound = 0.0;
-  long long gid = -1;
-  int pair = -1, kind = 0;
-};
-
-std::string held_message(const HeldFailure& w, const std::string& pair) {
-  std::ostringstream os;
-  os.precision(4);
-  os << "contact node " << w.gid << " of 'Contact->" << pair << "' ";
-  if (w.kind == 1) os << "held active after its contact cycled ends in tension, lambda_nu = " << w.value;
-  if (w.kind == 2) os << "cycled between stick and slip; sticking it ends outside the Coulomb cone, |lambda_tau| = " << w.value
-                      << " > mu |lambda_nu| = " << w.bound;
-  if (w.kind == 3) os << "cycled between stick and slip; slipping it slides " << w.value << " against its friction force";
-  os << " (tolerance " << Contact::kKktTolerance << " x the pair's largest nodal force or slip)";
-  return os.str();
-}
-}  // namespace
 
 namespace {
 // The part of v orthogonal to the unit normal n, and its length.
@@ -604,37 +575,114 @@ double tangential(const double* v, const double* n, double* vt) {
 }
 }  // namespace
 
+// The set of this solve (nd.state) against the last one's (nd.base_state): a node that
+// entered or left contact kFreezeAfter times in the step is held active from now on, one
+// that changed between stick and slip that often is held slipping, with its friction
+// direction fixed to that of q = lambda_tau + c_tau v at this iterate (the direction the
+// slip law would take; verify_held may revise it).
+void Contact::count_flips(const Pair& p, Slave& nd) const {
+  const bool was = nd.base_state >= contact::Stick, is = nd.state >= contact::Stick;
+  if (was != is) ++nd.normal_flips;
+  else if (was && nd.state != nd.base_state) ++nd.tangent_flips;
+  if (nd.normal_flips >= kFreezeAfter && is && !nd.hold_inactive) nd.hold_active = true;
+  if (nd.tangent_flips >= kFreezeAfter && nd.hold_tangent == 0) {
+    nd.hold_tangent = contact::Slip;
+    const double area = nd.area > 0.0 ? nd.area : 1.0;
+    const double ct = p.cfg.c_tangent > 0.0 ? p.cfg.c_tangent * area : nd.scale * dt_;
+    double ft[3], vt[3], q[3];
+    tangential(nd.f, nd.normal, ft);
+    tangential(nd.rel, nd.normal, vt);
+    for (int c = 0; c < 3; ++c) q[c] = -ft[c] + ct * vt[c] / dt_;
+    const double qn = std::sqrt(dot3(q, q));
+    for (int c = 0; c < 3; ++c) nd.hold_dir[c] = qn > 0.0 ? q[c] / qn : 0.0;
+  }
+}
+
+namespace {
+// The worst failed condition among the held nodes of one rank (kind 1: tension on a held
+// active node, 2: a held sticking node outside the Coulomb cone, 3: a held slipping node
+// slipping against or across its friction force, 4: a released node penetrating). Kind 1
+// is always revised (the node is released), so only 2-4 end a step.
+struct HeldFailure {
+  double excess = 0.0, value = 0.0, bound = 0.0;
+  long long gid = -1;
+  int pair = -1, kind = 0;
+};
+
+std::string held_message(const HeldFailure& w, const std::string& pair) {
+  std::ostringstream os;
+  os.precision(4);
+  os << "contact node " << w.gid << " of 'Contact->" << pair << "' ";
+  if (w.kind == 2) os << "cycled between stick and slip; sticking it ends outside the Coulomb cone, |lambda_tau| = " << w.value
+                      << " > mu |lambda_nu| = " << w.bound;
+  if (w.kind == 3) os << "cycled between stick and slip; slipping it slides " << w.value << " against or across its friction force";
+  if (w.kind == 4) os << "entered and left contact repeatedly; held active it ends in tension, released it penetrates, normal gap measure "
+                      << w.value;
+  os << " (tolerance " << Contact::kKktTolerance << " x the pair's largest nodal force or slip)";
+  return os.str();
+}
+}  // namespace
+
 int Contact::verify_held(std::string& why) {
   HeldFailure w;
   long revised = 0;
   for (std::size_t ip = 0; ip < pairs_.size(); ++ip) {
     Pair& p = pairs_[ip];
-    double loc[2] = {0.0, 0.0}, glob[2] = {0.0, 0.0};  // the largest nodal force and tangential slip
+    // The largest nodal force, tangential slip and relative displacement of the active nodes.
+    double loc[3] = {0.0, 0.0, 0.0}, glob[3] = {0.0, 0.0, 0.0};
     for (const auto& nd : p.nodes)
       if (nd.state >= contact::Stick) {
         double st[3];
         loc[0] = std::max(loc[0], std::sqrt(dot3(nd.f, nd.f)));
         loc[1] = std::max(loc[1], tangential(nd.rel, nd.normal, st));
+        loc[2] = std::max(loc[2], std::sqrt(dot3(nd.rel, nd.rel)));
       }
-    Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_MAX, 2, loc, glob);
-    const double ftol = kKktTolerance * glob[0], stol = kKktTolerance * glob[1];
+    Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_MAX, 3, loc, glob);
+    const double ftol = kKktTolerance * glob[0], stol = kKktTolerance * glob[1], gtol = kKktTolerance * glob[2];
     for (auto& nd : p.nodes) {
+      if (nd.hold_inactive && nd.state != contact::Free) {
+        // Released after it ended in tension: it must not penetrate (the law's normal measure).
+        const double g = p.persistence ? nd.gap - nd.d_n : nd.gap;
+        if (nd.state < contact::Stick && g < -gtol) {
+          HeldFailure f{(-g - gtol) / std::max(gtol, 1e-300), g, 0.0, static_cast<long long>(nd.gid), static_cast<int>(ip), 4};
+          if (f.excess > w.excess) w = f;
+        }
+        continue;
+      }
       if (!(nd.hold_active || nd.hold_tangent) || nd.state < contact::Stick) continue;
       const double lam_n = -dot3(nd.f, nd.normal);
       double ft[3], st[3];  // the tangential force (lambda_tau = -ft) and slip
       const double lam_t = tangential(nd.f, nd.normal, ft), slip = tangential(nd.rel, nd.normal, st);
       const double bound = p.cfg.friction * std::max(-lam_n, 0.0), along = -dot3(ft, st);  // lambda_tau . slip
+      // The slip off the friction direction: against it, or (3D) across it.
+      const double across = lam_t > 0.0 ? std::sqrt(std::max(slip * slip - along * along / (lam_t * lam_t), 0.0)) : 0.0;
+      const double off = std::max(along < 0.0 ? slip : 0.0, across);
       HeldFailure f;
       if (nd.hold_active && lam_n > ftol) f = {lam_n - ftol, lam_n, 0.0, 0, 0, 1};
       else if (nd.hold_tangent == contact::Stick && lam_t - bound > ftol) f = {(lam_t - bound - ftol) / std::max(ftol, 1e-300), lam_t, bound, 0, 0, 2};
-      else if (nd.hold_tangent == contact::Slip && along < 0.0 && slip > stol) f = {(slip - stol) / std::max(stol, 1e-300), slip, 0.0, 0, 0, 3};
+      else if (nd.hold_tangent == contact::Slip && off > stol) f = {(off - stol) / std::max(stol, 1e-300), off, 0.0, 0, 0, 3};
       if (f.kind == 0) continue;
-      if (f.kind >= 2 && !nd.hold_revised) {  // the other tangential state, once
-        nd.hold_tangent = f.kind == 2 ? contact::Slip : contact::Stick;
-        nd.hold_revised = true;
+      // Revisions: a held slip off its friction direction is held sticking; a held stick
+      // outside the cone slips along the force that held it (the direction the load
+      // drives it), so the three states of a 2D node are each tried at most once.
+      if (f.kind == 1) {  // released: held out of contact, checked for penetration
+        nd.hold_active = false;
+        nd.hold_inactive = true;
+        nd.hold_tangent = 0;
+      } else if (f.kind == 3 && nd.hold_revisions == 0) {
+        nd.hold_tangent = contact::Stick;
+      } else if (f.kind == 2 && nd.hold_revisions < 2 && lam_t > 0.0) {
+        nd.hold_tangent = contact::Slip;
+        for (int c = 0; c < 3; ++c) nd.hold_dir[c] = -ft[c] / lam_t;
+      } else {
+        f.kind = -f.kind;
+      }
+      if (f.kind > 0) {
+        ++nd.hold_revisions;
         ++revised;
         continue;
       }
+      f.kind = -f.kind;
       f.gid = static_cast<long long>(nd.gid), f.pair = static_cast<int>(ip);
       if (f.excess > w.excess) w = f;
     }
@@ -694,7 +742,7 @@ void Contact::linearised_step(const la::Vector& du) {
     if (!p.cfg.linearised_sets || p.krow_ptr.size() != p.nodes.size() * static_cast<std::size_t>(dim_) + 1) continue;
     for (std::size_t i = 0; i < p.nodes.size(); ++i) {
       Slave& nd = p.nodes[i];
-      if (nd.lam_valid) count_flips(nd);
+      if (nd.lam_valid) count_flips(p, nd);
       nd.lam_valid = true;
       nd.base_state = nd.state;  // the set of the solve: the last apply()'s
       for (int c = 0; c < 3; ++c) nd.lam_base[c] = nd.f[c], nd.kdu[c] = 0.0;
@@ -1068,7 +1116,7 @@ std::string Contact::iteration_summary() const {
   for (const auto& p : pairs_) {
     long a = 0, st = 0, sl = 0, ends = 0, held = 0;
     for (const auto& nd : p.nodes) {
-      held += nd.hold_active || nd.hold_tangent != 0;
+      held += nd.hold_active || nd.hold_inactive || nd.hold_tangent != 0;
       a += nd.state >= contact::Stick;
       st += nd.state == contact::Stick;
       sl += nd.state == contact::Slip;

@@ -77,14 +77,15 @@ class Contact {
   void set_step_length(double alpha) { alpha_ = alpha; }
   // Cycle control: a node whose set in the solves went back and forth kFreezeAfter times in
   // this step is held for the rest of the step, so the iteration cannot cycle on it: active
-  // (contact entered and left), slipping (stick and slip). At convergence its conditions are
-  // checked from the converged contact force and slip, each to kKktTolerance of the pair's
-  // largest nodal force or slip: a held active node must press, a held slipping node must
-  // slip along its friction force (no reversed slip), a held sticking node must stay inside
-  // the Coulomb cone. Returns 0 when every held node meets them; 1 when a slipping node
-  // failed and is held sticking instead, or the reverse, once per node (Newton iterates on);
-  // 2 when a held node fails with no alternative left, `why` naming the node (the step is
-  // then cut back). Collective.
+  // (contact entered and left), slipping with a fixed friction direction (stick and slip).
+  // At convergence its conditions are checked from the converged contact force and slip,
+  // each to kKktTolerance of the pair's largest nodal force or slip: a held active node must
+  // press, a held slipping node must slip along its friction force (neither reversed nor,
+  // in 3D, across it), a held sticking node must stay inside the Coulomb cone. Returns 0
+  // when every held node meets them; 1 when a node failed and is held in its next state
+  // (slip -> stick -> slip along the sticking force, each once; Newton iterates on); 2 when
+  // a held node fails with no state left, `why` naming the node (the step is then cut
+  // back). Collective.
   static constexpr int kFreezeAfter = 3;
   static constexpr double kKktTolerance = 1e-3;
   int verify_held(std::string& why);
@@ -185,8 +186,10 @@ class Contact {
     // (in/out of contact, stick/slip), and the holds after kFreezeAfter (count_flips).
     int normal_flips = 0, tangent_flips = 0;
     bool hold_active = false;
+    bool hold_inactive = false;  // a held active node that ended in tension, released (verify_held)
     int hold_tangent = 0;        // 0, or the held contact::Stick / contact::Slip
-    bool hold_revised = false;   // the tangential hold was switched once (verify_held)
+    int hold_revisions = 0;      // switches of the tangential hold by verify_held (at most 2)
+    double hold_dir[3] = {0, 0, 0};  // the held slip's friction direction (unit, world frame)
     double lam_base[3] = {0, 0, 0}, kdu[3] = {0, 0, 0};
   };
 
@@ -230,7 +233,7 @@ class Contact {
   void initial_gap_rates(const la::Vector& u0, const la::Vector& v0, double dt0);
   void read_scales(const la::CrsMatrix& K);
   void capture_rows(const la::RCP<la::CrsMatrix>& K);  // Pair::krow_* of the linearised pairs
-  static void count_flips(Slave& nd);
+  void count_flips(const Pair& p, Slave& nd) const;
   bool linearised_ = false;                            // some pair decides its sets from the last solve
   double alpha_ = 1.0;                                 // set_step_length()
   la::RCP<const la::CrsMatrix> rows_of_;               // the tangent capture_rows() read (its column map)

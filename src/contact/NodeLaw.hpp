@@ -120,7 +120,13 @@ struct LawParams {
   // or Slip; 0 none) until the step ends; its conditions are checked at convergence
   // (Contact::verify_held).
   bool force_active = false;
+  bool force_inactive = false;  // held out of contact (Contact::verify_held's revision of a held active node)
   int force_tangent = 0;
+  // A node held slipping slides with a fixed friction direction (world frame, projected on
+  // the current tangent plane): the held equations are then smooth, and their solution is
+  // checked at convergence (Contact::verify_held). Unset: the direction of q.
+  bool has_slip_dir = false;
+  double slip_dir[3] = {0, 0, 0};
 };
 
 // Results of one evaluation (double): values and derivatives with respect to y.
@@ -261,6 +267,7 @@ KOKKOS_INLINE_FUNCTION int decide_set(const LawParams& p, const SetInput& in) {
   const bool from_solve = p.has_lam && p.base >= Stick;
   bool active = from_solve ? in.lam_n <= p.release : (p.has_lam ? p.cn * in.g : lam_aug) <= p.release;
   if (p.force_active) active = true;
+  if (p.force_inactive) active = false;
   if (!active) return 0;
   if (!(p.mu > 0.0)) return 1;
   if (p.force_tangent != 0) return p.force_tangent == Stick ? 1 : 2;
@@ -305,7 +312,15 @@ KOKKOS_INLINE_FUNCTION int law(int dim, const bool fixed[3], const LawParams& p,
   T s[3] = {T(0.0), T(0.0), T(0.0)};
   if (p.mu > 0.0) {
     const T qn = sqrt(dot3(q, q));
-    if (set == 2 && value(qn) > 0.0) {
+    T dt_[3];  // the held direction on the tangent plane
+    if (set == 2 && p.has_slip_dir) {
+      const T dn = p.slip_dir[0] * n[0] + p.slip_dir[1] * n[1] + p.slip_dir[2] * n[2];
+      for (int c = 0; c < 3; ++c) dt_[c] = p.slip_dir[c] - dn * n[c];
+    }
+    const T dl = set == 2 && p.has_slip_dir ? sqrt(dot3(dt_, dt_)) : T(0.0);
+    if (set == 2 && value(dl) > 1e-3) {
+      for (int c = 0; c < 3; ++c) s[c] = dt_[c] / dl;
+    } else if (set == 2 && value(qn) > 0.0) {
       for (int c = 0; c < 3; ++c) s[c] = q[c] / qn;
     } else {
       stick = true;

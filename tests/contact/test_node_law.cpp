@@ -59,3 +59,91 @@ TEST(NodeLaw, EveryContactRowKeepsItsLeadingTermOnTheDiagonal) {
     }
   }
 }
+
+namespace {
+
+// A node on the plane z = 0 (normal e_z), pressed (r_z = 1: lambda_nu = -1), with the bulk
+// tangential residual rt and the tangential relative displacement rel over the step,
+// held slipping with the fixed friction direction dir (null: not held).
+contact::NodeOutput held_slip(const double rt[2], const double rel[2], const double* dir, double mu) {
+  contact::Obstacle o;
+  o.kind = 0;
+  o.normal[2] = 1.0;
+  contact::NodeInput in;
+  in.dim = 3;
+  in.xs[0] = rel[0], in.xs[1] = rel[1], in.xs[2] = -1e-3;
+  in.r[0] = rt[0], in.r[1] = rt[1], in.r[2] = 1.0;
+  contact::LawParams p;
+  p.persistence = false;
+  p.mu = mu;
+  p.ct = 1.0;
+  p.force_active = true;
+  p.force_tangent = contact::Slip;
+  if (dir) {
+    p.has_slip_dir = true;
+    for (int c = 0; c < 3; ++c) p.slip_dir[c] = dir[c];
+  }
+  contact::NodeOutput out;
+  contact::evaluate(in, p, &o, out);
+  return out;
+}
+
+}  // namespace
+
+// A node held slipping keeps its friction direction: its rows vanish exactly when
+// lambda_tau = mu |lambda_nu| s with the held s, whatever q = lambda_tau + c_tau v says;
+// with the direction of q (not held) the same force and a reversed slip rate also
+// vanish, the spurious solution the fixed direction excludes.
+TEST(NodeLaw, HeldSlipKeepsItsFrictionDirection) {
+  const double mu = 0.3, dir[3] = {1.0, 0.0, 0.0}, against[2] = {-0.1, 0.0};
+  // lambda_tau = -r_t = mu e_x: on the cone along the held direction.
+  const double rt[2] = {-mu, 0.0};
+  const contact::NodeOutput held = held_slip(rt, against, dir, mu);
+  ASSERT_EQ(held.state, contact::Slip);
+  EXPECT_NEAR(held.res[0], 0.0, 1e-15);
+  EXPECT_NEAR(held.res[1], 0.0, 1e-15);
+  const contact::NodeOutput free_dir = held_slip(rt, against, nullptr, mu);
+  EXPECT_NEAR(free_dir.res[0], 0.0, 1e-15);  // q = 0.3 - 0.1 along +x: the same rows, spurious
+  // The opposite held direction does not accept that force: the row is 2 mu.
+  const double back[3] = {-1.0, 0.0, 0.0};
+  EXPECT_NEAR(std::abs(held_slip(rt, against, back, mu).res[0]), 2.0 * mu, 1e-14);
+}
+
+// The held rows' derivatives (Dual numbers) against central differences in every unknown.
+TEST(NodeLaw, HeldSlipRowsMatchFiniteDifferences) {
+  const double mu = 0.25, dir[3] = {0.6, 0.8, 0.05}, rel[2] = {0.02, -0.01}, rt[2] = {-0.1, 0.05};
+  contact::Obstacle o;
+  o.kind = 1;  // a sphere: the normal and the tangent plane move with the node
+  o.radius = 2.0;
+  o.point[2] = -2.0;
+  auto eval = [&](const double* xs, const double* r) {
+    contact::NodeInput in;
+    in.dim = 3;
+    for (int c = 0; c < 3; ++c) in.xs[c] = xs[c], in.r[c] = r[c];
+    contact::LawParams p;
+    p.persistence = false;
+    p.mu = mu;
+    p.force_active = true;
+    p.force_tangent = contact::Slip;
+    p.has_slip_dir = true;
+    for (int c = 0; c < 3; ++c) p.slip_dir[c] = dir[c];
+    contact::NodeOutput out;
+    contact::evaluate(in, p, &o, out);
+    return out;
+  };
+  double xs[3] = {rel[0], rel[1], -1e-3}, r[3] = {rt[0], rt[1], 1.0};
+  const contact::NodeOutput out = eval(xs, r);
+  ASSERT_EQ(out.state, contact::Slip);
+  const double h = 1e-6;
+  for (int j = 0; j < 6; ++j) {
+    double* v = j < 3 ? &xs[j] : &r[j - 3];
+    const double keep = *v;
+    *v = keep + h;
+    const contact::NodeOutput up = eval(xs, r);
+    *v = keep - h;
+    const contact::NodeOutput dn = eval(xs, r);
+    *v = keep;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(out.dres[k][j], (up.res[k] - dn.res[k]) / (2 * h), 1e-7) << "row " << k << ", unknown " << j;
+  }
+}
