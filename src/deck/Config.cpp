@@ -1347,6 +1347,7 @@ void DeckReader::read_stepping(const ParameterList& pl) {
          ": must be 0 (off) or at least 4 (a Newton solve to the tolerances takes 2 to 3 iterations, so a smaller target "
          "would shrink every step)");
   cfg_.stepping.predictor = get_string(pl, ls, "predictor");
+  cfg_.stepping.stabilization = get_double(pl, ls, "stabilization");
   cfg_.stepping.min_dt = get_double(pl, ls, "min dt");
   cfg_.stepping.max_steps = get_int(pl, ls, "max steps");
 }
@@ -1625,6 +1626,13 @@ void DeckReader::read_stage_analysis(const ParameterList& sub, const std::string
       fail(quoted(path + "->scheme") + " is the time scheme of a dynamic stage, and the stage is static; set " +
            quoted(path + "->analysis") + " = dynamic or remove 'scheme'");
     st.scheme = get_string(sub, ls, "scheme");
+  }
+  st.stabilization = st.dynamic() ? 0.0 : cfg_.stepping.stabilization;
+  if (sub.isParameter("stabilization")) {
+    if (st.dynamic())
+      fail(quoted(path + "->stabilization") + " stabilises static steps, and the stage is dynamic (inertia already "
+           "holds its bodies); remove it or set " + quoted(path + "->analysis") + " = static");
+    st.stabilization = get_double(sub, ls, "stabilization");
   }
   if (st.dynamic()) return;
   for (std::size_t i = 0; i < cfg_.contact.size(); ++i)

@@ -141,6 +141,7 @@ struct SteppingConfig {
   double min_dt = 0.0;     // "Stepping"->"min dt": smallest step (0: 1e-6 x end time / steps, see min_step())
   int max_steps = 0;       // "Stepping"->"max steps": cap on steps tried (0: 100 x steps + 1000, see step_cap())
   std::string predictor = "auto";  // "Stepping"->"predictor": auto | none | velocity | lifting (Newton's first iterate)
+  double stabilization = 0.0;  // "Stepping"->"stabilization": static steps' viscous factor xi (0: off; StepSystem)
   // The values in force, 0 resolved to the defaults.
   double min_step() const { return min_dt > 0.0 ? min_dt : 1e-6 * end_time / num_steps; }
   long step_cap() const { return max_steps > 0 ? max_steps : 100L * num_steps + 1000L; }
@@ -249,6 +250,7 @@ struct StageConfig {
   int num_steps = 1;                 // "steps", or duration / "step" rounded up
   std::string analysis = "static";   // "analysis" (default Problem->analysis): static | dynamic
   std::string scheme = "gonzalez";   // "scheme" of a dynamic stage (default Time Integration->scheme)
+  double stabilization = 0.0;        // "stabilization" of a static stage (default Stepping->stabilization)
   std::vector<bool> load_active;     // "loads", per Config::loads entry
   std::vector<bool> contact_active;  // "contact", per Config::contact entry
   double step() const { return (end - start) / num_steps; }
@@ -290,6 +292,16 @@ struct Config {
   }
   const std::string& scheme_in(int stage) const {
     return stages.empty() ? time.scheme : stages[static_cast<std::size_t>(stage)].scheme;
+  }
+  // The viscous stabilisation factor of stage k's steps (0 in a dynamic stage).
+  double stabilization_in(int stage) const {
+    if (dynamic_in(stage)) return 0.0;
+    return stages.empty() ? stepping.stabilization : stages[static_cast<std::size_t>(stage)].stabilization;
+  }
+  bool any_stabilization() const {
+    for (int k = 0; k < interval_count(); ++k)
+      if (stabilization_in(k) > 0.0) return true;
+    return false;
   }
   // "static", or the time scheme of a dynamic stage.
   std::string analysis_in(int stage) const { return dynamic_in(stage) ? scheme_in(stage) : std::string("static"); }

@@ -335,6 +335,16 @@ std::vector<ListSpec> build_schema() {
        dbl("growth", 1.5, "Factor by which the step grows after each accepted step until it is the deck's step again.")
            .ge(1.0)
            .le(4.0),
+       dbl("stabilization", 0.0,
+           "Static steps: viscous stabilisation of bodies that float until contact holds them (a stent's struts, a "
+           "balloon). Each free dof gets the force xi K_ii (u - u_n), K_ii its tangent diagonal at the step's start "
+           "and xi this factor (dimensionless; 1e-6 to 1e-3 typical): a dashpot over the step that makes the tangent "
+           "regular without changing the equilibrium of a body at rest. The energy it absorbs (xi K_ii du^2 per step, "
+           ">= 0) is the history CSV's `stabilization_energy` and is printed at the end; the run warns when it exceeds "
+           "1 % of the final strain energy. 0: off. A stage may set its own (`Stages-><s>->stabilization`). docs/contact.md, "
+           "\"Bodies held only by contact\".")
+           .ge(0.0)
+           .le(1.0),
        integer("target iterations", 0,
                "Newton iterations a step should take: 0 (off) or at least 4 (a solve to the tolerances takes 2 to 3). "
                "With T > 0 the step follows the solve (Crisfield's rule): after a step that took n iterations the next is "
@@ -660,6 +670,10 @@ std::vector<ListSpec> build_schema() {
          str("scheme", "gonzalez", "Time scheme of a dynamic stage (see `Time Integration`); not allowed in a static stage.")
              .one_of({"gonzalez", "midpoint", "newmark", "hht"})
              .dflt_doc("`Time Integration->scheme`"),
+         dbl("stabilization", 0.0, "Viscous stabilisation factor of the stage's static steps (see `Stepping->stabilization`); not allowed in a dynamic stage.")
+             .ge(0.0)
+             .le(1.0)
+             .dflt_doc("`Stepping->stabilization`"),
          str("loads", "all", "The `Boundary Conditions` active in the stage: `all`, `none`, or names separated by commas.")
              .allowed("`all`, `none`, or load names separated by commas"),
          str("contact", "all", "The `Contact` pairs active in the stage: `all`, `none`, or names separated by commas.")

@@ -105,6 +105,7 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
   loads = resolve_loads(cfg, mesh);
   dim = mesh.dim;
   dynamic = cfg.dynamic_in(0);
+  stabilization = cfg.stabilization_in(0);
   any_dynamic = cfg.any_dynamic();
   probe_node = nearest_nodes(mesh, cfg.output.probes, MPI_COMM_WORLD);
   check_contact_groups(cfg, mesh);
@@ -127,6 +128,7 @@ void Model::discretise(Timers& timers) {
 
 void Model::set_stage(int stage) {
   dynamic = cfg.dynamic_in(stage);
+  stabilization = cfg.stabilization_in(stage);
   if (contact) contact->set_analysis(dynamic);
 }
 

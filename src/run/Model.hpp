@@ -49,6 +49,7 @@ struct Model {
   Mesh mesh;
   int dim = 0;
   bool dynamic = false;            // the analysis of the current stage (set_stage)
+  double stabilization = 0.0;      // the current stage's static stabilisation factor (set_stage)
   bool any_dynamic = false;        // some stage is dynamic: mass, integrator, energy output
   std::vector<int> block_mat;     // material of each volume block
   Loads loads;

@@ -218,6 +218,7 @@ std::vector<std::string> Reporter::history_columns() const {
   if (m_.contact)
     for (const auto& c : m_.contact->history_columns()) columns.push_back(c);
   if (m_.assembler->has_history()) columns.push_back("plastic_dissipation");  // of the step
+  if (cfg_.any_stabilization()) columns.push_back("stabilization_energy");  // of the step
   if (!cfg_.stages.empty()) columns.push_back("stage");
   return columns;
 }
@@ -493,6 +494,7 @@ void Reporter::history_row(const RunState& s, const StepRecord& rec, double ener
     metrics_->step(s, s.u, m_.dynamic ? total_energy_ : energy);
   }
   const auto pv = probe_values(s.u);
+  strain_energy_ = energy;
   if (m_.rank != 0) return;
   const int dim = m_.dim;
   std::vector<double> row = {double(s.step), s.t, rec.dt, double(rec.newton.iterations), double(rec.newton.linear_iterations),
@@ -506,6 +508,7 @@ void Reporter::history_row(const RunState& s, const StepRecord& rec, double ener
   if (m_.contact)
     for (double v : m_.contact->history_values(rec.contact)) row.push_back(v);
   if (m_.assembler->has_history()) row.push_back(rec.plastic_dissipation);
+  if (cfg_.any_stabilization()) row.push_back(rec.stabilization_energy);
   if (!cfg_.stages.empty()) row.push_back(double(s.stage + 1));
   Timers::Scope sc{timers_, "output"};
   history_->row(row);
@@ -598,6 +601,15 @@ std::vector<double> Reporter::displacement(const la::Vector& u) {
 
 void Reporter::summary(const RunState& s) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  if (cfg_.any_stabilization()) {
+    // Abaqus' check of its static stabilisation (ALLSD against ALLIE), on the final state.
+    out_ << "Static stabilisation: " << fmt(s.energy.stabilization, 4) << " J absorbed, "
+         << fmt(strain_energy_ != 0.0 ? 100.0 * s.energy.stabilization / std::abs(strain_energy_) : 0.0, 3)
+         << " % of the final strain energy\n";
+    if (s.energy.stabilization > 0.01 * std::abs(strain_energy_))
+      out_ << "warning: the static stabilisation absorbed more than 1 % of the strain energy: it is not a small "
+              "perturbation of the equilibrium; lower 'Stepping->stabilization' (or the stages'), or take smaller steps\n";
+  }
   if (m_.any_dynamic)
     out_ << "Energy balance" << (m_.cfg.any_static() ? " (dynamic stages)" : "") << ": max |E_{n+1} - E_n - (W_ext + W_sup - D" << (m_.contact ? " + W_contact - D_friction" : "")
          << ")| per step = " << fmt(s.energy.max_balance, 3) << "\n";

@@ -94,6 +94,7 @@ class Reporter {
   const Model& m_;
   const Config& cfg_;
   Timers& timers_;
+  double strain_energy_ = 0.0;  // the last accepted step's (history_row): the summary's stabilisation check
   std::ostringstream null_stream_;
   std::ostream& out_;
   std::string out_dir_;

@@ -114,7 +114,7 @@ void put_scalars(const Model& m, const Stepper& st, const RunState& s, Checkpoin
   d.reals = {{"time", s.t}, {"dt_last", s.dt_last}, {"dt_target", c.target}, {"dt_next", c.dt}, {"dt_min", c.min_dt},
              {"energy_external", e.external}, {"energy_support", e.support}, {"energy_dissipation", e.dissipation},
              {"energy_contact", e.contact}, {"energy_friction", e.friction}, {"energy_plastic", e.plastic},
-             {"energy_max_balance", e.max_balance}, {"force_scale_sum", sc.first}};
+             {"energy_max_balance", e.max_balance}, {"force_scale_sum", sc.first}, {"energy_stabilization", e.stabilization}};
   if (m.integrator) d.reals["mechanical_energy_n"] = m.integrator->energy_n();
   if (m.contact) d.reals["contact_dt_last"] = m.contact->last_step();
 }
@@ -480,6 +480,8 @@ void restore_scalars(const Config& cfg, const CheckpointData& d, Stepper& steppe
   e.friction = d.real("energy_friction");
   e.plastic = d.real("energy_plastic");
   e.max_balance = d.real("energy_max_balance");
+  // Checkpoints written before the static stabilisation existed do not hold it: none was absorbed.
+  e.stabilization = d.reals.count("energy_stabilization") ? d.real("energy_stabilization") : 0.0;
   stepper.restore_scale_history(d.real("force_scale_sum"), static_cast<long>(d.integer("force_scale_count")));
 }
 

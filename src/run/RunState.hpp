@@ -95,6 +95,7 @@ struct EnergyTotals {
   double external = 0.0, support = 0.0, dissipation = 0.0;
   double contact = 0.0, friction = 0.0;  // contact work on the bodies, frictional dissipation
   double plastic = 0.0;                  // plastic dissipation (also in `dissipation`)
+  double stabilization = 0.0;            // energy absorbed by the static stabilisation (StepSystem::stabilize)
   double max_balance = 0.0;              // max |balance residual| per step
 };
 

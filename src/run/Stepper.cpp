@@ -12,6 +12,7 @@ namespace stentor {
 bool StepSystem::evaluate(const la::Vector& u, la::Vector& r, bool tangent) {
   Timers::Scope s{timers_, "assembly"};
   last = a_.assemble(u, input, r, tangent);
+  if (xi_ > 0.0 && last.inverted == 0) stabilize(u, r, tangent);
   if (contact) {
     Timers::Scope sc{timers_, "contact"};
     auto K = contact->apply(u, r, tangent ? a_.matrix() : la::RCP<la::CrsMatrix>());
@@ -20,6 +21,45 @@ bool StepSystem::evaluate(const la::Vector& u, la::Vector& r, bool tangent) {
   }
   if (last.inverted > 0) first_failed = last.first_failed;
   return last.inverted == 0;
+}
+
+void StepSystem::stabilize(const la::Vector& u, la::Vector& r, bool tangent) {
+  const la::RCP<la::CrsMatrix> K = a_.matrix();
+  if (damp_.is_null()) {
+    if (!tangent) return;  // Newton's first evaluation of a step always assembles the tangent
+    damp_ = Teuchos::rcp(new la::Vector(K->getRowMap()));
+    K->getLocalDiagCopy(*damp_);
+    auto d = damp_->getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (std::size_t i = 0; i < d.extent(0); ++i)
+      d(i, 0) = a_.is_dirichlet(static_cast<la::LO>(i)) ? 0.0 : xi_ * std::abs(d(i, 0));
+  }
+  {
+    auto d = damp_->getLocalViewHost(Tpetra::Access::ReadOnly);
+    auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
+    auto un = u_n_->getLocalViewHost(Tpetra::Access::ReadOnly);
+    auto rh = r.getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (std::size_t i = 0; i < d.extent(0); ++i) rh(i, 0) += d(i, 0) * (uh(i, 0) - un(i, 0));
+  }
+  if (!tangent) return;
+  auto d = damp_->getLocalViewHost(Tpetra::Access::ReadOnly);
+  const auto& rows = *K->getRowMap();
+  const auto& cols = *K->getColMap();
+  K->resumeFill();
+  for (std::size_t i = 0; i < d.extent(0); ++i) {
+    if (d(i, 0) == 0.0) continue;
+    const la::LO row = static_cast<la::LO>(i), col = cols.getLocalElement(rows.getGlobalElement(row));
+    K->sumIntoLocalValues(row, Teuchos::ArrayView<const la::LO>(&col, 1), Teuchos::ArrayView<const double>(&d(i, 0), 1));
+  }
+  K->fillComplete(K->getDomainMap(), K->getRangeMap());
+}
+
+double StepSystem::stabilization_energy(const la::Vector& u) const {
+  if (damp_.is_null() || u_n_ == nullptr) return 0.0;
+  la::Vector du(u, Teuchos::Copy);
+  du.update(-1.0, *u_n_, 1.0);
+  la::Vector ddu(du.getMap());
+  ddu.elementWiseMultiply(1.0, *damp_, du, 0.0);
+  return ddu.dot(du);
 }
 
 Stepper::Stepper(Model& model, Timers& timers, std::ostream* newton_log, std::ostream* contact_log)
@@ -127,6 +167,7 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
     system_.input.end_time = T;
   }
   if (m_.contact) m_.contact->begin_step(s.t, dt, s.u_prev);
+  system_.begin_step(m_.dynamic ? 0.0 : m_.stabilization, &s.u_prev);
   bool predicted = false;
   NewtonResult lifted;
   system_.inertia_scale = 0.0;
@@ -176,6 +217,8 @@ StepRecord Stepper::accept(RunState& s, double dt, const NewtonResult& nr) {
   s.dt_last = dt;
   system_.record_scale();
   rec.plastic_dissipation = system_.last.plastic_dissipation;
+  rec.stabilization_energy = system_.stabilization_energy(s.u);
+  s.energy.stabilization += rec.stabilization_energy;
   m_.assembler->commit_history();  // Newton's last assemble() was at the accepted u
   if (m_.contact) rec.contact = m_.contact->accept(s.u);
   if (!m_.dynamic) {

@@ -37,6 +37,19 @@ class StepSystem : public NewtonSystem {
     if (contact) contact->set_step_length(alpha);
   }
   int verify_held(std::string& why) override { return contact ? contact->verify_held(why) : 0; }
+  // Static stabilisation (Stepping->stabilization): with xi > 0 each free dof i gets the
+  // force D_i (u_i - u_n,i), D_i = xi |K_ii| from the bulk tangent of the step's first
+  // evaluation (fixed for the step, so the tangent D is exact), before contact reads the
+  // residual. A backward-Euler dashpot with coefficient D_i dt: it absorbs D_i du_i^2 >= 0
+  // over the step (stabilization_energy) and vanishes for a body at rest, so it regularises
+  // the tangent of a body that floats until contact holds it (a strut before the balloon
+  // touches it) without moving an equilibrium that the step reaches with du = 0.
+  void begin_step(double xi, const la::Vector* u_n) {
+    xi_ = xi;
+    u_n_ = u_n;
+    damp_.reset();
+  }
+  double stabilization_energy(const la::Vector& u) const;  // sum_i D_i (u_i - u_n,i)^2 (collective)
   double coordinate_scale_ = 0.0;  // |X| over the dofs (Stepper's constructor)
   // |f_ext| and |f_int - f_ext| over all rows (reactions included): the forces in play.
   // After unloading (a deflated balloon, a body at rest) both are round-off, and so would
@@ -57,6 +70,10 @@ class StepSystem : public NewtonSystem {
   Assembler& a_;
   Timers& timers_;
   la::RCP<la::CrsMatrix> K_;
+  double xi_ = 0.0;
+  const la::Vector* u_n_ = nullptr;
+  la::RCP<la::Vector> damp_;  // D_i of the step (null until its first tangent)
+  void stabilize(const la::Vector& u, la::Vector& r, bool tangent);
   double current_scale() const;  // max(|f_ext|, |f_int - f_ext|) of the last evaluate()
   double scale_sum_ = 0.0;
   long accepted_ = 0;
@@ -69,6 +86,7 @@ struct StepRecord {
   Contact::StepStats contact;   // contact runs only
   EnergyAudit audit;            // dynamics only
   double plastic_dissipation = 0.0;  // of the step (plastic blocks only)
+  double stabilization_energy = 0.0; // of the step (static stabilisation only)
   std::string nonfinite;        // the first non-finite quantity, or "" (then nothing may be written)
   std::string free_motion;      // statics: a rigid translation nothing holds (free_translation), or ""
 };
