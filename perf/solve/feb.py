@@ -1,22 +1,31 @@
 """FEBio 4 input (.feb) for the cube stretch of perf/decks/cube_p1.xml / cube_p2.xml, from
-the same gmsh mesh Stentor uses, and the numbers of an FEBio run (issue 14: FEBio is the
-yardstick of perf/solve/time_to_solution.sh). Python 3 standard library and the gmsh
-command line only.
+the same gmsh mesh Stentor uses, and the numbers of an FEBio run (FEBio is the yardstick of
+perf/solve/time_to_solution.sh). Python 3 standard library and the gmsh command line only.
 
   python3 perf/solve/feb.py write DECK OUT.feb [--size H] [--gmsh GMSH] [--msh KEEP.msh]
                                                [--tet10-rule TET10G8] [--qn "full Newton"]
+                                               [--tolerances default|stentor]
       Mesh DECK's Mesh->file (a .geo) with gmsh as Stentor does and write the .feb of
       DECK's problem: one body of Ciarlet-Geymonat rubber, Dirichlet sets (zero or
       prescribed with the default linear ramp), Stepping->steps equal static steps to
       Stepping->end time. Prints one line: nodes, cells, DOF. --size replaces Mesh->size.
+      --tolerances: FEBio's default convergence tests (dtol 0.001, etol 0.01, no residual
+      test; looser than Stentor's) or "stentor": the residual test alone at the deck's
+      Newton->relative residual tolerance (febio_tolerances below).
       Anything else in the deck (other loads, ramps, laws, stages) is refused (exit 2).
 
   python3 perf/solve/feb.py parse FEB LOG [--label K=V]... --row FORMAT
       Read FEBio's screen output LOG (with the "TIME wall user sys maxrss_kb" line of
       `/usr/bin/time -f "TIME %e %U %S %M"`), its log file (FEB with .log) and the reaction
       file the .feb asks for, and print FORMAT (str.format) with the labels and the fields
-      dofs, newton, linear, setup, solve, wall, cpu, rss, column (the last step's reaction
-      of the pulled set: sum of its nodes' Rx), status.
+      dofs, newton, linear ("direct" for a direct linear solver, else the total iterations),
+      setup, solve, wall, cpu, rss, column (the last step's reaction of the pulled set: sum
+      of its nodes' Rx, 10 significant digits), status, tol (the .feb's convergence tests:
+      "default" or e.g. "rtol=1e-20").
+      FEBio on Linux sets the terminal title while it runs (FEBio/console.cpp: ESC ] 0 ;
+      title BEL) and ends its screen output with such a title and no newline, so the
+      "TIME" line of /usr/bin/time follows the BEL on the same line: the parser drops these
+      sequences before it reads the lines.
 
 How Stentor meshes a .geo (src/mesh/GmshReader.cpp, read_mesh_here/mesh_geo): the gmsh API,
 no configuration files, Mesh.MeshSizeMax = Mesh->size, Mesh.MeshSizeMin = 0,
@@ -53,7 +62,8 @@ hyperelastic material; Verify/mi42.feb: tet10):
   interpolate LINEAR, extend CONSTANT, points).
 - solver: "solid" (FEBioMech/FESolidSolver2.cpp), qn_method "full Newton" (FECore/
   FECore.cpp; each iteration a new stiffness, i.e. Newton's method as Stentor's; FEBio's
-  default is BFGS), FEBio's default convergence tests (dtol 0.001, etol 0.01, rtol 0),
+  default is BFGS), FEBio's default convergence tests (dtol 0.001, etol 0.01, rtol 0) or,
+  with --tolerances stentor, rtol only (febio_tolerances),
   max_refs 25 (= Stentor's default Newton->max iterations), the default linear solver
   (PARDISO, direct). The time stepper (FECore/FETimeStepController.cpp) only cuts back a
   failed step (dtmax = the step size), as Stentor does; FEBio uses no time stepper unless
@@ -188,7 +198,8 @@ def problem_from_deck(deck, size=None):
     steps = int(d.get("Stepping/steps", "1"))
     return {"deck": d.path, "geo": geo, "h": h, "order": order, "C1": C1, "C2": C2, "D": D,
             "body": body, "bcs": bcs, "end": end, "steps": steps,
-            "title": d.get("Problem/title", os.path.basename(deck))}
+            "title": d.get("Problem/title", os.path.basename(deck)),
+            "rtol": float(d.get("Newton/relative residual tolerance", "1e-10"))}
 
 
 # ---------------------------------------------------------------- the mesh
@@ -313,8 +324,23 @@ def ids_text(ids, indent, per_line=16):
     return (",\n" + indent).join(rows)
 
 
-def write_feb(p, mesh, out, tet10_rule=None, qn="full Newton"):
+def febio_tolerances(p, tolerances):
+    """FEBio's convergence tests (FESolidSolver2::Quasin) as (dtol, etol, rtol).
+
+    FEBio converges when every test with a tolerance > 0 passes, each on squared norms of
+    the step: |du|^2 <= dtol^2 |U|^2, |du.R| <= etol |du0.R0|, |R|^2 <= rtol |R0|^2.
+    "default": FEBio's defaults (dtol 0.001, etol 0.01, rtol 0: no residual test).
+    "stentor": the residual test alone with rtol = (Stentor's relative residual tolerance)^2,
+    i.e. |R| <= tol |R0| as Stentor's residual test (1e-10 for a static deck), at least as
+    strict as Stentor, whose increment test can stop Newton earlier."""
+    if tolerances == "default":
+        return 0.001, 0.01, 0.0
+    return 0.0, 0.0, p["rtol"] ** 2
+
+
+def write_feb(p, mesh, out, tet10_rule=None, qn="full Newton", tolerances="default"):
     x, tets = mesh["x"], mesh["tets"]
+    dtol, etol, rtol = febio_tolerances(p, tolerances)
     dt = p["end"] / p["steps"]
     base = os.path.splitext(os.path.basename(out))[0]
     pulled = [bc for bc in p["bcs"] if any(v != 0 for v in bc["values"].values())]
@@ -341,9 +367,9 @@ def write_feb(p, mesh, out, tet10_rule=None, qn="full Newton"):
          '\t\t<solver type="solid">',
          "\t\t\t<symmetric_stiffness>symmetric</symmetric_stiffness>",
          "\t\t\t<max_refs>25</max_refs>",
-         "\t\t\t<dtol>0.001</dtol>",
-         "\t\t\t<etol>0.01</etol>",
-         "\t\t\t<rtol>0</rtol>",
+         "\t\t\t<dtol>%g</dtol>" % dtol,
+         "\t\t\t<etol>%g</etol>" % etol,
+         "\t\t\t<rtol>%g</rtol>" % rtol,
          '\t\t\t<qn_method type="%s"/>' % qn,
          "\t\t</solver>",
          "\t</Control>",
@@ -400,62 +426,93 @@ def cmd_write(a):
         mesh = febio_mesh(msh, p["body"])
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
-    write_feb(p, mesh, a.out, a.tet10_rule, a.qn)
+    write_feb(p, mesh, a.out, a.tet10_rule, a.qn, a.tolerances)
     n = len(mesh["x"]) - 1
     print("feb.py: %s: %d nodes, %d cells (%s), %d DOF, h=%s%s" % (a.out, n, len(mesh["tets"]), mesh["type"], 3 * n,
           fmt(p["h"]), ", %d tets turned" % mesh["flipped"] if mesh["flipped"] else ""))
 
 
 # ---------------------------------------------------------------- FEBio's output
+# Terminal control sequences FEBio writes to its screen output: the window title (OSC,
+# ESC ] ... BEL or ESC ] ... ESC \\) and any CSI sequence (ESC [ ... letter).
+ESCAPES = re.compile(r"\x1b\][^\x07\x1b]*(?:\x07|\x1b\\)|\x1b\[[0-9;?]*[A-Za-z]")
+# FEBio's linear solvers that factorise (NumCore: UpdateStats(1) per solve, so "Avg
+# iterations per solve" is 1 for them and the product calls x avg counts solves).
+DIRECT_SOLVERS = {"pardiso", "pardiso_project", "mkl_dss", "skyline", "superlu", "superlu_mt", "accelerate"}
+
+
+def read_text(path):
+    try:
+        with open(path, errors="replace") as fh:
+            return fh.read()
+    except OSError:
+        return ""
+
+
+def feb_settings(feb):
+    """From the .feb: DOF, the reaction file, the linear solver type, the convergence tests."""
+    text = read_text(feb)
+    s = {"dofs": str(3 * len(re.findall(r"<node id=", text))) if text else "?", "rxfile": None}
+    rx = re.search(r'<node_data data="Rx"[^>]*file="([^"]+)"', text)
+    if rx:
+        s["rxfile"] = os.path.join(os.path.dirname(feb), rx.group(1))
+    ls = re.search(r'<linear_solver\s+type="([^"]+)"', text)
+    s["solver"] = ls.group(1).lower() if ls else "pardiso"  # FEBio's default (FECoreKernel)
+    tol = {}
+    for k, default in (("dtol", 0.001), ("etol", 0.01), ("rtol", 0.0)):
+        m = re.search(r"<%s>\s*([^<\s]+)\s*</%s>" % (k, k), text)
+        tol[k] = float(m.group(1)) if m else default
+    if (tol["dtol"], tol["etol"], tol["rtol"]) == (0.001, 0.01, 0.0):
+        s["tol"] = "default"
+    else:
+        s["tol"] = ",".join("%s=%g" % (k, tol[k]) for k in ("rtol", "etol", "dtol") if tol[k] > 0) or "none"
+    return s
+
+
+def reaction_sum(rxfile):
+    """Sum of the last record's values in a node_data file (FECore/DataRecord.cpp: "*Step",
+    "*Time", "*Data" lines, then one "id<delim>value" line per node)."""
+    blocks = read_text(rxfile).split("*Step")
+    rows = [l for l in blocks[-1].splitlines()[1:] if l.strip() and not l.startswith("*")]
+    if len(blocks) < 2 or not rows:
+        return "?"
+    try:
+        return "%.10g" % sum(float(re.split(r"[,\s]+", l.strip())[1]) for l in rows)
+    except (IndexError, ValueError):
+        return "?"
+
+
 def parse_febio(feb, log):
-    f = {k: "?" for k in ("dofs", "newton", "linear", "setup", "solve", "wall", "cpu", "rss", "column", "status")}
-    try:
-        with open(feb) as fh:
-            text = fh.read()
-        f["dofs"] = str(3 * len(re.findall(r"<node id=", text)))
-        rx = re.search(r'<node_data data="Rx"[^>]*file="([^"]+)"', text)
-        rxfile = os.path.join(os.path.dirname(feb), rx.group(1)) if rx else None
-    except OSError:
-        rxfile = None
-    try:
-        with open(log, errors="replace") as fh:
-            screen = fh.read()
-    except OSError:
-        screen = ""
-    try:
-        with open(os.path.splitext(feb)[0] + ".log", errors="replace") as fh:
-            flog = fh.read()
-    except OSError:
-        flog = ""
+    f = {k: "?" for k in ("dofs", "newton", "linear", "setup", "solve", "wall", "cpu", "rss", "column", "status", "tol")}
+    s = feb_settings(feb)
+    f["dofs"], f["tol"] = s["dofs"], s["tol"]
+    screen = ESCAPES.sub("", read_text(log))
+    flog = read_text(os.path.splitext(feb)[0] + ".log")
     both = screen + "\n" + flog
-    m = re.search(r"^TIME ([\d.]+) ([\d.]+) ([\d.]+) (\d+)", screen, re.M)
+    m = re.findall(r"^TIME ([\d.]+) ([\d.]+) ([\d.]+) (\d+)", screen, re.M)
     if m:
-        f["wall"] = m.group(1)
-        f["cpu"] = "%.1f" % (float(m.group(2)) + float(m.group(3)))
-        f["rss"] = "%.0f" % (int(m.group(4)) / 1024)
+        wall, user, sys_, rss = m[-1]
+        f["wall"] = wall
+        f["cpu"] = "%.1f" % (float(user) + float(sys_))
+        f["rss"] = "%.0f" % (int(rss) / 1024)
     # FEBioLib/FEBioModel.cpp, on_cb_stepSolved: one block per analysis step (one here).
     its = re.findall(r"Total number of equilibrium iterations \.+ : (\d+)", flog or screen)
     normal = "N O R M A L   T E R M I N A T I O N" in both
     f["newton"] = its[-1] if its and normal else "failed"
     calls = re.findall(r"Total calls to linear solver \.+ : (\d+)", flog or screen)
     avg = re.findall(r"Avg iterations per solve \.+ : ([\d.eE+-]+)", flog or screen)
-    if calls and avg and float(avg[-1]) > 0:
+    if s["solver"] in DIRECT_SOLVERS:
+        f["linear"] = "direct"
+    elif calls and avg:
         f["linear"] = "%.0f" % (int(calls[-1]) * float(avg[-1]))
     else:
-        f["linear"] = "direct" if calls else "-"
+        f["linear"] = "-"
     f["setup"] = "-"
     m = re.search(r"time in linear solver \.+ : \S+ \(([\d.eE+-]+) sec\)", flog)
     f["solve"] = "%.2f" % float(m.group(1)) if m else "?"
     f["status"] = "yes" if normal else ("E R R O R   T E R M I N A T I O N" if "E R R O R" in both else "crash")
-    if rxfile:
-        try:
-            with open(rxfile) as fh:
-                blocks = fh.read().split("*Step")
-            rows = [l for l in blocks[-1].splitlines()[1:] if l.strip() and not l.startswith("*")]
-            if len(blocks) > 1 and rows:
-                f["column"] = "%.6g" % sum(float(re.split(r"[,\s]+", l.strip())[1]) for l in rows)
-        except (OSError, IndexError, ValueError):
-            pass
+    if s["rxfile"]:
+        f["column"] = reaction_sum(s["rxfile"])
     return f
 
 
@@ -479,6 +536,9 @@ def main():
                    help="FEBio's integration rule for tet10 (default: FEBio's, TET10G8)")
     w.add_argument("--qn", default="full Newton", choices=["full Newton", "BFGS", "Broyden"],
                    help="FEBio's qn_method (default: full Newton)")
+    w.add_argument("--tolerances", default="default", choices=["default", "stentor"],
+                   help="FEBio's convergence tests: its defaults (dtol 0.001, etol 0.01) or the residual "
+                        "test of the deck's Newton->relative residual tolerance (rtol = tol^2)")
     p = sub.add_parser("parse")
     p.add_argument("feb")
     p.add_argument("log")

@@ -115,7 +115,7 @@ def last_value(hist, column):
     try:
         with open(hist) as fh:
             rows = list(csv.DictReader(fh))
-        return "%.6g" % float(rows[-1][column])
+        return "%.10g" % float(rows[-1][column])
     except (OSError, KeyError, IndexError, ValueError):
         return "?"
 
