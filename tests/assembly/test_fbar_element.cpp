@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "assembly/HyperelasticElement.hpp"
+#include "material/Damage.hpp"
+#include "material/ElasticLaw.hpp"
 #include "material/NeoHookean.hpp"
 #include "material/Plasticity.hpp"
 
@@ -154,6 +156,33 @@ TEST(FBarElement, ElasticTangentAgainstFiniteDifferences) {
   std::printf("[fbar element] Ciarlet-Geymonat: max |K - FD(r)|/max|K| %.2e, max |K - K^T|/max|K| %.2e\n", err, asym);
   EXPECT_LT(err, 1e-6);
   EXPECT_GT(asym, 1e-3);
+}
+
+// The other laws through the same element code: Mooney-Rivlin and Holzapfel-Gasser-Ogden
+// (fibres at the Gauss points) behind the ElasticLaw dispatch, neo-Hookean plasticity and
+// damage with history.
+TEST(FBarElement, EveryLawTangentAgainstFiniteDifferences) {
+  double X[8][3], U[8][3];
+  one_cell(X);
+  smooth_displacement(X, 1.0, U);
+  double err = 0.0, asym = 0.0;
+  fd_check(ElasticLaw::mooney_rivlin(MooneyRivlin{0.4, 0.1, 50.0}), X, U, nullptr, err, asym);
+  std::printf("[fbar element] Mooney-Rivlin: max |K - FD(r)|/max|K| %.2e\n", err);
+  EXPECT_LT(err, 1e-6);
+  const HolzapfelGasserOgden hgo{NeoHookean{1.0, 50.0}, 2.0, 1.0, {1.0, 0.0, 0.0}, {1.0, 0.0, 0.0}};
+  fd_check(ElasticLaw::holzapfel_gasser_ogden(hgo, FibreFrame{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, 0.5}), X, U, nullptr, err, asym);
+  std::printf("[fbar element] Holzapfel-Gasser-Ogden: max |K - FD(r)|/max|K| %.2e\n", err);
+  EXPECT_LT(err, 1e-6);
+  using NHP = NeoHookeanPlasticity;
+  const std::vector<double> hp = initial_history(8, NHP::kNumHist, NHP::kHistory);
+  fd_check(NHP{NeoHookean{1.0, 50.0}, 0.02, 0.1}, X, U, hp.data(), err, asym);
+  std::printf("[fbar element] neo-Hookean plasticity: max |K - FD(r)|/max|K| %.2e\n", err);
+  EXPECT_LT(err, 1e-6);
+  using Dmg = IsotropicDamage<NeoHookean>;
+  const std::vector<double> hd = initial_history(8, Dmg::kNumHist, Dmg::kHistory);
+  fd_check(Dmg{NeoHookean{1.0, 50.0}, 0.5, 0.05}, X, U, hd.data(), err, asym);
+  std::printf("[fbar element] neo-Hookean damage: max |K - FD(r)|/max|K| %.2e\n", err);
+  EXPECT_LT(err, 1e-6);
 }
 
 TEST(FBarElement, PlasticTangentAgainstFiniteDifferences) {
