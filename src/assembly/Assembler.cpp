@@ -69,6 +69,20 @@ Assembler::HistoryView initial_history(std::size_t rows) {
   return h;
 }
 
+// The element technology of the body owning physical group `group`; f-bar is refused, naming
+// the body's parameter, on cells other than hex8.
+ElementTechnology block_technology(const Config& cfg, const std::string& group, CellType type) {
+  for (const auto& body : cfg.bodies) {
+    if (body.group != group || !body.fbar()) continue;
+    if (type != CellType::Hex8)
+      throw InputError(cfg.deck_path + ": 'Bodies->" + body.name + "->element technology' = f-bar needs hex8 cells; physical group '" +
+                       group + "' has " + cell_name(type) + " cells (mesh it with 'Mesh->recombine' = true, order 1, or a " +
+                       "structured .geo with Recombine; or use 'full')");
+    return ElementTechnology::FBar;
+  }
+  return ElementTechnology::Full;
+}
+
 }  // namespace
 
 Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& cfg, const Loads& loads,
@@ -92,6 +106,7 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
     // Viscosity acts only in dynamics (it needs a time step); statics pays nothing for it.
     block_eta_.push_back(cfg.any_dynamic() ? m.viscosity : 0.0);
     quad_degree_.push_back(default_quadrature_degree(mesh.volumes[b].type));
+    block_tech_.push_back(block_technology(cfg, mesh.volumes[b].name, mesh.volumes[b].type));
   }
   if (cfg.problem.assembly == "coloring") color_cells();
   exporter_ = Teuchos::rcp(new la::Export(dist.overlap_map(), dist.owned_map()));
@@ -542,6 +557,7 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
       et.eta = in.dt > 0.0 ? block_eta_[static_cast<std::size_t>(lb.volume_block)] : 0.0;
       et.has_old = has_old && (in.eval != StressEval::EndPoint || et.eta > 0.0);
       const CellType type = lb.type;
+      const ElementTechnology tech = block_tech_[static_cast<std::size_t>(lb.volume_block)];
       const int nn = lb.nodes_per_cell;
       auto conn = lb.conn;
       double e_block = 0.0;
@@ -572,10 +588,10 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
           double ec = 0.0, dc = 0.0, pc = 0.0;
           int status;
           if constexpr (H)
-            status = solid_element<T>(dim, kin, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc,
+            status = solid_element<T>(dim, kin, tech, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc,
                                       CellHistory{&hn(c * ngp, 0), &h1(c * ngp, 0), nh}, &pc);
           else
-            status = solid_element<T>(dim, kin, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc);
+            status = solid_element<T>(dim, kin, tech, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc);
           if (status != kElementOk) {
             Kokkos::atomic_increment(&fails(status == kElementInverted ? 0 : status == kElementLocalFailure ? 2 : 1));
             Kokkos::atomic_fetch_min(&bad(0), c);
@@ -815,6 +831,7 @@ template <class UView>
 struct CellFieldBlock {
   int dim, nn, ngp, nx;
   Kinematics kin;
+  ElementTechnology tech;
   CellType type;
   QuadRule q;
   Kokkos::View<int**, Kokkos::LayoutRight, la::ExecSpace> conn;
@@ -840,6 +857,9 @@ Kokkos::View<double**, Kokkos::LayoutRight, la::ExecSpace> cell_fields_of_block(
         gather_cell(c, a.nn, a.dim, a.conn, a.X, a.uv, Xe, Ue, dofs);
         Mat3 sig = Mat3::zero(), E = Mat3::zero(), L = Mat3::zero();
         double Jm = 0.0, vol = 0.0, acc[kMaxHistoryColumns > 0 ? kMaxHistoryColumns : 1] = {};
+        // F-bar: the stress is the law's at Fb = (J0/J)^(1/3) F (strains and J stay those of F).
+        FBarCentre fb;
+        const bool fbar = a.tech == ElementTechnology::FBar && fbar_centre(a.dim, a.type, a.nn, Xe, Ue, fb);
         for (int g = 0; g < a.q.n; ++g) {
           shape_functions(a.type, a.q.xi[g], N, dN);
           const double detJ = reference_gradients(a.dim, a.nn, Xe, dN, dNdX);
@@ -853,12 +873,13 @@ Kokkos::View<double**, Kokkos::LayoutRight, la::ExecSpace> cell_fields_of_block(
             for (int k = 0; k < a.nx; ++k)
               if (a.xcol(k) >= 0) acc[k] += w * a.hist(c * a.ngp + g, a.xcol(k));
           if (J > 0.0) {
+            const Mat3 Fs = fbar ? fbar_scale(fb.J0, F) * F : F;
             Mat3 S;
             if constexpr (H)
-              S = law.frozen_potential(&a.hist(c * a.ngp + g, 0)).stress(tmul(F, F));
+              S = law.frozen_potential(&a.hist(c * a.ngp + g, 0)).stress(tmul(Fs, Fs));
             else
-              S = law_at_point(law, a.nn, N, Xe).stress(tmul(F, F));
-            sig = sig + w * cauchy_stress(F, matmul(F, S));
+              S = law_at_point(law, a.nn, N, Xe).stress(tmul(Fs, Fs));
+            sig = sig + w * cauchy_stress(Fs, matmul(Fs, S));
           }
           if (J > 0.0 && a.col.green_lagrange >= 0) E = E + (0.5 * w) * (tmul(F, F) - Mat3::identity());
           if (J > 0.0 && a.col.log_strain >= 0) L = L + w * half_log_spd(matmul(F, transpose(F)));
@@ -916,8 +937,11 @@ Assembler::CellFields Assembler::cell_fields(const la::Vector& u, const CellFiel
     const Material& law = block_law_[static_cast<std::size_t>(lb.volume_block)];
     // With history: the kernels' Gauss points (the stiffness rule), where the rows live.
     const bool has_hist = history_layout(law).size > 0;
-    CellFieldBlock<decltype(uv)> a{dim_, lb.nodes_per_cell, has_hist ? history_[bi].ngp : 0, nx, kin_, lb.type,
-                                   make_rule(lb.type, has_hist ? stiffness_quadrature_degree(lb.type)
+    const ElementTechnology tech = block_tech_[static_cast<std::size_t>(lb.volume_block)];
+    // With history or F-bar: the kernels' Gauss points (the stiffness rule).
+    const bool kernel_points = has_hist || tech == ElementTechnology::FBar;
+    CellFieldBlock<decltype(uv)> a{dim_, lb.nodes_per_cell, has_hist ? history_[bi].ngp : 0, nx, kin_, tech, lb.type,
+                                   make_rule(lb.type, kernel_points ? stiffness_quadrature_degree(lb.type)
                                                                : quad_degree_[static_cast<std::size_t>(lb.volume_block)]),
                                    lb.conn, dist_.coords(), uv, has_hist ? history_[bi].committed : HistoryView(),
                                    history_columns(out.extra_names, history_layout(law)), col};

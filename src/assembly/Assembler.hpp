@@ -172,6 +172,7 @@ class Assembler {
   Kinematics kin_;                          // Problem->kinematics (axisymmetric: 2 pi R weights, hoop strain)
   std::vector<Material> block_law_;         // per mesh volume block (material/MaterialRegistry.hpp)
   std::vector<double> block_density_, block_eta_;
+  std::vector<ElementTechnology> block_tech_;  // per mesh volume block: its body's element technology
   std::vector<int> quad_degree_;            // per mesh volume block: mass, body force, output
                                             // (the stiffness uses stiffness_quadrature_degree)
 

@@ -11,6 +11,27 @@
 //     dF_33/du_(a,r) = N_a/R (the hoop row of B), and every volume integral carries
 //     2 pi R: forces, energies and masses are those of the full revolution (docs/axisymmetric.md).
 // Only in-plane dofs are assembled.
+//
+// F-bar (ElementTechnology::FBar, hex8; de Souza Neto, Peric, Dutko & Owen 1996, "Design of
+// simple low order finite elements for large strain analysis of nearly incompressible
+// solids", IJSS 33). Every Gauss point's law sees
+//   Fb = s F,  s = (J0/J)^(1/3),  J = det F,  J0 = det F0,  F0 = F at the cell centre (xi = 0),
+// so det Fb = J0: one volume change per cell, which removes the volumetric (and isochoric
+// plastic flow) locking of the fully integrated hex8. The internal force is the Cauchy
+// stress of Fb, sb = Pb Fb^T / J0, Pb = P(Fb), over the current volume:
+//   r_(a,i) = int sb_ij dN_a/dx_j J dV = int Pe_iJ dN_a/dX_J dV,  Pe = s^-2 Pb
+// (Pb Fb^T F^-T J/J0 = s^-2 Pb, since J/J0 = s^-3). Pe is not the derivative of a potential
+// of u, so the tangent is not symmetric. With Ab = dPb/dFb (the law's tangent at Fb):
+//   dFb/dF_kL  = s (I_ikJL - 1/3 F_iJ F^-1_Lk),   dFb/dF0_kL = 1/3 s F_iJ F0^-1_Lk,
+//   dPe/dF     = s^-1 Ab - Q (x) F^-T,           dPe/dF0    = Q (x) F0^-T,
+//   Q_iJ = 1/3 s^-2 [ (Ab : Fb)_iJ - 2 Pb_iJ ],  (Ab : Fb)_iJ = Ab_iJmN Fb_mN,
+// the first term from dPb and the -2 Pb from d(s^-2) = -2/3 s^-2 (F0^-T : dF0 - F^-T : dF).
+// With dF/du_(b,k) = e_k (x) dN_b/dX, F^-T : dF/du_(b,k) = dN_b/dx_k (the spatial gradient at
+// the point, G) and F0^-T : dF0/du_(b,k) = dN_b/dx_k at the centre (G0), so
+//   K_(a,i),(b,k) = int [ s^-1 dN_a/dX_J Ab_iJkL dN_b/dX_L + (Q_iJ dN_a/dX_J)(G0_bk - G_bk) ] dV,
+// de Souza Neto's extra term. A homogeneous deformation has F0 = F, Fb = F, Pe = P(F): the
+// patch test holds exactly on any hex8 mesh. Statics only (the deck refuses it in dynamics:
+// with Fb the Gonzalez step's Delta C is no longer linear in the displacement increment).
 #pragma once
 #include "fem/CellType.hpp"
 #include "fem/Geometry.hpp"
@@ -65,6 +86,10 @@ KOKKOS_INLINE_FUNCTION Mat3 deformation_gradient(int dim, int nn, const double (
       for (int J = 0; J < dim; ++J) F(i, J) += U[a][i] * dNdX[a][J];
   return F;
 }
+
+// The element formulation of a block (Bodies-><body>->element technology): the standard
+// displacement element, or F-bar (hex8 only, see the header).
+enum class ElementTechnology : int { Full = 0, FBar = 1 };
 
 // How a cell's fields are read: Cartesian (3D, or 2D plane strain) or Axisymmetric (a 2D
 // mesh in the (r, z) half plane, x = r >= 0, y = z; the third direction is the hoop one).
@@ -322,6 +347,72 @@ KOKKOS_INLINE_FUNCTION void add_point(int dim, Kinematics kin, int nn, const dou
   }
 }
 
+// F-bar data of a cell: J0 = det F at the centre (xi = 0) and G0_(b,k) = dN_b/dx_k there.
+struct FBarCentre {
+  double J0 = 1.0;
+  double G0[kMaxCellNodes][3];
+};
+
+// The centre data of F-bar for displacements U; false if the cell is degenerate or inverted
+// at its centre.
+KOKKOS_INLINE_FUNCTION bool fbar_centre(int dim, CellType type, int nn, const double (*X)[3], const double (*U)[3],
+                                        FBarCentre& c) {
+  const double xi0[3] = {0.0, 0.0, 0.0};
+  double dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
+  shape_functions(type, xi0, nullptr, dN);
+  if (!(reference_gradients(dim, nn, X, dN, dNdX) > 0.0)) return false;
+  const Mat3 F0 = deformation_gradient(dim, nn, U, dNdX);
+  c.J0 = det(F0);
+  if (!(c.J0 > 0.0)) return false;
+  const Mat3 Fi = inverse(F0);
+  for (int b = 0; b < nn; ++b)
+    for (int k = 0; k < 3; ++k) c.G0[b][k] = dNdX[b][0] * Fi(0, k) + dNdX[b][1] * Fi(1, k) + dNdX[b][2] * Fi(2, k);
+  return true;
+}
+
+// s = (J0/J)^(1/3) of Fb = s F at a point with J = det F > 0.
+KOKKOS_INLINE_FUNCTION double fbar_scale(double J0, const Mat3& F) { return std::cbrt(J0 / det(F)); }
+
+// Adds one F-bar point (header): Pb = P(Fb), Ab = dPb/dFb from point_stress, s of the point,
+// F the point's (unmodified) deformation gradient. The residual and the s^-1 Ab part go
+// through add_point with Pe = s^-2 Pb; then K_(a,i),(b,k) += wq (Q_iJ dN_a/dX_J)(G0_bk - G_bk).
+template <bool WithTangent>
+KOKKOS_INLINE_FUNCTION void add_fbar_point(int nn, const double (*dNdX)[3], double wq, double s, const Mat3& F,
+                                           const Mat3& Pb, Ten4& Ab, const FBarCentre& c, double* re,
+                                           double (*ke)[kMaxCellDofs]) {
+  const double s2 = 1.0 / (s * s);
+  const Mat3 Pe = s2 * Pb;
+  Mat3 Q;
+  if (WithTangent) {
+    const Mat3 Fb = s * F;
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J) {
+        double t = 0.0;
+        for (int m = 0; m < 3; ++m)
+          for (int Nn = 0; Nn < 3; ++Nn) t += Ab(i, J, m, Nn) * Fb(m, Nn);
+        Q(i, J) = s2 * (t - 2.0 * Pb(i, J)) / 3.0;
+      }
+    const double si = 1.0 / s;
+    for (int i = 0; i < 3; ++i)
+      for (int J = 0; J < 3; ++J)
+        for (int k = 0; k < 3; ++k)
+          for (int L = 0; L < 3; ++L) Ab(i, J, k, L) *= si;
+  }
+  const double none[1] = {0.0};
+  add_point<WithTangent>(3, Kinematics::Cartesian, nn, none, dNdX, 0.0, wq, Pe, Ab, re, ke);
+  if (!WithTangent) return;
+  const Mat3 Fi = inverse(F);
+  double dG[kMaxCellNodes][3];  // G0 - G
+  for (int b = 0; b < nn; ++b)
+    for (int k = 0; k < 3; ++k) dG[b][k] = c.G0[b][k] - (dNdX[b][0] * Fi(0, k) + dNdX[b][1] * Fi(1, k) + dNdX[b][2] * Fi(2, k));
+  for (int a = 0; a < nn; ++a)
+    for (int i = 0; i < 3; ++i) {
+      const double g = wq * (Q(i, 0) * dNdX[a][0] + Q(i, 1) * dNdX[a][1] + Q(i, 2) * dNdX[a][2]);
+      for (int b = 0; b < nn; ++b)
+        for (int k = 0; k < 3; ++k) ke[a * 3 + i][b * 3 + k] += g * dG[b][k];
+    }
+}
+
 // Element internal force (and its derivative with respect to u_{n+1}):
 //   r_(a,i) = sum_q P : dF/du_(a,i) dV,  K = dr/du_{n+1} = sum_q dF/du_(a,i) : A : dF/du_(b,k) dV,
 // dV = w detJ (axisymmetric: 2 pi R w detJ).
@@ -331,8 +422,10 @@ KOKKOS_INLINE_FUNCTION void add_point(int dim, Kinematics kin, int nn, const dou
 // CiarletGeymonat) with Hist = NoHistory, or any law with history (MaterialState.hpp,
 // e.g. CiarletGeymonatPlasticity, NeoHookeanDamage) with Hist = CellHistory; with history
 // the stress is evaluated at the end point, or by history_gonzalez for the Gonzalez scheme.
+// tech = FBar (3D Cartesian hex8, statics): every law sees Fb (header); energy = int W(Cb).
 template <bool WithTangent, class Mat = CiarletGeymonat, class Hist = NoHistory>
-KOKKOS_INLINE_FUNCTION int solid_element(int dim, Kinematics kin, CellType type, int nn, const double (*X)[3],
+KOKKOS_INLINE_FUNCTION int solid_element(int dim, Kinematics kin, ElementTechnology tech, CellType type, int nn,
+                                         const double (*X)[3],
                                          const double (*U)[3], const double (*U0)[3], const Mat& mat,
                                          const ElementTime& et, const QuadRule& q, double* re, double (*ke)[kMaxCellDofs],
                                          double& energy, double& dissipation, const Hist& hist = Hist{},
@@ -345,6 +438,12 @@ KOKKOS_INLINE_FUNCTION int solid_element(int dim, Kinematics kin, CellType type,
   }
   energy = 0.0;
   dissipation = 0.0;
+  const bool fbar = tech == ElementTechnology::FBar;
+  FBarCentre c1, c0;  // F-bar: centre data of u_{n+1} and u_n
+  if (fbar) {
+    if (!fbar_centre(dim, type, nn, X, U, c1)) return kElementInverted;
+    if (et.has_old && !fbar_centre(dim, type, nn, X, U0, c0)) return kElementInverted;
+  }
   double N[kMaxCellNodes], dN[kMaxCellNodes][3], dNdX[kMaxCellNodes][3];
   for (int g = 0; g < q.n; ++g) {
     shape_functions(type, q.xi[g], N, dN);
@@ -354,13 +453,24 @@ KOKKOS_INLINE_FUNCTION int solid_element(int dim, Kinematics kin, CellType type,
     if (kin == Kinematics::Axisymmetric && !(R > 0.0)) return kElementDegenerate;
     const double wq = volume_weight(kin, q.w[g] * detJ, R);
     const Mat matq = law_at_point(mat, nn, N, X);  // fibre directions at this point, if the law has them
-    const Mat3 F1 = point_deformation_gradient(dim, kin, nn, N, R, U, dNdX);
-    const Mat3 F0 = et.has_old ? point_deformation_gradient(dim, kin, nn, N, R, U0, dNdX) : F1;
+    Mat3 F1 = point_deformation_gradient(dim, kin, nn, N, R, U, dNdX);
+    Mat3 F0 = et.has_old ? point_deformation_gradient(dim, kin, nn, N, R, U0, dNdX) : F1;
+    const Mat3 F = F1;  // F-bar: the point's own F (F1 becomes Fb)
+    double s = 1.0;
+    if (fbar) {
+      if (!(det(F1) > 0.0) || (et.has_old && !(det(F0) > 0.0))) return kElementInverted;
+      s = fbar_scale(c1.J0, F1);
+      F0 = et.has_old ? fbar_scale(c0.J0, F0) * F0 : s * F1;
+      F1 = s * F1;
+    }
     Mat3 P;
     Ten4 A;
     const int status = point_stress<WithTangent>(matq, et, F0, F1, hist, g, wq, P, A, energy, dissipation, plastic);
     if (status != kElementOk) return status;
-    add_point<WithTangent>(dim, kin, nn, N, dNdX, R, wq, P, A, re, ke);
+    if (fbar)
+      add_fbar_point<WithTangent>(nn, dNdX, wq, s, F, P, A, c1, re, ke);
+    else
+      add_point<WithTangent>(dim, kin, nn, N, dNdX, R, wq, P, A, re, ke);
   }
   return kElementOk;
 }

@@ -1007,6 +1007,7 @@ void DeckReader::read_bodies(const ParameterList& pl) {
     b.group = sub.isParameter("physical group") ? get_string(sub, ls, "physical group") : name;
     if (b.group.empty()) fail(quoted(path + "->physical group") + " must not be empty");
     b.material = get_string(sub, ls, "material");
+    b.element_technology = get_string(sub, ls, "element technology");
     if (sub.isParameter("initial velocity")) {
       const auto v = get_array(sub, ls, "initial velocity");
       check_dim_length(v, path + "->initial velocity");
@@ -1654,6 +1655,11 @@ void DeckReader::check_analysis(bool initial_conditions, bool time_integration) 
              " = gonzalez (energy-dissipative), newmark or hht, not midpoint");
   }
   if (cfg_.any_dynamic()) {
+    for (const auto& b : cfg_.bodies)
+      if (b.fbar())  // the energy-consistent schemes need Delta C linear in the step's displacement increment
+        fail(quoted("Bodies->" + b.name + "->element technology") + " = f-bar is for static analysis only; " +
+             (staged ? std::string("a stage has 'analysis' = dynamic") : std::string("'Problem->analysis' = dynamic")) +
+             " (use 'full')");
     for (const auto& m : cfg_.materials)
       if (!(m.density > 0.0))
         fail("'Materials->" + m.name + "->density' must be > 0 in a dynamic analysis (" +

@@ -93,6 +93,8 @@ struct BodyConfig {
   std::string name;      // sublist name under "Bodies"
   std::string group;     // "physical group" (default: the sublist name)
   std::string material;  // "material": name of a sublist of "Materials"
+  std::string element_technology = "full";  // "element technology": "full" | "f-bar" (hex8, statics)
+  bool fbar() const { return element_technology == "f-bar"; }
   bool has_velocity = false;            // "initial velocity" given: replaces Initial Conditions' velocity
   std::array<double, 3> velocity{};     //   (and angular velocity) on this body's nodes
   bool has_angular_velocity = false;    // "initial angular velocity" (with "rotation center") given: idem

@@ -233,6 +233,14 @@ std::vector<ListSpec> build_schema() {
                    {str("physical group", "", "Mesh physical group of the body's elements.").allowed("physical group name")
                         .dflt_doc("the sublist name"),
                     str("material", "", "Name of a sublist of `Materials`.").req().allowed("a defined material"),
+                    str("element technology", "full",
+                        "The element formulation of the body's cells. `full`: the standard displacement element, "
+                        "fully integrated. `f-bar`: hex8 with the F-bar formulation of de Souza Neto et al. (1996): "
+                        "every Gauss point's law sees F (J0/J)^(1/3), J0 = det F at the cell centre, which removes "
+                        "the volumetric locking of nearly incompressible elasticity and isochoric plastic flow "
+                        "(docs/elements.md). Static analysis only, hex8 cells only (a body with other cells, or a "
+                        "dynamic analysis, is refused).")
+                        .one_of({"full", "f-bar"}),
                     arr("initial velocity",
                         "This body's uniform initial velocity [m/s] (dynamic analysis), one value per dimension; it "
                         "replaces `Initial Conditions` velocity and angular velocity on the body's nodes (a node "

@@ -65,7 +65,7 @@ Eval eval(const Cell& c, const double (*U)[3], const double (*U0)[3], const Elem
   const QuadRule q = make_rule(c.type, stiffness_quadrature_degree(c.type));
   double re[kMaxCellDofs], ke[kMaxCellDofs][kMaxCellDofs];
   Eval e;
-  e.status = solid_element<true>(2, Kinematics::Axisymmetric, c.type, c.nn, c.X, U, U0, law, et, q, re, ke, e.energy, e.dissipation);
+  e.status = solid_element<true>(2, Kinematics::Axisymmetric, ElementTechnology::Full, c.type, c.nn, c.X, U, U0, law, et, q, re, ke, e.energy, e.dissipation);
   const int nd = 2 * c.nn;
   e.r.assign(re, re + nd);
   for (int i = 0; i < nd; ++i) e.K.emplace_back(ke[i], ke[i] + nd);
