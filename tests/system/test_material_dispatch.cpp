@@ -175,6 +175,41 @@ TEST(MaterialDispatch, NeoHookeanPlasticityTangentMatchesFiniteDifferences) {
   }
 }
 
+// Nonlinear hardening (material/IsotropicHardening.hpp: Voce, and a table whose points the
+// plastic strains of the field cross) through the global assembly, over both elastic parts:
+// tangent against central differences from a plastic committed state, most points flowing.
+TEST(MaterialDispatch, NonlinearHardeningTangentMatchesFiniteDifferences) {
+  const double te[] = {0.0, 0.02, 0.06, 0.12}, ts[] = {0.1e6, 0.2e6, 0.26e6, 0.28e6};
+  const NonlinearHardening hards[] = {NonlinearHardening::voce(0.1e6, 0.4e6, 20.0), NonlinearHardening::table(te, ts, 4)};
+  for (const NonlinearHardening& hard : hards)
+    for (const bool cg : {false, true}) {
+      const double H = hard.kind == NonlinearHardening::kVoce ? 0.2e6 : 0.0;
+      NeoHookeanPlasticity nh{NeoHookean{kMu, kLambda}, 0.1e6, H};
+      CiarletGeymonatPlasticity cgp{CiarletGeymonat{0.5 * kMu, 0.0, 0.25 * kLambda}, 0.1e6, H};
+      nh.nonlinear = cgp.nonlinear = hard;
+      Fixture s(write_and_read(cube_deck(), "cube"), {cg ? Material{cgp} : Material{nh}});
+      la::Vector u(s.dist->owned_map()), r(s.dist->owned_map());
+      s.fill(u, 0.6);
+      s.as->assemble(u, 1.0, 1.0, r, false);
+      s.as->commit_history();
+      s.fill(u, 1.0, 0.03);
+      const double rel = tangent_error(s, u);
+      s.as->assemble(u, 1.0, 1.0, r, false);
+      const std::vector<double> h = host_copy(s.as->trial_history(0));
+      int flowing = 0, ngp = 0;
+      double amin = 1e300, amax = 0.0;
+      for (std::size_t i = 0; i < h.size(); i += NeoHookeanPlasticity::kNumHist) {
+        flowing += h[i + NeoHookeanPlasticity::kYielding] > 0.0, ++ngp;
+        amin = std::min(amin, h[i + NeoHookeanPlasticity::kAlpha]), amax = std::max(amax, h[i + NeoHookeanPlasticity::kAlpha]);
+      }
+      std::cout << "[ hardening ] " << (hard.kind == NonlinearHardening::kVoce ? "Voce" : "table") << ", "
+                << (cg ? "Ciarlet-Geymonat" : "neo-Hookean") << ": " << flowing << "/" << ngp << " Gauss points flowing, alpha in ["
+                << amin << ", " << amax << "], |K du - FD|/|K du| = " << rel << "\n";
+      EXPECT_GT(flowing, ngp / 2);
+      EXPECT_LT(rel, 1e-6);
+    }
+}
+
 // d_inf = 0: the history kernel of the damage law gives the stateless neo-Hookean kernel's
 // residual, tangent and energy bit for bit (and zero dissipation).
 TEST(MaterialDispatch, NoDamageIsTheElasticKernel) {
