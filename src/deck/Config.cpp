@@ -307,6 +307,7 @@ class DeckReader {
   void read_elastic_constants(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
   void read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m);
   void read_inelastic(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
+  void read_hardening(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
   void read_bodies(const ParameterList& pl);
   void read_loads(const ParameterList& pl);
   void read_stepping(const ParameterList& pl);
@@ -919,16 +920,83 @@ void DeckReader::read_inelastic(const ParameterList& sub, const ListSpec& ls, co
   needs("saturation damage", m.damage(), "neo-Hookean damage");
   needs("damage energy scale", m.damage(), "neo-Hookean damage");
   if (m.plastic()) {
-    require_for_model("yield stress");
-    m.yield_stress = get_double(sub, ls, "yield stress");
-    m.hardening = get_double(sub, ls, "hardening");
+    read_hardening(sub, ls, path, m);
     m.lagged_plastic_dynamics = get_string(sub, ls, "plastic dynamic step") == "lagged";
+  } else {
+    for (const char* k : {"hardening law", "saturation stress", "saturation rate", "hardening table strains",
+                          "hardening table stresses"})
+      needs(k, false, "Ciarlet-Geymonat plasticity or neo-Hookean plasticity");
   }
   if (m.damage()) {
     require_for_model("saturation damage");
     require_for_model("damage energy scale");
     m.saturation_damage = get_double(sub, ls, "saturation damage");
     m.damage_energy_scale = get_double(sub, ls, "damage energy scale");
+  }
+}
+
+// The hardening of a plasticity model: `hardening law` linear (`yield stress`, `hardening`), Voce
+// (+ `saturation stress` >= `yield stress`, `saturation rate`) or table (`hardening table strains`
+// from 0, strictly increasing, and as many non-decreasing `hardening table stresses`, the first of
+// which is the yield stress: `yield stress` and `hardening` are refused with it).
+void DeckReader::read_hardening(const ParameterList& sub, const ListSpec& ls, const std::string& path,
+                                MaterialConfig& m) const {
+  m.hardening_law = get_string(sub, ls, "hardening law");
+  const bool voce = m.hardening_law == "Voce", table = m.hardening_law == "table";
+  const auto only = [&](const char* key, bool ok, const char* law) {
+    if (!ok && sub.isParameter(key))
+      fail(quoted(path + "->" + key) + " needs 'hardening law' = " + law + ", got " + m.hardening_law);
+  };
+  const auto required = [&](const char* key, bool with) {
+    if (!with || sub.isParameter(key)) return;
+    const ParamSpec& p = spec(ls, key);
+    fail("missing required parameter " + quoted(path + "->" + key) + " (" + p.allowed_text() + ") for 'hardening law' = " +
+         m.hardening_law);
+  };
+  only("saturation stress", voce, "Voce");
+  only("saturation rate", voce, "Voce");
+  only("hardening table strains", table, "table");
+  only("hardening table stresses", table, "table");
+  only("hardening", !table, "linear or Voce");
+  if (table && sub.isParameter("yield stress"))
+    fail(quoted(path + "->yield stress") + " is not allowed with 'hardening law' = table: the first of " +
+         quoted(path + "->hardening table stresses") + " is the initial yield stress");
+  for (const char* k : {"saturation stress", "saturation rate"}) required(k, voce);
+  for (const char* k : {"hardening table strains", "hardening table stresses"}) required(k, table);
+  if (!table) {
+    if (!sub.isParameter("yield stress")) {
+      const ParamSpec& p = spec(ls, "yield stress");
+      fail("missing required parameter " + quoted(path + "->yield stress") + " (double, " + p.allowed_text() +
+           ") for model = " + m.model);
+    }
+    m.yield_stress = get_double(sub, ls, "yield stress");
+    m.hardening = get_double(sub, ls, "hardening");
+  }
+  if (voce) {
+    m.saturation_stress = get_double(sub, ls, "saturation stress");
+    m.saturation_rate = get_double(sub, ls, "saturation rate");
+    if (m.saturation_stress < m.yield_stress)
+      fail(quoted(path + "->saturation stress") + " = " + num(m.saturation_stress) + " is below " +
+           quoted(path + "->yield stress") + " = " + num(m.yield_stress) +
+           "; expected >= the yield stress (softening is not supported)");
+  }
+  if (table) {
+    const std::string se = quoted(path + "->hardening table strains"), ss = quoted(path + "->hardening table stresses");
+    m.table_strains = get_array(sub, ls, "hardening table strains");
+    m.table_stresses = get_array(sub, ls, "hardening table stresses");
+    if (m.table_strains.size() != m.table_stresses.size())
+      fail(ss + " has " + std::to_string(m.table_stresses.size()) + " values and " + se + " " +
+           std::to_string(m.table_strains.size()) + "; expected one stress per strain");
+    if (m.table_strains[0] != 0.0) fail(se + " must start at 0, got " + num(m.table_strains[0]));
+    for (std::size_t i = 1; i < m.table_strains.size(); ++i) {
+      if (!(m.table_strains[i] > m.table_strains[i - 1]))
+        fail(se + " must be strictly increasing, got " + num(m.table_strains[i]) + " after " + num(m.table_strains[i - 1]));
+      if (m.table_stresses[i] < m.table_stresses[i - 1])
+        fail(ss + " must be non-decreasing (softening is not supported), got " + num(m.table_stresses[i]) + " after " +
+             num(m.table_stresses[i - 1]) + " at strain " + num(m.table_strains[i]));
+    }
+    m.yield_stress = m.table_stresses[0];
+    m.hardening = 0.0;
   }
 }
 

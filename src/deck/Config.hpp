@@ -73,6 +73,12 @@ struct MaterialConfig {
   double viscosity = 0;                   // "viscosity" eta (Curnier), >= 0; unused in statics
   double yield_stress = 0;                // "yield stress" Y [Pa], > 0 (plasticity only)
   double hardening = 0;                   // "hardening" H [Pa], >= 0 (plasticity only)
+  // "hardening law" (material/IsotropicHardening.hpp): linear (Y + H alpha), Voce (+ "saturation
+  // stress" Y_inf >= Y [Pa] and "saturation rate" delta > 0 [-]) or table ("hardening table strains"
+  // and "hardening table stresses"; then yield_stress is the first stress and hardening 0).
+  std::string hardening_law = "linear";
+  double saturation_stress = 0, saturation_rate = 0;
+  std::vector<double> table_strains, table_stresses;
   // "plastic dynamic step" = lagged: the Gonzalez step's stress at the frozen plastic state of the
   // step's start (default `incremental potential`: the incremental potential's discrete gradient).
   bool lagged_plastic_dynamics = false;

@@ -153,7 +153,8 @@ std::vector<ListSpec> build_schema() {
       "+-`fibre angle` to the circumferential direction of the cylindrical frame of `axis point` and `axis`. "
       "Plane strain in 2D. "
       "`Ciarlet-Geymonat plasticity` and `neo-Hookean plasticity` add multiplicative von Mises plasticity "
-      "F = Fe Ftr with the Mandel stress, yield |M|_H <= Y + H alpha and linear isotropic hardening to the "
+      "F = Fe Ftr with the Mandel stress, yield |M|_H <= sigma_y(alpha) and isotropic hardening (linear, Voce or a table, "
+      "`hardening law`) to the "
       "Ciarlet-Geymonat resp. neo-Hookean law (docs/plasticity.md). `neo-Hookean damage`: Miehe's "
       "discontinuous (Mullins-type) damage, W = (1 - d) W0 with W0 the neo-Hookean law, alpha the largest W0 "
       "reached and d = d_inf (1 - exp(-alpha / beta)): unloading and reloading below alpha are elastic with the "
@@ -194,15 +195,46 @@ std::vector<ListSpec> build_schema() {
        dbl("viscosity", 0.0, "Viscosity eta [Pa s] (Curnier); unused in statics.").ge(0.0),
        dbl("yield stress", 0.0,
            "Initial yield stress Y [Pa, the unit of the moduli] of `Ciarlet-Geymonat plasticity` and "
-           "`neo-Hookean plasticity` (required there, not allowed with other models): the bound on the Hill "
-           "(von Mises) norm of the Mandel stress.")
+           "`neo-Hookean plasticity` (required there, not allowed with other models nor with `hardening law` = "
+           "table, whose first stress is Y): the bound on the Hill (von Mises) norm of the Mandel stress.")
            .gt(0.0)
            .dflt_doc("none"),
+       str("hardening law", "linear",
+           "Isotropic hardening of `Ciarlet-Geymonat plasticity` and `neo-Hookean plasticity` (docs/plasticity.md, "
+           "Hardening laws), the yield stress sigma_y at equivalent plastic strain alpha: `linear`, Y + H alpha; "
+           "`Voce`, Y + H alpha + (Y_inf - Y)(1 - exp(-delta alpha)) with `saturation stress` Y_inf and "
+           "`saturation rate` delta; `table`, piecewise linear through (`hardening table strains`, "
+           "`hardening table stresses`), extrapolated with the slope of the last segment.")
+           .one_of({"linear", "Voce", "table"}),
        dbl("hardening", 0.0,
            "Linear isotropic hardening modulus H [Pa, the unit of the moduli] of `Ciarlet-Geymonat plasticity` "
-           "and `neo-Hookean plasticity`: the yield stress is Y + H alpha (alpha the equivalent plastic strain); "
-           "0 is perfect plasticity.")
+           "and `neo-Hookean plasticity` with `hardening law` = linear or Voce (not table): the yield stress is "
+           "Y + H alpha (+ the Voce term; alpha the equivalent plastic strain); 0 is perfect plasticity (linear). "
+           "The plastic modulus of the 1D curve sigma_y(alpha), not the elastic-plastic tangent modulus E_t: "
+           "H = E E_t / (E - E_t).")
            .ge(0.0),
+       dbl("saturation stress", 0.0,
+           "Y_inf [Pa, the unit of the moduli] of `hardening law` = Voce (required there, not allowed otherwise), "
+           ">= `yield stress`: the Voce term of the yield stress saturates at Y_inf - Y.")
+           .gt(0.0)
+           .dflt_doc("none"),
+       dbl("saturation rate", 0.0,
+           "delta [-] of `hardening law` = Voce (required there, not allowed otherwise): the Voce term is "
+           "(Y_inf - Y)(1 - exp(-delta alpha)), 63% saturated at alpha = 1/delta.")
+           .gt(0.0)
+           .dflt_doc("none"),
+       arr("hardening table strains",
+           "Equivalent plastic strains eps_i [-] of `hardening law` = table (required there, not allowed "
+           "otherwise): 2 to 32 values, the first 0, strictly increasing.")
+           .len(2, 32)
+           .ge(0.0)
+           .dflt_doc("none"),
+       arr("hardening table stresses",
+           "Yield stresses sigma_i [Pa, the unit of the moduli] at `hardening table strains` (same count; required "
+           "with `hardening law` = table): the first is the initial yield stress Y, non-decreasing (no softening).")
+           .len(2, 32)
+           .gt(0.0)
+           .dflt_doc("none"),
        str("plastic dynamic step", "incremental potential",
            "Stress of the momentum equation in the `gonzalez` dynamic step of `Ciarlet-Geymonat plasticity` and "
            "`neo-Hookean plasticity` (docs/plasticity.md, Dynamics): `incremental potential`, the discrete "

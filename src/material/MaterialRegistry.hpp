@@ -50,13 +50,23 @@ inline ElasticLaw elastic_law(const MaterialConfig& m) {
   return ElasticLaw::ciarlet_geymonat(CiarletGeymonat{m.C1, m.C2, m.D});
 }
 
+// The nonlinear part of a plastic material's hardening (`hardening law`, IsotropicHardening.hpp).
+inline NonlinearHardening nonlinear_hardening(const MaterialConfig& m) {
+  if (m.hardening_law == "Voce") return NonlinearHardening::voce(m.yield_stress, m.saturation_stress, m.saturation_rate);
+  if (m.hardening_law == "table")
+    return NonlinearHardening::table(m.table_strains.data(), m.table_stresses.data(),
+                                     static_cast<int>(m.table_strains.size()));
+  return NonlinearHardening{};
+}
+
 // The law of a deck material.
 inline Material make_material(const MaterialConfig& m) {
   if (m.model == "Ciarlet-Geymonat plasticity")
     return CiarletGeymonatPlasticity{CiarletGeymonat{m.C1, m.C2, m.D}, m.yield_stress, m.hardening,
-                                     m.lagged_plastic_dynamics};
+                                     m.lagged_plastic_dynamics, nonlinear_hardening(m)};
   if (m.model == "neo-Hookean plasticity")
-    return NeoHookeanPlasticity{NeoHookean{m.mu, m.lambda}, m.yield_stress, m.hardening, m.lagged_plastic_dynamics};
+    return NeoHookeanPlasticity{NeoHookean{m.mu, m.lambda}, m.yield_stress, m.hardening, m.lagged_plastic_dynamics,
+                                nonlinear_hardening(m)};
   if (m.model == "neo-Hookean damage")
     return NeoHookeanDamage{NeoHookean{m.mu, m.lambda}, m.saturation_damage, m.damage_energy_scale};
   return elastic_law(m);

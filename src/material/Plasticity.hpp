@@ -9,10 +9,13 @@
 // are next to its functions.
 //
 // Model. F = Fe Ftr, det Ftr = 1, Ce = Fe^T Fe = Ftr^-T C Ftr^-1, stored energy
-//   Psi = W(Ce) + 1/2 H alpha^2       (W: CiarletGeymonat.hpp; H >= 0 linear hardening),
+//   Psi = W(Ce) + psi_h(alpha),   psi_h = 1/2 H alpha^2 + psi(alpha)   (W: CiarletGeymonat.hpp),
+// H >= 0 the linear hardening, psi the stored energy of the nonlinear hardening kappa = psi'
+// (Voce or a table, IsotropicHardening.hpp; none: psi = 0, linear hardening), so the yield
+// stress is sigma_y(alpha) = Y + psi_h'(alpha) = Y + H alpha + kappa(alpha), non-decreasing;
 // Mandel stress M = 2 Ce dW/dCe (= Ce Sbar, Sbar = 2 dW/dCe; Ce and Sbar commute for the
 // isotropic W, so M is symmetric and coaxial with Ce), yield function
-//   f = |M|_H - (Y + H alpha),  |M|_H = sqrt(3/2 dev M : dev M),   Y > 0 [Pa],
+//   f = |M|_H - sigma_y(alpha),  |M|_H = sqrt(3/2 dev M : dev M),   Y > 0 [Pa],
 // associative flow L^tr = dFtr/dt Ftr^-1 = gdot n, n = df/dM = 3/2 dev M / |M|_H
 // (symmetric, trace-free, n:n = 3/2), alpha_dot = gdot (alpha is the accumulated
 // Delta-gamma = equivalent plastic strain, since sqrt(2/3 n:n) = 1).
@@ -33,8 +36,11 @@
 //   dtau_A/de_A = 4 c_A [C1 + C2 (c_B + c_C)] + 4 D I3,  dtau_A/de_B = 4 C2 c_A c_B + 4 D I3.
 // KKT (f <= 0, dg >= 0, f dg = 0) by the elastic predictor: f(Ce^tr) <= 0 => dg = 0
 // (elastic, Ftr unchanged); otherwise a local Newton on x = (e_1, e_2, e_3, dg),
-//   R_A = e_A - et_A + dg n_A(e) = 0,   R_4 = |tau(e)|_H - Y - H (alpha_n + dg) = 0,
-//   J = [ I + dg (dn/dtau) G_e ,  n ;  n^T G_e ,  -H ],  dn/dtau = (3/2 P - n n^T)/|tau|_H,
+//   R_A = e_A - et_A + dg n_A(e) = 0,   R_4 = |tau(e)|_H - sigma_y(alpha_n + dg) = 0,
+//   J = [ I + dg (dn/dtau) G_e ,  n ;  n^T G_e ,  -h ],  dn/dtau = (3/2 P - n n^T)/|tau|_H,
+// h = sigma_y'(alpha_n + dg) = H + kappa' (the right derivative at a table point); R_4 is
+// evaluated as |tau|_H - sigma_y(alpha_n) - H dg - [kappa(alpha_n + dg) - kappa(alpha_n)],
+// the bracket an exact 0 for linear hardening (the operations of the linear law, bit for bit);
 // G_e = dtau/de, P = I - 1/3 1 (x) 1. (For the Hencky energy n is fixed and this is the
 // radial return, one step; CG needs a few.) Sum n_A = 0, so sum e_A = sum et_A and
 // det Ce_{n+1} = det Ce^tr: the flow is isochoric.
@@ -65,12 +71,15 @@
 // Elastic points: S = G Sbar(Ce^tr) G^T, CC = G G G G : CCbar(Ce^tr) with the tensor
 // formulas of CiarletGeymonat.hpp (identical to it, bitwise, while Ftr = I).
 //
-// Energy. Psi_{n+1} = W(Ce_{n+1}) + 1/2 H alpha_{n+1}^2, and the step dissipation
-//   Dp = [W(Ce^tr) - W(Ce_{n+1})] - H dg (alpha_n + dg/2)
-// (W(Ce^tr) - W(Ce_{n+1}) evaluated with expm1 on the log-strain differences, free of
-// cancellation). W is convex in principal log strains (sums of exp of linear forms and
-// -2K sum e), so W(et) - W(e) >= tau(e).(et - e) = dg n.tau = dg |M|_H = dg (Y + H alpha_{n+1})
-// and Dp >= dg Y + 1/2 H dg^2 >= 0. Exact one-step identity (by construction):
+// Energy. Psi_{n+1} = W(Ce_{n+1}) + psi_h(alpha_{n+1}), and the step dissipation
+//   Dp = [W(Ce^tr) - W(Ce_{n+1})] - [psi_h(alpha_{n+1}) - psi_h(alpha_n)],
+//   psi_h(alpha_{n+1}) - psi_h(alpha_n) = H dg (alpha_n + dg/2) + [psi(alpha_n + dg) - psi(alpha_n)]
+// (W(Ce^tr) - W(Ce_{n+1}) evaluated with expm1 on the log-strain differences, the psi
+// increment in closed form, both free of cancellation). W is convex in principal log strains
+// (sums of exp of linear forms and -2K sum e), so W(et) - W(e) >= tau(e).(et - e) =
+// dg n.tau = dg |M|_H = dg sigma_y(alpha_{n+1}); psi_h is convex (sigma_y non-decreasing), so its
+// increment is <= dg psi_h'(alpha_{n+1}) = dg (sigma_y(alpha_{n+1}) - Y), and
+// Dp >= Y dg >= 0 (>= Y dg + 1/2 H dg^2 for linear hardening). Exact one-step identity (by construction):
 //   Psi_{n+1} - Psi_n = [W(Ce^tr) - W(Ce_n)] - Dp,
 // where the elastic-predictor work W(Ce^tr) - W(Ce_n) = 1/2 Sigma : (C_{n+1} - C_n) exactly
 // with Sigma the Gonzalez discrete gradient (DiscreteGradient.hpp) of the frozen-state
@@ -84,6 +93,7 @@
 
 #include "material/CiarletGeymonat.hpp"
 #include "material/DiscreteGradient.hpp"
+#include "material/IsotropicHardening.hpp"
 #include "material/MaterialState.hpp"
 #include "material/NeoHookean.hpp"
 #include "material/SymEigen.hpp"
@@ -268,8 +278,9 @@ template <class Elastic>
 struct IncrementalPotential;
 
 // Isotropic elasticity (Elastic: CiarletGeymonat or NeoHookean) with von Mises (Hill-norm)
-// multiplicative plasticity and linear isotropic hardening. Y, H and the moduli in the
-// same stress unit (Pa).
+// multiplicative plasticity and isotropic hardening sigma_y(alpha) = Y + H alpha + kappa(alpha)
+// (kappa: IsotropicHardening.hpp, none by default). Y, H and the moduli in the same stress
+// unit (Pa).
 template <class Elastic>
 struct MultiplicativePlasticity {
   Elastic elastic;
@@ -279,6 +290,14 @@ struct MultiplicativePlasticity {
   // potential (stress from the return map inside the step); true, the lagged step (discrete
   // gradient of the elastic potential at the frozen state h_n). Deck: `plastic dynamic step`.
   bool lagged_dynamics = false;
+  // Nonlinear part kappa of the hardening (Voce or a table; none: linear hardening).
+  NonlinearHardening nonlinear = {};
+
+  // Yield stress sigma_y(alpha) and hardening energy psi_h(alpha) = 1/2 H alpha^2 + psi(alpha).
+  KOKKOS_INLINE_FUNCTION double yield_stress(double alpha) const { return Y + H * alpha + nonlinear.kappa(alpha); }
+  KOKKOS_INLINE_FUNCTION double hardening_energy(double alpha) const {
+    return 0.5 * H * alpha * alpha + nonlinear.energy(alpha);
+  }
 
   // History layout: Ftr row-major (9), alpha, then output-only values of the last update.
   enum : int { kFtr = 0, kAlpha = 9, kMandelHill = 10, kYielding = 11, kDissipation = 12 };
@@ -383,7 +402,7 @@ struct MultiplicativePlasticity {
                                                     Step& out) const {
     const Mat3 G = inverse(s0.Ftr);
     const Mat3 Ct = tmul(G, matmul(C, G));  // Ce^tr = Ftr_n^-T C Ftr_n^-1
-    const double Yn = Y + H * s0.alpha;
+    const double Yn = yield_stress(s0.alpha);
     const double q_tr = mandel_hill_norm(Ct);
     if (q_tr - Yn <= 0.0) return elastic_branch<WithTangent>(Ct, G, s0, q_tr, out);
     return plastic_branch<WithTangent>(Ct, G, s0, out);
@@ -412,7 +431,7 @@ struct MultiplicativePlasticity {
       Sb = elastic.stress(Ct);
     }
     r.S = matmul(G, matmul(Sb, transpose(G)));
-    r.energy = elastic.energy(Ct) + 0.5 * H * s0.alpha * s0.alpha;
+    r.energy = elastic.energy(Ct) + hardening_energy(s0.alpha);
     r.dissipation = 0.0;
     r.iterations = 0;
     r.converged = true;
@@ -431,7 +450,7 @@ struct MultiplicativePlasticity {
     sym_eig3(Ct, ct, N);
     for (int A = 0; A < 3; ++A) et[A] = 0.5 * std::log(ct[A]);
     ReturnMap rm;
-    return_map(et, Y + H * s0.alpha, rm, WithTangent);
+    return_map(et, yield_stress(s0.alpha), s0.alpha, rm, WithTangent);
     PointResponse r;
     r.converged = rm.converged;
     r.iterations = rm.iterations;
@@ -453,14 +472,16 @@ struct MultiplicativePlasticity {
     out.mandel_hill = rm.q;
     double c[3], d[3];
     for (int A = 0; A < 3; ++A) c[A] = std::exp(2.0 * rm.e[A]), d[A] = et[A] - rm.e[A];
-    r.energy = principal_energy(elastic, c) + 0.5 * H * out.state.alpha * out.state.alpha;
-    r.dissipation = principal_energy_jump(elastic, c, d) - H * dg * (s0.alpha + 0.5 * dg);
+    r.energy = principal_energy(elastic, c) + hardening_energy(out.state.alpha);
+    r.dissipation = principal_energy_jump(elastic, c, d) - H * dg * (s0.alpha + 0.5 * dg) -
+                    nonlinear.energy_increment(s0.alpha, dg);
     return r;
   }
 
-  // Residual R(x) and Jacobian J of the local problem at x = (e, dg); fills rm.tau,
-  // rm.n, rm.q and the elastic Hessian Ge = dtau/de. Returns max |s_A| (tolerance scale).
-  KOKKOS_INLINE_FUNCTION double local_system(const double x[4], const double et[3], double Yn,
+  // Residual R(x) and Jacobian J of the local problem at x = (e, dg), Yn = sigma_y(alpha_n);
+  // fills rm.tau, rm.n, rm.q and the elastic Hessian Ge = dtau/de. Returns max |s_A|
+  // (tolerance scale).
+  KOKKOS_INLINE_FUNCTION double local_system(const double x[4], const double et[3], double Yn, double alpha_n,
                                              double R[4], double J[4][4], double Ge[3][3],
                                              plasticity_detail::ReturnMap& rm) const {
     double c[3], s[3], p;
@@ -484,8 +505,8 @@ struct MultiplicativePlasticity {
         J[A][B] = (A == B ? 1.0 : 0.0) +
                   dg * (Nn[A][0] * Ge[0][B] + Nn[A][1] * Ge[1][B] + Nn[A][2] * Ge[2][B]);
     }
-    R[3] = q - Yn - H * dg;
-    J[3][3] = -H;
+    R[3] = q - Yn - H * dg - nonlinear.kappa_increment(alpha_n, dg);
+    J[3][3] = -H - nonlinear.slope(alpha_n + dg);
     return smax;
   }
 
@@ -493,13 +514,13 @@ struct MultiplicativePlasticity {
   // converged when |R_4| <= 1e-12 (Yn + max|s|) and |R_A| <= 1e-14 (1 + max|et|).
   // A step that would make dg negative is shortened to halve dg instead. rm.a (the
   // algorithmic moduli) only with `moduli`.
-  KOKKOS_INLINE_FUNCTION void return_map(const double et[3], double Yn,
+  KOKKOS_INLINE_FUNCTION void return_map(const double et[3], double Yn, double alpha_n,
                                          plasticity_detail::ReturnMap& rm, bool moduli) const {
     double x[4] = {et[0], et[1], et[2], 0.0}, R[4], J[4][4], Ge[3][3];
     const double emax = std::fmax(std::fabs(et[0]), std::fmax(std::fabs(et[1]), std::fabs(et[2])));
     rm.converged = false;
     for (int k = 0;; ++k) {
-      const double smax = local_system(x, et, Yn, R, J, Ge, rm);
+      const double smax = local_system(x, et, Yn, alpha_n, R, J, Ge, rm);
       const double rA = std::fmax(std::fabs(R[0]), std::fmax(std::fabs(R[1]), std::fabs(R[2])));
       rm.iterations = k;
       if (!(rm.q > 0.0)) break;
@@ -583,12 +604,13 @@ struct MultiplicativePlasticity {
 // Incremental potential of the return map from the state s0 = h_n (the variational form of the
 // update, Ortiz–Stainier 1999; its discrete gradient is the energy-momentum step of Noels,
 // Stainier & Ponthot 2006; docs/plasticity.md, "Dynamics"):
-//   W_inc(C) = min_{p trace-free} W(et(C) - p) + 1/2 H (alpha_n + |p|')^2 + Y |p|',
+//   W_inc(C) = min_{p trace-free} W(et(C) - p) + psi_h(alpha_n + |p|') + Y |p|',
 // |p|' = sqrt(2/3) |p| = dg, et(C) the principal log strains of Ce^tr = G^T C G. The
-// functional is convex in p (W convex in principal log strains), and its minimiser is the
-// return map (the stationarity condition is |tau(e)|_H = Y + H alpha, p = dg n), so
+// functional is convex in p (W convex in principal log strains, psi_h convex and
+// non-decreasing), and its minimiser is the return map (the stationarity condition is
+// |tau(e)|_H = Y + psi_h'(alpha) = sigma_y(alpha), p = dg n), so
 //   W_inc(C) = Psi(C, return map) + Y dg(C),
-// and by the envelope theorem dW_inc/det = tau(e_{n+1}) (tau . dn = 0, tau . n = Y + H alpha):
+// and by the envelope theorem dW_inc/det = tau(e_{n+1}) (tau . dn = 0, tau . n = sigma_y):
 // 2 dW_inc/dC is the return-map stress S(C) and 4 d2W_inc/dC2 its consistent tangent CC. So
 // gonzalez_stress / gonzalez_stress_and_tangent (DiscreteGradient.hpp) apply to it:
 // 1/2 Sigma : (C1 - C0) = W_inc(C1) - W_inc(C0) with Sigma a discrete mean of return-mapped
@@ -659,7 +681,7 @@ struct IncrementalPotential {
   KOKKOS_INLINE_FUNCTION bool inside(const Mat3& C) const {
     if (cached && same(C, Ck)) return in1;
     if (in0 >= 0 && same(C, C0k)) return in0 == 1;
-    return law.mandel_hill_norm(tmul(G, matmul(C, G))) - (law.Y + law.H * s0.alpha) <= 0.0;
+    return law.mandel_hill_norm(tmul(G, matmul(C, G))) - law.yield_stress(s0.alpha) <= 0.0;
   }
   // True where the three samples are elastic (W_inc = the smooth frozen potential there).
   KOKKOS_INLINE_FUNCTION bool smooth_between(const Mat3& C0, const Mat3& C1) const {
@@ -667,7 +689,7 @@ struct IncrementalPotential {
   }
   // Psi(C0, h_n) - W_inc(C0) >= 0: 0 when h_n is admissible at C0 (always after a converged step,
   // whose state satisfies the yield condition at C_n); otherwise the algorithmic dissipation of
-  // the return map at C0 minus Y dg, >= 1/2 H dg^2 (Plasticity.hpp header). Call it once.
+  // the return map at C0 minus Y dg, >= 0 (Plasticity.hpp header). Call it once.
   KOKKOS_INLINE_FUNCTION double start_gap(const Mat3& C0) {
     in0 = inside(C0) ? 1 : 0;
     C0k = C0;

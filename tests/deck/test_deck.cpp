@@ -714,6 +714,77 @@ TEST_F(Deck, NeoHookeanPlasticityParameters) {
                {"'Materials->steel->hardening' needs 'model' = Ciarlet-Geymonat plasticity or neo-Hookean plasticity"});
 }
 
+// The hardening laws of the plasticity models (material/IsotropicHardening.hpp): linear (the
+// default), Voce (saturation stress >= yield stress, saturation rate > 0, both required) and a
+// table (2 to 32 strains from 0, strictly increasing, as many non-decreasing stresses; the first
+// stress is the yield stress, so `yield stress` and `hardening` are refused with it).
+TEST_F(Deck, HardeningLawParameters) {
+  const auto aparam = [](const char* n, const std::string& v) {
+    return std::string("<Parameter name=\"") + n + "\" type=\"Array(double)\" value=\"{" + v + "}\"/>";
+  };
+  const auto sparam = [](const char* n, const char* v) {
+    return std::string("<Parameter name=\"") + n + "\" type=\"string\" value=\"" + v + "\"/>";
+  };
+  const std::string cg = model_param("Ciarlet-Geymonat plasticity") + dparam("C1", "1") + dparam("D", "2");
+  const std::string nh = model_param("neo-Hookean plasticity") + dparam("E", "2.6") + dparam("nu", "0.3");
+  const std::string y = dparam("yield stress", "0.2");
+  EXPECT_EQ(read_deck(write(material_deck(cg + y))).materials[0].hardening_law, "linear");
+  const Config v = read_deck(write(material_deck(cg + y + sparam("hardening law", "voce") + dparam("hardening", "0.1") +
+                                                 dparam("saturation stress", "0.5") + dparam("saturation rate", "12"))));
+  EXPECT_EQ(v.materials[0].hardening_law, "Voce");
+  EXPECT_EQ(v.materials[0].yield_stress, 0.2);
+  EXPECT_EQ(v.materials[0].hardening, 0.1);
+  EXPECT_EQ(v.materials[0].saturation_stress, 0.5);
+  EXPECT_EQ(v.materials[0].saturation_rate, 12.0);
+  const std::string tab = sparam("hardening law", "table");
+  const Config t = read_deck(write(material_deck(nh + tab + aparam("hardening table strains", "0, 0.1, 0.3") +
+                                                 aparam("hardening table stresses", "0.2, 0.3, 0.3"), true)));
+  EXPECT_EQ(t.materials[0].hardening_law, "table");
+  EXPECT_EQ(t.materials[0].yield_stress, 0.2);
+  EXPECT_EQ(t.materials[0].hardening, 0.0);
+  EXPECT_EQ(t.materials[0].table_strains, (std::vector<double>{0.0, 0.1, 0.3}));
+  EXPECT_EQ(t.materials[0].table_stresses, (std::vector<double>{0.2, 0.3, 0.3}));
+  const std::string voce = sparam("hardening law", "Voce");
+  expect_error(material_deck(cg + y + voce + dparam("saturation rate", "1")),
+               {"missing required parameter 'Materials->steel->saturation stress' (> 0) for 'hardening law' = Voce"});
+  expect_error(material_deck(cg + y + voce + dparam("saturation stress", "1")),
+               {"missing required parameter 'Materials->steel->saturation rate' (> 0) for 'hardening law' = Voce"});
+  expect_error(material_deck(cg + y + voce + dparam("saturation stress", "0.1") + dparam("saturation rate", "1")),
+               {"'Materials->steel->saturation stress' = 0.1 is below 'Materials->steel->yield stress' = 0.2",
+                "softening is not supported"});
+  expect_error(material_deck(cg + y + voce + dparam("saturation stress", "1") + dparam("saturation rate", "0")),
+               {"'Materials->steel->saturation rate' must be > 0, got 0"});
+  expect_error(material_deck(cg + y + dparam("saturation stress", "1")),
+               {"'Materials->steel->saturation stress' needs 'hardening law' = Voce, got linear"});
+  expect_error(material_deck(cg + y + aparam("hardening table strains", "0, 1")),
+               {"'Materials->steel->hardening table strains' needs 'hardening law' = table, got linear"});
+  expect_error(material_deck(cg + sparam("hardening law", "Swift") + y), {"'Materials->steel->hardening law'", "Swift"});
+  const std::string strains = aparam("hardening table strains", "0, 0.1, 0.3");
+  const std::string stresses = aparam("hardening table stresses", "0.2, 0.3, 0.35");
+  expect_error(material_deck(cg + tab + strains),
+               {"missing required parameter 'Materials->steel->hardening table stresses'", "for 'hardening law' = table"});
+  expect_error(material_deck(cg + tab + y + strains + stresses),
+               {"'Materials->steel->yield stress' is not allowed with 'hardening law' = table",
+                "'Materials->steel->hardening table stresses' is the initial yield stress"});
+  expect_error(material_deck(cg + tab + dparam("hardening", "1") + strains + stresses),
+               {"'Materials->steel->hardening' needs 'hardening law' = linear or Voce, got table"});
+  expect_error(material_deck(cg + tab + strains + aparam("hardening table stresses", "0.2, 0.3")),
+               {"'Materials->steel->hardening table stresses' has 2 values and 'Materials->steel->hardening table strains' 3"});
+  expect_error(material_deck(cg + tab + aparam("hardening table strains", "0.01, 0.1, 0.3") + stresses),
+               {"'Materials->steel->hardening table strains' must start at 0, got 0.01"});
+  expect_error(material_deck(cg + tab + aparam("hardening table strains", "0, 0.1, 0.1") + stresses),
+               {"'Materials->steel->hardening table strains' must be strictly increasing, got 0.1 after 0.1"});
+  expect_error(material_deck(cg + tab + strains + aparam("hardening table stresses", "0.2, 0.3, 0.25")),
+               {"'Materials->steel->hardening table stresses' must be non-decreasing (softening is not supported), got "
+                "0.25 after 0.3 at strain 0.3"});
+  std::string many_e = "0", many_s = "1";
+  for (int i = 1; i <= 32; ++i) many_e += ", " + std::to_string(i), many_s += ", 1";
+  expect_error(material_deck(cg + tab + aparam("hardening table strains", many_e) + aparam("hardening table stresses", many_s)),
+               {"'Materials->steel->hardening table strains'", "33"});
+  expect_error(material_deck(model_param("neo-Hookean") + dparam("E", "1") + dparam("nu", "0.3") + voce),
+               {"'Materials->steel->hardening law' needs 'model' = Ciarlet-Geymonat plasticity or neo-Hookean plasticity"});
+}
+
 // neo-Hookean damage (material/Damage.hpp): saturation damage d_inf in [0, 1) and damage
 // energy scale beta > 0, both required; refused with the midpoint scheme (as plasticity).
 TEST_F(Deck, NeoHookeanDamageParameters) {
@@ -766,7 +837,8 @@ TEST_F(Deck, NeoHookeanDamageParameters) {
                {"'Output->field list'", "'yielding' needs a body of model 'Ciarlet-Geymonat plasticity' or 'neo-Hookean plasticity'"});
 }
 
-// docs/deck.md's example of the two models (a plastic strut, a damaging intima) reads.
+// docs/deck.md's example of the two models (a plastic strut, one with a hardening table, a
+// damaging intima) reads.
 TEST_F(Deck, DocsInelasticMaterialExampleParses) {
   std::ifstream f(std::string(STENTOR_SOURCE_DIR) + "/docs/deck.md");
   std::stringstream ss;
@@ -778,11 +850,14 @@ TEST_F(Deck, DocsInelasticMaterialExampleParses) {
   const std::string steel = kMinimalDeck;
   const auto m0 = steel.find("    <ParameterList name=\"steel\">"), m1 = steel.find("  </ParameterList>\n  <ParameterList name=\"Bodies\">");
   const Config c = read_deck(write(replace(steel.substr(0, m0) + example + steel.substr(m1), "value=\"steel\"", "value=\"strut\"")));
-  ASSERT_EQ(c.materials.size(), 2u);
+  ASSERT_EQ(c.materials.size(), 3u);
   EXPECT_EQ(c.materials[0].model, "neo-Hookean plasticity");
   EXPECT_EQ(c.materials[0].yield_stress, 300.0);
-  EXPECT_EQ(c.materials[1].model, "neo-Hookean damage");
-  EXPECT_EQ(c.materials[1].damage_energy_scale, 0.02);
+  EXPECT_EQ(c.materials[1].hardening_law, "table");
+  EXPECT_EQ(c.materials[1].yield_stress, 500.0);
+  EXPECT_EQ(c.materials[1].table_stresses.size(), 4u);
+  EXPECT_EQ(c.materials[2].model, "neo-Hookean damage");
+  EXPECT_EQ(c.materials[2].damage_energy_scale, 0.02);
 }
 
 TEST_F(Deck, OtherRangesAndChoices) {

@@ -175,6 +175,91 @@ TEST(MaterialDispatch, NeoHookeanPlasticityTangentMatchesFiniteDifferences) {
   }
 }
 
+// Nonlinear hardening (material/IsotropicHardening.hpp: Voce, and a table whose points the
+// plastic strains of the field cross) through the global assembly, over both elastic parts:
+// tangent against central differences from a plastic committed state, most points flowing.
+TEST(MaterialDispatch, NonlinearHardeningTangentMatchesFiniteDifferences) {
+  const double te[] = {0.0, 0.02, 0.06, 0.12}, ts[] = {0.1e6, 0.2e6, 0.26e6, 0.28e6};
+  const NonlinearHardening hards[] = {NonlinearHardening::voce(0.1e6, 0.4e6, 20.0), NonlinearHardening::table(te, ts, 4)};
+  for (const NonlinearHardening& hard : hards)
+    for (const bool cg : {false, true}) {
+      const double H = hard.kind == NonlinearHardening::kVoce ? 0.2e6 : 0.0;
+      NeoHookeanPlasticity nh{NeoHookean{kMu, kLambda}, 0.1e6, H};
+      CiarletGeymonatPlasticity cgp{CiarletGeymonat{0.5 * kMu, 0.0, 0.25 * kLambda}, 0.1e6, H};
+      nh.nonlinear = cgp.nonlinear = hard;
+      Fixture s(write_and_read(cube_deck(), "cube"), {cg ? Material{cgp} : Material{nh}});
+      la::Vector u(s.dist->owned_map()), r(s.dist->owned_map());
+      s.fill(u, 0.6);
+      s.as->assemble(u, 1.0, 1.0, r, false);
+      s.as->commit_history();
+      s.fill(u, 1.0, 0.03);
+      const double rel = tangent_error(s, u);
+      s.as->assemble(u, 1.0, 1.0, r, false);
+      const std::vector<double> h = host_copy(s.as->trial_history(0));
+      int flowing = 0, ngp = 0;
+      double amin = 1e300, amax = 0.0;
+      for (std::size_t i = 0; i < h.size(); i += NeoHookeanPlasticity::kNumHist) {
+        flowing += h[i + NeoHookeanPlasticity::kYielding] > 0.0, ++ngp;
+        amin = std::min(amin, h[i + NeoHookeanPlasticity::kAlpha]), amax = std::max(amax, h[i + NeoHookeanPlasticity::kAlpha]);
+      }
+      std::cout << "[ hardening ] " << (hard.kind == NonlinearHardening::kVoce ? "Voce" : "table") << ", "
+                << (cg ? "Ciarlet-Geymonat" : "neo-Hookean") << ": " << flowing << "/" << ngp << " Gauss points flowing, alpha in ["
+                << amin << ", " << amax << "], |K du - FD|/|K du| = " << rel << "\n";
+      EXPECT_GT(flowing, ngp / 2);
+      EXPECT_LT(rel, 1e-6);
+    }
+}
+
+// The Gonzalez step (incremental potential) with nonlinear hardening through the global
+// assembly: the tangent of the step's residual against central differences, and the energy
+// identity Psi_{n+1} - Psi_n = f_int . du - D_p with D_p > 0.
+TEST(MaterialDispatch, GonzalezStepWithNonlinearHardening) {
+  const double te[] = {0.0, 0.02, 0.06, 0.12}, ts[] = {0.1e6, 0.2e6, 0.26e6, 0.28e6};
+  const NonlinearHardening hards[] = {NonlinearHardening::voce(0.1e6, 0.4e6, 20.0), NonlinearHardening::table(te, ts, 4)};
+  for (const NonlinearHardening& hard : hards) {
+    NeoHookeanPlasticity nh{NeoHookean{kMu, kLambda}, 0.1e6, 0.0};
+    nh.nonlinear = hard;
+    Fixture s(write_and_read(cube_deck(), "cube"), {nh});
+    const auto map = s.dist->owned_map();
+    la::Vector u0(map), u(map), r(map), rp(map), rm(map), du(map), Kdu(map), up(map);
+    s.fill(u0, 0.6);
+    s.as->assemble(u0, 1.0, 1.0, r, false);
+    s.as->commit_history();
+    const double psi_n = s.as->assemble(u0, 1.0, 1.0, r, false).energy;
+    s.fill(u, 1.0, 0.03);
+    Assembler::StepInput in;
+    in.eval = StressEval::Gonzalez;
+    in.u_old = &u0;
+    in.dt = 1e-3;
+    in.load_time = 1.0;
+    const auto st = s.as->assemble(u, in, r, true);
+    du.update(1.0, u, -1.0, u0, 0.0);
+    const double work = s.as->static_residual().dot(du);
+    const double gap = st.energy - psi_n - (work - st.plastic_dissipation);
+    du.randomize();
+    for (la::LO i = 0; i < static_cast<la::LO>(map->getNodeNumElements()); ++i)
+      if (s.as->is_dirichlet(i)) du.getLocalViewHost(Tpetra::Access::ReadWrite)(i, 0) = 0.0;
+    s.as->matrix()->apply(du, Kdu);
+    const double h = 1e-7;
+    up.update(1.0, u, h, du, 0.0);
+    s.as->assemble(up, in, rp, false);
+    up.update(1.0, u, -h, du, 0.0);
+    s.as->assemble(up, in, rm, false);
+    rp.update(-0.5 / h, rm, 0.5 / h);
+    rp.update(-1.0, Kdu, 1.0);
+    double err = 0.0;
+    auto a = rp.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (std::size_t i = 0; i < a.extent(0); ++i)
+      if (!s.as->is_dirichlet(static_cast<la::LO>(i))) err = std::max(err, std::abs(a(i, 0)));
+    std::cout << "[ hardening ] Gonzalez step, " << (hard.kind == NonlinearHardening::kVoce ? "Voce" : "table")
+              << ": |K du - FD|/|K du| = " << err / Kdu.normInf() << ", D_p = " << st.plastic_dissipation << " J of work "
+              << work << " J, identity gap " << gap << " J\n";
+    EXPECT_GT(st.plastic_dissipation, 1e-3 * std::abs(work));
+    EXPECT_LT(std::abs(gap), 1e-11 * (std::abs(work) + st.energy));
+    EXPECT_LT(err / Kdu.normInf(), 1e-6);
+  }
+}
+
 // d_inf = 0: the history kernel of the damage law gives the stateless neo-Hookean kernel's
 // residual, tangent and energy bit for bit (and zero dissipation).
 TEST(MaterialDispatch, NoDamageIsTheElasticKernel) {
