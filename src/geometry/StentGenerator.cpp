@@ -137,7 +137,7 @@ class Builder {
   Raw build() {
     for (std::size_t k = 0; k < p_.rings.size(); ++k) add_ring(static_cast<int>(k));
     for (int g = 0; g + 1 < s_.rings; ++g)
-      for (int j = 0; j < (s_.links_per_ring ? s_.links_per_ring : 0); ++j) add_link(g, j);
+      for (int j = 0; j < s_.links_per_ring; ++j) add_link(g, j);
     raw_.anchor = ring_node(0, p_.rings[0].crown_node[0], 0, 0);
     return std::move(raw_);
   }
@@ -235,7 +235,8 @@ Plan make_plan(const StentConfig& s) {
 // Cells before the reduction, in floating point (no overflow for absurd sizes).
 double full_cell_count(const StentConfig& s, const Plan& p) {
   const double h = s.element_h();
-  const double along = s.rings * (s.centreline_length() / h + 4.0 * s.crowns);  // ceil per piece: < 2 extra per half pitch
+  // At most 3 pieces per half pitch, each rounded up: < 6 extra cells per crown.
+  const double along = s.rings * (s.centreline_length() / h + 6.0 * s.crowns);
   const double links = s.rings > 1 ? (s.rings - 1.0) * s.links_per_ring * 2.0 * p.half_link * p.link_len : 0.0;
   return (along * s.elements_width + links) * s.elements_thickness;
 }
@@ -272,10 +273,6 @@ Kept reduce(const StentConfig& s, const Raw& raw) {
 // The hex's six faces, each ordered so that its normal points out of the cell:
 // zeta-, zeta+, eta-, eta+, xi-, xi+.
 const int kFace[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 4, 7, 3}, {1, 2, 6, 5}};
-
-struct Groups {
-  std::map<std::string, std::vector<GId>> quads;  // name -> 4 nodes per facet
-};
 
 void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh& m) {
   std::map<std::array<GId, 4>, std::pair<std::size_t, int>> seen;  // sorted nodes -> (cell, face)
@@ -343,11 +340,6 @@ void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh
 }
 
 }  // namespace
-
-double stent_cell_count(const StentConfig& s) {
-  const Plan p = make_plan(s);
-  return full_cell_count(s, p) * reduction_fraction(s);
-}
 
 Mesh generate_stent(const StentConfig& s, double max_cells, const std::string& source) {
   const std::string why = stent_config_error(s);

@@ -37,12 +37,10 @@
 namespace stentor {
 
 // Throws InputError naming the parameter when stent_config_error(s) says so, when the
-// cells would number more than max_cells (naming 'Mesh->max cells'), or when a cell
+// cells would number more than max_cells (naming 'Mesh->max cells'; an upper estimate
+// counted before anything is built), or when a cell
 // came out inverted (a link too wide for its crown: naming 'Mesh->Stent->link width').
 // `source` names the mesh in messages (Mesh::source).
 Mesh generate_stent(const StentConfig& s, double max_cells, const std::string& source);
-
-// Cells the stent of `s` has (after the reduction), without building it.
-double stent_cell_count(const StentConfig& s);
 
 }  // namespace stentor
