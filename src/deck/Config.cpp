@@ -792,6 +792,8 @@ void DeckReader::read_mesh(const ParameterList& pl) {
     fail(m.generator.empty() ? "missing required parameter 'Mesh->file' (string, existing .msh or .geo file), or give "
                                "'Mesh->generator'"
                              : "'Mesh->file' and 'Mesh->generator' = " + generator + " exclude each other: give one");
+  if (m.generator.empty() && pl.isParameter("write mesh"))
+    fail("'Mesh->write mesh' applies to 'Mesh->generator', not to a mesh file");
   if (pl.isSublist("Stent") && m.generator != "stent") fail("'Mesh->Stent' needs 'Mesh->generator' = stent");
   m.max_cells = get_double(pl, ls, "max cells");
   if (m.generator == "stent") {
@@ -799,6 +801,7 @@ void DeckReader::read_mesh(const ParameterList& pl) {
       if (pl.isParameter(p)) fail(quoted(std::string("Mesh->") + p) + " applies to a mesh file, not to 'Mesh->generator'");
     if (!pl.isSublist("Stent")) fail("missing required sublist 'Mesh->Stent' ('Mesh->generator' = stent)");
     read_stent(pl.sublist("Stent"));
+    m.write_mesh = get_bool(pl, ls, "write mesh");
     m.dimension = 3;
     m.file = cfg_.deck_path;  // messages about the mesh name the deck
     return;

@@ -60,6 +60,7 @@ struct MeshConfig {
   double time_limit = 600; // "Mesh"->"time limit" [s]: gmsh's process (reading + meshing) is stopped after it
   std::string generator;   // "Mesh"->"generator": "" (read `file`) or "stent" (generated from `stent`)
   StentConfig stent;       // "Mesh"->"Stent" (with generator "stent")
+  bool write_mesh = false; // "Mesh"->"write mesh": the generated mesh as <basename>_mesh.msh in the output folder
 };
 
 struct MaterialConfig {

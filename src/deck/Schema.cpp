@@ -125,6 +125,9 @@ std::vector<ListSpec> build_schema() {
            "A mesh generated at run time instead of read from `file`: `stent`, the parametric stent of the `Stent` "
            "sublist (docs/stent.md); `none`: read `file`.")
            .one_of({"none", "stent"}),
+       boolean("write mesh", false,
+               "With `generator`: write the generated mesh into the output folder as `<basename>_mesh.msh` (gmsh "
+               "ASCII 2.2 with the physical groups, for gmsh or ParaView)."),
        dbl("size", 0.0, "Target element size when meshing a `.geo` (0: the `.geo`'s own).").ge(0.0),
        integer("order", 1, "Element order when meshing a `.geo`: 1 (P1/Q1) or 2 (P2).").one_of({"1", "2"}),
        boolean("recombine", false, "Quadrilaterals (2D) / hexahedra (3D) when meshing a `.geo`."),
