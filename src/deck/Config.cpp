@@ -303,6 +303,8 @@ class DeckReader {
 
   void read_problem(const ParameterList& pl);
   void read_mesh(const ParameterList& pl);
+  void read_stent(const ParameterList& pl);
+  void check_stent_plastic() const;
   void read_materials(const ParameterList& pl);
   void read_elastic_constants(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
   void read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m);
@@ -785,6 +787,26 @@ void DeckReader::read_mesh(const ParameterList& pl) {
   check_list(pl, "Mesh", {&ls});
   require(pl, "Mesh", {&ls});
   auto& m = cfg_.mesh;
+  const std::string generator = get_string(pl, ls, "generator");
+  m.generator = lower(generator) == "none" ? "" : lower(generator);
+  if (m.generator.empty() == !pl.isParameter("file"))
+    fail(m.generator.empty() ? "missing required parameter 'Mesh->file' (string, existing .msh or .geo file), or give "
+                               "'Mesh->generator'"
+                             : "'Mesh->file' and 'Mesh->generator' = " + generator + " exclude each other: give one");
+  if (m.generator.empty() && pl.isParameter("write mesh"))
+    fail("'Mesh->write mesh' applies to 'Mesh->generator', not to a mesh file");
+  if (pl.isSublist("Stent") && m.generator != "stent") fail("'Mesh->Stent' needs 'Mesh->generator' = stent");
+  m.max_cells = get_double(pl, ls, "max cells");
+  if (m.generator == "stent") {
+    for (const char* p : {"size", "order", "recombine", "dimension", "time limit"})
+      if (pl.isParameter(p)) fail(quoted(std::string("Mesh->") + p) + " applies to a mesh file, not to 'Mesh->generator'");
+    if (!pl.isSublist("Stent")) fail("missing required sublist 'Mesh->Stent' ('Mesh->generator' = stent)");
+    read_stent(pl.sublist("Stent"));
+    m.write_mesh = get_bool(pl, ls, "write mesh");
+    m.dimension = 3;
+    m.file = cfg_.deck_path;  // messages about the mesh name the deck
+    return;
+  }
   const std::string file = get_string(pl, ls, "file");
   fs::path f(file);
   if (f.is_relative()) f = fs::path(cfg_.deck_path).parent_path() / f;
@@ -801,10 +823,46 @@ void DeckReader::read_mesh(const ParameterList& pl) {
   m.order = get_int(pl, ls, "order");
   m.recombine = get_bool(pl, ls, "recombine");
   m.dimension = get_int(pl, ls, "dimension");
-  m.max_cells = get_double(pl, ls, "max cells");
   m.time_limit = get_double(pl, ls, "time limit");
   if (m.recombine && m.order == 2)
     fail("'Mesh->recombine' = true needs 'Mesh->order' = 1 (quad8/hex20 bodies are not supported)");
+}
+
+void DeckReader::read_stent(const ParameterList& pl) {
+  const ListSpec& ls = deck_list_spec("Mesh/Stent");
+  check_list(pl, "Mesh->Stent", {&ls});
+  require(pl, "Mesh->Stent", {&ls});
+  StentConfig& s = cfg_.mesh.stent;
+  s.rings = get_int(pl, ls, "rings");
+  s.crowns = get_int(pl, ls, "crowns");
+  s.outer_diameter = get_double(pl, ls, "outer diameter");
+  s.thickness = get_double(pl, ls, "thickness");
+  s.strut_width = get_double(pl, ls, "strut width");
+  s.ring_length = get_double(pl, ls, "ring length");
+  s.gap = get_double(pl, ls, "gap");
+  s.links = lower(get_string(pl, ls, "links"));
+  s.links_per_ring = get_int(pl, ls, "links per ring");
+  s.link_width = get_double(pl, ls, "link width");
+  s.elements_width = get_int(pl, ls, "elements through width");
+  s.elements_thickness = get_int(pl, ls, "elements through thickness");
+  s.element_length = get_double(pl, ls, "element length");
+  s.sector = lower(get_string(pl, ls, "sector"));
+  s.half_length = get_bool(pl, ls, "half length");
+  const std::string why = stent_config_error(s);
+  if (!why.empty()) fail(why);
+}
+
+// A plastic body on a generated stent needs 3 cells through the width and the thickness
+// (fewer cannot carry the bending of a crown's plastic hinge).
+void DeckReader::check_stent_plastic() const {
+  const StentConfig& s = cfg_.mesh.stent;
+  if (cfg_.mesh.generator != "stent" || (s.elements_width >= 3 && s.elements_thickness >= 3)) return;
+  for (const BodyConfig& b : cfg_.bodies)
+    for (const MaterialConfig& m : cfg_.materials)
+      if (m.name == b.material && m.model.find("plasticity") != std::string::npos)
+        fail("'Mesh->Stent->" + std::string(s.elements_width < 3 ? "elements through width" : "elements through thickness") +
+             "' = " + std::to_string(std::min(s.elements_width, s.elements_thickness)) + ": body '" + b.name +
+             "' is plastic ('" + m.model + "'), which needs at least 3 cells through the strut's width and thickness");
 }
 
 // Exactly one of the sets C1 + D (+ C2), E + nu, mu + lambda (material/ElasticConstants.hpp).
@@ -1867,6 +1925,7 @@ Config DeckReader::read() {
   read_mesh(root.sublist("Mesh"));
   read_materials(root.sublist("Materials"));
   read_bodies(root.sublist("Bodies"));
+  check_stent_plastic();
   if (root.isSublist("Boundary Conditions")) read_loads(root.sublist("Boundary Conditions"));
   if (root.isSublist("Initial Conditions")) read_initial(root.sublist("Initial Conditions"));
   if (root.isSublist("Time Integration")) read_time(root.sublist("Time Integration"));

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "deck/StentConfig.hpp"
+
 namespace stentor {
 
 // Every user-facing input error (deck, mesh, group names): the message names the
@@ -56,6 +58,9 @@ struct MeshConfig {
   int dimension = 0;       // "Mesh"->"dimension": 2 or 3; 0 = highest dimension found in the mesh
   double max_cells = 5e6;  // "Mesh"->"max cells": refuse to mesh a .geo when the estimate is above
   double time_limit = 600; // "Mesh"->"time limit" [s]: gmsh's process (reading + meshing) is stopped after it
+  std::string generator;   // "Mesh"->"generator": "" (read `file`) or "stent" (generated from `stent`)
+  StentConfig stent;       // "Mesh"->"Stent" (with generator "stent")
+  bool write_mesh = false; // "Mesh"->"write mesh": the generated mesh as <basename>_mesh.msh in the output folder
 };
 
 struct MaterialConfig {

@@ -113,11 +113,21 @@ std::vector<ListSpec> build_schema() {
                         "takes the default.")
                         .one_of({"plane strain", "axisymmetric"})}));
 
-  s.push_back(list(
-      "Mesh", "Mesh", "The gmsh mesh; physical groups name the bodies and the boundaries.",
-      {str("file", "", "Mesh file, relative to the deck's folder.")
-           .req()
+  {
+    auto l = list(
+      "Mesh", "Mesh",
+      "The mesh: a gmsh file, or one generated from parameters (`generator`); physical groups name the bodies "
+      "and the boundaries.",
+      {str("file", "", "Mesh file, relative to the deck's folder (exactly one of `file` and `generator`).")
+           .dflt_doc("none")
            .allowed("existing `.msh` or `.geo` file"),
+       str("generator", "none",
+           "A mesh generated at run time instead of read from `file`: `stent`, the parametric stent of the `Stent` "
+           "sublist (docs/stent.md); `none`: read `file`.")
+           .one_of({"none", "stent"}),
+       boolean("write mesh", false,
+               "With `generator`: write the generated mesh into the output folder as `<basename>_mesh.msh` (gmsh "
+               "ASCII 2.2 with the physical groups, for gmsh or ParaView)."),
        dbl("size", 0.0, "Target element size when meshing a `.geo` (0: the `.geo`'s own).").ge(0.0),
        integer("order", 1, "Element order when meshing a `.geo`: 1 (P1/Q1) or 2 (P2).").one_of({"1", "2"}),
        boolean("recombine", false, "Quadrilaterals (2D) / hexahedra (3D) when meshing a `.geo`."),
@@ -125,13 +135,64 @@ std::vector<ListSpec> build_schema() {
            .one_of({"0", "2", "3"}),
        dbl("max cells", 5e6,
            "Meshing a `.geo` is refused when the estimated number of cells (bounding box measure / size^dim, "
-           "times the cells per size^dim) is above this; raise it to mesh finer on purpose.")
+           "times the cells per size^dim) is above this, a generated stent when its cell count is; raise it to mesh "
+           "finer on purpose.")
            .gt(0.0),
        dbl("time limit", 600.0,
            "Seconds gmsh may take to read the mesh file and mesh a `.geo` (it runs in a process of its own); past "
            "them it is stopped and the deck refused (a loop in the `.geo`, a mesh far too fine); raise it for a "
            "slow mesh on purpose.")
-           .gt(0.0)}));
+           .gt(0.0)});
+    l.sublists = {"Stent"};
+    s.push_back(l);
+  }
+  s.push_back(list(
+      "Mesh/Stent", "Mesh->Stent",
+      "The parametric stent of `generator` = `stent` (docs/stent.md): `rings` rings of sinusoidal struts along z, "
+      "hex8 cells. Lengths in the deck's length unit. Volume group `stent`; facet groups `inner`, `outer`, "
+      "`end_proximal`, `end_distal`, `symmetry_x`, `symmetry_y`, `symmetry_z` (reductions), `ring_<k>`, `links`; "
+      "point `anchor`.",
+      {integer("rings", 1, "Number of rings, along z.").ge(1).le(1000),
+       integer("crowns", 8, "Crowns per ring: periods of the strut's sinusoidal centreline around the circumference.")
+           .ge(2)
+           .le(1000),
+       dbl("outer diameter", 0.0, "Outer diameter D of the tube [length].").req().gt(0.0),
+       dbl("thickness", 0.0, "Radial wall thickness t [length] (below D / 2).").req().gt(0.0),
+       dbl("strut width", 0.0,
+           "Strut width w [length] in the tube's surface (below half the crown pitch lambda = pi (D - t) / crowns).")
+           .req()
+           .gt(0.0),
+       dbl("ring length", 0.0,
+           "Axial extent of one ring [length]: the crowns' peak-to-valley amplitude of the centreline plus the strut "
+           "width. The crowns' centreline radius lambda^2 / (4 pi^2 a), a = (ring length - w) / 2, "
+           "must exceed w / 2.")
+           .req()
+           .gt(0.0),
+       dbl("gap", 0.0,
+           "Axial distance [length] between neighbouring rings' struts at the linked crowns: the links' length. "
+           "Required (> 0) with more than one ring.")
+           .ge(0.0),
+       str("links", "peak-to-peak",
+           "How neighbouring rings face each other. `peak-to-peak`: every other ring is mirrored, crowns face crowns "
+           "and a link joins two crown tips; `peak-to-valley`: the rings are in phase, a link joins a crown's tip to "
+           "the inside of the next ring's crown.")
+           .one_of({"peak-to-peak", "peak-to-valley"}),
+       integer("links per ring", 0, "Straight axial links between each pair of neighbouring rings (dividing `crowns`).")
+           .ge(0)
+           .le(1000),
+       dbl("link width", 0.0, "Width of a link [length].").ge(0.0).dflt_doc("`strut width`"),
+       integer("elements through width", 3, "Hex8 cells across a strut's width.").ge(1).le(100),
+       integer("elements through thickness", 3, "Hex8 cells through the wall's thickness.").ge(1).le(100),
+       dbl("element length", 0.0, "Target cell length along the struts and links [length].")
+           .ge(0.0)
+           .dflt_doc("`strut width` / `elements through width`"),
+       str("sector", "full",
+           "`full`: the whole circumference; `quarter`: 0 <= theta <= 90 deg, cut on the symmetry planes x = 0 "
+           "(`symmetry_x`) and y = 0 (`symmetry_y`) through crowns (`crowns` divisible by 4, links symmetric).")
+           .one_of({"full", "quarter"}),
+       boolean("half length", false,
+               "Only the proximal half, z <= total length / 2, cut on the symmetry plane `symmetry_z` (an even "
+               "number of rings with `links` = `peak-to-peak`).")}));
 
   {
     auto l = list("Materials", "Materials", "Material definitions, referred to by `Bodies-><body>->material`.");

@@ -613,7 +613,17 @@ void write_file(const std::string& path, const std::string& data) {
 
 void enable_gmsh_process(const std::string& exe) { g_helper_exe = exe; }
 
+namespace {
+MeshGenerator g_generator = nullptr;
+}  // namespace
+
+void set_mesh_generator(MeshGenerator g) { g_generator = g; }
+
 Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
+  if (!cfg.generator.empty()) {
+    if (!g_generator) throw std::logic_error("read_mesh: no mesh generator set for '" + cfg.generator + "'");
+    return g_generator(cfg);
+  }
   const std::string before = current_phase();
   current_phase() = "reading the mesh " + cfg.file;
   Mesh m = g_helper_exe.empty() ? read_mesh_here(cfg, verbose) : read_mesh_in_child(cfg, verbose);

@@ -52,7 +52,14 @@ namespace stentor {
 //    in its temporary folder, reads only the screened files and system libraries); the
 //    log says when the kernel cannot. Without it (unit tests) gmsh runs in this process.
 //  * Files larger than the input size limits (deck/InputLimits.hpp) are refused unread.
+//  * cfg.generator not empty (a mesh generated from the deck's parameters, e.g. `stent`):
+//    the generator set by set_mesh_generator() makes it, in this process; no file is read.
 Mesh read_mesh(const MeshConfig& cfg, bool verbose = false);
+
+// The function read_mesh() calls for cfg.generator (src/geometry's generate_mesh; the
+// mesh layer does not see the generators). Without one such a cfg is a logic error.
+using MeshGenerator = Mesh (*)(const MeshConfig& cfg);
+void set_mesh_generator(MeshGenerator g);
 
 // Makes read_mesh() run gmsh in a child process started from `exe`, which must answer
 // `exe --gmsh-helper ...` by calling gmsh_helper_main() (before MPI or Kokkos start).

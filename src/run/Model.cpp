@@ -7,6 +7,8 @@
 #include <string>
 
 #include "bc/Axisymmetry.hpp"
+#include "geometry/Generators.hpp"
+#include "mesh/GmshReader.hpp"
 #include "mesh/MeshComm.hpp"
 #include "mesh/MeshPart.hpp"
 #include "mesh/MeshQuery.hpp"
@@ -77,6 +79,7 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
     // One rank reads (and meshes) the whole mesh; on several ranks it then sends each its
     // part (cells, their neighbours, the boundary groups: mesh/MeshPart.hpp).
     check_axisymmetric_deck(cfg);
+    set_mesh_generator(&generate_mesh);
     if (nranks == 1) {
       mesh = read_mesh_on_root(cfg.mesh, MPI_COMM_WORLD, true, opts.verbose);
       prepare_axisymmetric_mesh(cfg, mesh);

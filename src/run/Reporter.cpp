@@ -13,7 +13,10 @@
 #include <iostream>
 #include <limits>
 
+#include "geometry/Generators.hpp"
+#include "geometry/MshWriter.hpp"
 #include "io/LogCopy.hpp"
+#include "io/SafeFile.hpp"
 #include "parallel/Agreement.hpp"
 #include "mesh/MeshComm.hpp"
 #include "run/OutputRows.hpp"
@@ -250,6 +253,10 @@ void Reporter::open() {
       staging_ = std::make_unique<OutputDir>(out_dir_, o);
       const std::string stem = staging_->path() + "/" + cfg_.output.basename;
       staging_->copy_in(cfg_.deck_path, cfg_.output.basename + "_deck.xml");
+      if (cfg_.mesh.write_mesh) {  // generated again here: m_.mesh is this rank's part on several ranks
+        const std::string msh = stem + "_mesh.msh";
+        check_write(write_text_file(msh, mesh_to_msh(generate_mesh(cfg_.mesh))), "writing the generated mesh to", msh);
+      }
       log_copy::attach(stem + ".log");
       if (!staging_->notice().empty()) out_ << "  output   " << staging_->notice() << "\n";
       if (metrics_) metrics_->open(stem);

@@ -1,0 +1,14 @@
+#include "geometry/Generators.hpp"
+
+#include <stdexcept>
+
+#include "geometry/StentGenerator.hpp"
+
+namespace stentor {
+
+Mesh generate_mesh(const MeshConfig& cfg) {
+  if (cfg.generator == "stent") return generate_stent(cfg.stent, cfg.max_cells, cfg.file + " (Mesh->Stent)");
+  throw std::logic_error("generate_mesh: unknown generator '" + cfg.generator + "'");
+}
+
+}  // namespace stentor

@@ -1,0 +1,13 @@
+// The mesh generators of `Mesh->generator`, behind one function that mesh/GmshReader's
+// read_mesh() calls (install it with set_mesh_generator(&generate_mesh)).
+#pragma once
+#include "deck/Config.hpp"
+#include "mesh/Mesh.hpp"
+
+namespace stentor {
+
+// cfg.generator: "stent" (geometry/StentGenerator.hpp). Throws InputError on bad
+// parameters, std::logic_error for an unknown generator.
+Mesh generate_mesh(const MeshConfig& cfg);
+
+}  // namespace stentor

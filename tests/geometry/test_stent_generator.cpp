@@ -1,0 +1,271 @@
+// The parametric stent (geometry/StentGenerator.hpp) against its parameters: radii,
+// metal volume = centreline length x width x thickness, crowns, reductions, groups.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <functional>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+#include <tuple>
+
+#include "deck/Config.hpp"
+#include "geometry/StentGenerator.hpp"
+#include "mesh/MeshCheck.hpp"
+
+using namespace stentor;
+
+namespace {
+
+const double kPi = 3.14159265358979323846;
+
+// A balloon-expandable stent as cut, in mm: OD 3, strut 0.1 x 0.1, 8 crowns.
+StentConfig base() {
+  StentConfig s;
+  s.rings = 1;
+  s.crowns = 8;
+  s.outer_diameter = 3.0;
+  s.thickness = 0.1;
+  s.strut_width = 0.1;
+  s.ring_length = 1.0;
+  s.gap = 0.3;
+  return s;
+}
+
+// Trilinear hex volume, 2x2x2 Gauss (exact for the trilinear map's det J).
+double hex_volume(const Mesh& m, const GId* c) {
+  const double sx[8] = {-1, 1, 1, -1, -1, 1, 1, -1}, sy[8] = {-1, -1, 1, 1, -1, -1, 1, 1},
+               sz[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
+  const double g = 1.0 / std::sqrt(3.0);
+  double v = 0.0;
+  for (int a = 0; a < 8; ++a) {
+    const double xi = sx[a] * g, eta = sy[a] * g, zeta = sz[a] * g;
+    double J[3][3] = {};
+    for (int n = 0; n < 8; ++n) {
+      const double d[3] = {sx[n] * (1 + sy[n] * eta) * (1 + sz[n] * zeta) / 8, sy[n] * (1 + sx[n] * xi) * (1 + sz[n] * zeta) / 8,
+                           sz[n] * (1 + sx[n] * xi) * (1 + sy[n] * eta) / 8};
+      const double* X = m.coord(c[n]);
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) J[i][j] += X[i] * d[j];
+    }
+    v += J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+  }
+  return v;
+}
+
+double volume(const Mesh& m) {
+  double v = 0.0;
+  for (const auto& b : m.volumes)
+    for (std::size_t c = 0; c < b.num_cells(); ++c) v += hex_volume(m, &b.conn[8 * c]);
+  return v;
+}
+
+const CellBlock* group(const Mesh& m, const std::string& name) {
+  for (const auto& b : m.boundaries)
+    if (b.name == name) return &b;
+  return nullptr;
+}
+
+// Area of a quad facet group (two triangles per bilinear quad is not exact; 2x2 Gauss is).
+double area(const Mesh& m, const std::string& name) {
+  const CellBlock* b = group(m, name);
+  if (!b) return -1.0;
+  const double g = 1.0 / std::sqrt(3.0), s[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  double a = 0.0;
+  for (std::size_t c = 0; c < b->num_cells(); ++c)
+    for (int q = 0; q < 4; ++q) {
+      const double xi = s[q][0] * g, eta = s[q][1] * g;
+      double t1[3] = {}, t2[3] = {};
+      for (int n = 0; n < 4; ++n) {
+        const double* X = m.coord(b->conn[4 * c + n]);
+        for (int i = 0; i < 3; ++i) {
+          t1[i] += X[i] * s[n][0] * (1 + s[n][1] * eta) / 4;
+          t2[i] += X[i] * s[n][1] * (1 + s[n][0] * xi) / 4;
+        }
+      }
+      const double n0 = t1[1] * t2[2] - t1[2] * t2[1], n1 = t1[2] * t2[0] - t1[0] * t2[2], n2 = t1[0] * t2[1] - t1[1] * t2[0];
+      a += std::sqrt(n0 * n0 + n1 * n1 + n2 * n2);
+    }
+  return a;
+}
+
+double radius(const Mesh& m, GId n) { return std::hypot(m.coord(n)[0], m.coord(n)[1]); }
+
+std::size_t duplicate_nodes(const Mesh& m) {
+  std::set<std::tuple<long long, long long, long long>> seen;
+  for (std::size_t n = 0; n < m.num_nodes(); ++n) {
+    const double* X = m.coord(static_cast<GId>(n));
+    seen.insert({std::llround(X[0] * 1e7), std::llround(X[1] * 1e7), std::llround(X[2] * 1e7)});
+  }
+  return m.num_nodes() - seen.size();
+}
+
+}  // namespace
+
+TEST(StentGenerator, RadiiVolumeAndGroupsOfOneFullRing) {
+  const StentConfig s = base();
+  const Mesh m = generate_stent(s, 1e6, "test");
+  EXPECT_EQ(count_inverted_cells(m), 0u);
+  EXPECT_NO_THROW(check_mesh(m));
+  EXPECT_EQ(duplicate_nodes(m), 0u);
+  for (const char* g : {"inner", "outer", "end_proximal", "end_distal", "ring_0", "anchor"})
+    EXPECT_NE(group(m, g), nullptr) << g;
+  for (const char* g : {"symmetry_x", "symmetry_y", "symmetry_z", "links"}) EXPECT_EQ(group(m, g), nullptr) << g;
+  for (GId n : group(m, "inner")->conn) EXPECT_NEAR(radius(m, n), 1.4, 1e-12);
+  for (GId n : group(m, "outer")->conn) EXPECT_NEAR(radius(m, n), 1.5, 1e-12);
+  double rmin = 1e9, rmax = 0;
+  for (std::size_t n = 0; n < m.num_nodes(); ++n) {
+    rmin = std::min(rmin, radius(m, static_cast<GId>(n)));
+    rmax = std::max(rmax, radius(m, static_cast<GId>(n)));
+  }
+  EXPECT_NEAR(rmin, 1.4, 1e-12);
+  EXPECT_NEAR(rmax, 1.5, 1e-12);
+  // Metal = centreline length x w x t (the band of an embedded closed curve; u at Rm);
+  // inner/outer areas: the unrolled area L w scaled by r / Rm. The straight-edged cells
+  // cut the crowns' curved edges: second order in the element length.
+  const double L = s.centreline_length();
+  const double exact[3] = {L * s.strut_width * s.thickness, L * s.strut_width * 1.4 / 1.45, L * s.strut_width * 1.5 / 1.45};
+  auto errors = [&](const Mesh& mesh) {
+    return std::array<double, 3>{std::abs(volume(mesh) / exact[0] - 1), std::abs(area(mesh, "inner") / exact[1] - 1),
+                                 std::abs(area(mesh, "outer") / exact[2] - 1)};
+  };
+  StentConfig fine = s;
+  fine.element_length = 0.5 * s.element_h();
+  const auto e1 = errors(m), e2 = errors(generate_stent(fine, 1e6, "test"));
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_LT(e1[i], 4e-3) << i;
+    EXPECT_LT(e2[i], e1[i] / 3.0) << i << ": " << e1[i] << " -> " << e2[i];
+  }
+  EXPECT_NEAR(area(m, "ring_0"), area(m, "outer"), 1e-12);
+  // The ring spans z in [0, ring length].
+  const Mesh::Box box = m.bounding_box();
+  EXPECT_NEAR(box.lo[2], 0.0, 1e-12);
+  EXPECT_NEAR(box.hi[2], s.ring_length, 1e-12);
+}
+
+TEST(StentGenerator, CountsItsCrownsAsPeaksOfTheDistalEdge) {
+  for (int crowns : {6, 8, 12}) {
+    StentConfig s = base();
+    s.crowns = crowns;
+    s.ring_length = 0.6;
+    const Mesh m = generate_stent(s, 1e6, "test");
+    // The distal edge's outer nodes in theta order; peaks of z around the circle.
+    std::map<double, double> z_of_theta;
+    for (GId n : group(m, "end_distal")->conn)
+      if (std::abs(radius(m, n) - 1.5) < 1e-9) z_of_theta[std::atan2(m.coord(n)[1], m.coord(n)[0])] = m.coord(n)[2];
+    std::vector<double> z;
+    for (auto& [t, v] : z_of_theta) z.push_back(v);
+    int peaks = 0;
+    for (std::size_t i = 0; i < z.size(); ++i)
+      if (z[i] > z[(i + z.size() - 1) % z.size()] && z[i] >= z[(i + 1) % z.size()]) ++peaks;
+    EXPECT_EQ(peaks, crowns);
+  }
+}
+
+TEST(StentGenerator, QuarterIsAQuarterWithExactSymmetryPlanes) {
+  StentConfig s = base();
+  const double full = volume(generate_stent(s, 1e6, "test"));
+  s.sector = "quarter";
+  const Mesh q = generate_stent(s, 1e6, "test");
+  EXPECT_EQ(count_inverted_cells(q), 0u);
+  EXPECT_NEAR(volume(q) / full, 0.25, 1e-12);
+  for (const char* g : {"symmetry_x", "symmetry_y"}) {
+    ASSERT_NE(group(q, g), nullptr) << g;
+    const int c = g[9] == 'x' ? 0 : 1;
+    for (GId n : group(q, g)->conn) EXPECT_EQ(q.coord(n)[c], 0.0);
+    // The planes cut crowns, where the strut's section is the rectangle w x t.
+    EXPECT_NEAR(area(q, g), s.strut_width * s.thickness, 1e-12) << g;
+  }
+  for (std::size_t n = 0; n < q.num_nodes(); ++n) {
+    EXPECT_GE(q.coord(static_cast<GId>(n))[0], 0.0);
+    EXPECT_GE(q.coord(static_cast<GId>(n))[1], 0.0);
+  }
+}
+
+TEST(StentGenerator, LinksJoinRingsAndAddTheirArea) {
+  for (const std::string links : {"peak-to-peak", "peak-to-valley"}) {
+    StentConfig s = base();
+    s.rings = 3;
+    s.links = links;
+    s.links_per_ring = 4;
+    s.ring_length = 0.9;
+    s.element_length = s.strut_width / 6;
+    const Mesh m = generate_stent(s, 1e6, "test");
+    EXPECT_EQ(count_inverted_cells(m), 0u) << links;
+    EXPECT_EQ(duplicate_nodes(m), 0u) << links;
+    ASSERT_NE(group(m, "links"), nullptr);
+    for (const char* g : {"ring_0", "ring_1", "ring_2", "end_proximal", "end_distal"}) EXPECT_NE(group(m, g), nullptr) << g;
+    // The links' outer facets: their unrolled area (x Ro / Rm) is the straight bar,
+    // gap x link width at its middle, longer at its sides between two crown tips
+    // (peak-to-peak: both edges fall away from the bar), shorter inside a crown
+    // (peak-to-valley: the crown's concave edge, of radius rho - w/2, falls faster than
+    // the facing tip's, of radius rho + w/2).
+    const double bars = 2 * 4 * s.gap * s.strut_width;
+    const double extra = area(m, "links") * 1.45 / 1.5 / bars;
+    EXPECT_GT(extra, links == "peak-to-peak" ? 1.0 : 0.8) << links;
+    EXPECT_LT(extra, links == "peak-to-peak" ? 1.1 : 1.0) << links;
+    // The metal: rings (centreline length x w x t, to the crowns' chord error) + links.
+    const double rings = 3 * s.centreline_length() * s.strut_width * s.thickness;
+    EXPECT_NEAR(volume(m) / (rings + extra * bars * s.thickness), 1.0, 2e-3) << links;
+    // One connected piece: every node reached from node 0 through the cells.
+    std::vector<int> comp(m.num_nodes());
+    for (std::size_t i = 0; i < comp.size(); ++i) comp[i] = static_cast<int>(i);
+    std::function<int(int)> root = [&](int i) { return comp[i] == i ? i : comp[i] = root(comp[i]); };
+    const auto& b = m.volumes[0];
+    for (std::size_t c = 0; c < b.num_cells(); ++c)
+      for (int k = 1; k < 8; ++k) comp[root(static_cast<int>(b.conn[8 * c]))] = root(static_cast<int>(b.conn[8 * c + k]));
+    std::set<int> roots;
+    for (std::size_t i = 0; i < comp.size(); ++i) roots.insert(root(static_cast<int>(i)));
+    EXPECT_EQ(roots.size(), 1u) << links;
+  }
+}
+
+TEST(StentGenerator, ReductionsOfALinkedStent) {
+  StentConfig s = base();
+  s.rings = 2;
+  s.links_per_ring = 4;
+  s.ring_length = 0.9;
+  const double full = volume(generate_stent(s, 1e6, "test"));
+  s.half_length = true;
+  const Mesh h = generate_stent(s, 1e6, "test");
+  EXPECT_NEAR(volume(h) / full, 0.5, 1e-12);
+  ASSERT_NE(group(h, "symmetry_z"), nullptr);
+  EXPECT_EQ(group(h, "end_distal"), nullptr);
+  EXPECT_EQ(group(h, "ring_1"), nullptr);
+  // The plane cuts the 4 links in their middle: 4 sections w x t.
+  // (flat quads on the arc of a link's width: 1e-4 of chord error)
+  EXPECT_NEAR(area(h, "symmetry_z") / (4 * s.strut_width * s.thickness), 1.0, 1e-4);
+  s.sector = "quarter";
+  const Mesh q = generate_stent(s, 1e6, "test");
+  EXPECT_EQ(count_inverted_cells(q), 0u);
+  EXPECT_NEAR(volume(q) / full, 0.125, 1e-12);
+}
+
+TEST(StentGenerator, RefusesWhatCannotBeBuilt) {
+  auto error = [](auto change) {
+    StentConfig s = base();
+    change(s);
+    try {
+      generate_stent(s, 1e6, "deck");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  auto has = [](const std::string& e, const std::string& what) { return e.find(what) != std::string::npos; };
+  EXPECT_TRUE(has(error([](StentConfig& s) { s.strut_width = 0.6; }), "'Mesh->Stent->strut width'"));
+  EXPECT_TRUE(has(error([](StentConfig& s) { s.ring_length = 2.0; }), "fold onto itself"));
+  EXPECT_TRUE(has(error([](StentConfig& s) { s.ring_length = 0.1; }), "'Mesh->Stent->ring length'"));
+  EXPECT_TRUE(has(error([](StentConfig& s) { s.thickness = 1.6; }), "'Mesh->Stent->thickness'"));
+  EXPECT_TRUE(has(error([](StentConfig& s) { s.sector = "quarter"; s.crowns = 6; }), "'Mesh->Stent->sector'"));
+  EXPECT_TRUE(has(error([](StentConfig& s) { s.half_length = true; }), "'Mesh->Stent->half length'"));
+  EXPECT_TRUE(has(error([](StentConfig& s) { s.rings = 2; s.gap = 0; }), "'Mesh->Stent->gap'"));
+  EXPECT_TRUE(has(error([](StentConfig& s) { s.rings = 2; s.links_per_ring = 3; }), "'Mesh->Stent->links per ring'"));
+  EXPECT_TRUE(has(error([](StentConfig& s) { s.rings = 2; s.links_per_ring = 2; s.link_width = 0.6; }),
+                  "'Mesh->Stent->link width'"));
+  EXPECT_TRUE(has(error([](StentConfig& s) { s.element_length = 1e-4; }), "'Mesh->max cells'"));
+  EXPECT_EQ(error([](StentConfig&) {}), "");
+}
