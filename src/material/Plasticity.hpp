@@ -396,6 +396,14 @@ struct MultiplicativePlasticity {
     return FrozenPotential<Elastic>{elastic, inverse(Ftr)};
   }
 
+  // The trial test's tolerance: a trial point outside the yield surface by at most this
+  // fraction of the yield stress is elastic. A converged plastic point ends on the surface
+  // to round-off, so at the next step's start (C = C_n) its trial point lies on either side
+  // by about 1e-15 Y; outside, the return map gave dg = 0 with the elastoplastic tangent,
+  // which is nearly singular (the tangent modulus of the hardening) where the next step
+  // unloads: a stent ring released by the balloon took a first Newton step of 12.7 mm.
+  static constexpr double kYieldTolerance = 1e-12;
+
   // Same on structured state (C = F^T F at t_{n+1}; s0 at t_n is not modified).
   template <bool WithTangent = true>
   KOKKOS_INLINE_FUNCTION PointResponse update_state(const Mat3& C, const PlasticState& s0,
@@ -404,7 +412,7 @@ struct MultiplicativePlasticity {
     const Mat3 Ct = tmul(G, matmul(C, G));  // Ce^tr = Ftr_n^-T C Ftr_n^-1
     const double Yn = yield_stress(s0.alpha);
     const double q_tr = mandel_hill_norm(Ct);
-    if (q_tr - Yn <= 0.0) return elastic_branch<WithTangent>(Ct, G, s0, q_tr, out);
+    if (q_tr - Yn <= kYieldTolerance * Yn) return elastic_branch<WithTangent>(Ct, G, s0, q_tr, out);
     return plastic_branch<WithTangent>(Ct, G, s0, out);
   }
 
@@ -681,7 +689,8 @@ struct IncrementalPotential {
   KOKKOS_INLINE_FUNCTION bool inside(const Mat3& C) const {
     if (cached && same(C, Ck)) return in1;
     if (in0 >= 0 && same(C, C0k)) return in0 == 1;
-    return law.mandel_hill_norm(tmul(G, matmul(C, G))) - law.yield_stress(s0.alpha) <= 0.0;
+    const double Y = law.yield_stress(s0.alpha);
+    return law.mandel_hill_norm(tmul(G, matmul(C, G))) - Y <= Law::kYieldTolerance * Y;
   }
   // True where the three samples are elastic (W_inc = the smooth frozen potential there).
   KOKKOS_INLINE_FUNCTION bool smooth_between(const Mat3& C0, const Mat3& C1) const {

@@ -174,10 +174,20 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
   system_.first_failed.clear();
   predict(s, dt, t_new, predicted, lifted);
   NewtonResult nr = newton(s.u);
-  if (predicted && !nr.converged && nr.iterations == 0) {  // an inadmissible guess: retry from u_n
+  // A guess that Newton could not converge from (inadmissible, or wrong: the static
+  // extrapolation of the last increment points the wrong way where the load reverses, as
+  // an obstacle that stops growing and shrinks back): once more from u_n, before the step
+  // is cut. The iterations of both attempts count.
+  if (predicted && !nr.converged) {
+    const int first = nr.iterations, first_linear = nr.linear_iterations;
     s.u.update(1.0, s.u_prev, 0.0);
     m_.assembler->apply_dirichlet(s.u, t_new, T);
+    if (m_.contact) m_.contact->begin_step(s.t, dt, s.u_prev);
+    system_.begin_step(m_.dynamic ? 0.0 : m_.stabilization, &s.u_prev);
+    system_.first_failed.clear();
     nr = newton(s.u);
+    nr.iterations += first;
+    nr.linear_iterations += first_linear;
   }
   nr.iterations += lifted.iterations;
   nr.linear_iterations += lifted.linear_iterations;
