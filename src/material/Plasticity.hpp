@@ -398,10 +398,10 @@ struct MultiplicativePlasticity {
 
   // The trial test's tolerance: a trial point outside the yield surface by at most this
   // fraction of the yield stress is elastic. A converged plastic point ends on the surface
-  // to round-off, so at the next step's start (C = C_n) its trial point lies on either side
-  // by about 1e-15 Y; outside, the return map gave dg = 0 with the elastoplastic tangent,
-  // which is nearly singular (the tangent modulus of the hardening) where the next step
-  // unloads: a stent ring released by the balloon took a first Newton step of 12.7 mm.
+  // to round-off, so at the next step's start (C = C_n) its trial point can fall outside by
+  // round-off; there the return map gave dg = 0 with the elastoplastic tangent (the
+  // stiffness of the hardening modulus) where the next step may unload elastically (the
+  // S6 ring's recoil did not converge without this; docs/plasticity.md).
   static constexpr double kYieldTolerance = 1e-12;
 
   // Same on structured state (C = F^T F at t_{n+1}; s0 at t_n is not modified).
