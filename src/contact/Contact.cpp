@@ -541,6 +541,13 @@ void Contact::node_input(const Pair& p, const Slave& nd, const double* x, contac
     }
 }
 
+// c_tau of a node: the deck's value per unit area times the node's tributary area, or
+// automatic, the node's stiffness scale times dt.
+double Contact::tangent_penalty(const Pair& p, const Slave& nd, double dt) {
+  const double area = nd.area > 0.0 ? nd.area : 1.0;
+  return p.cfg.c_tangent > 0.0 ? p.cfg.c_tangent * area : nd.scale * dt;
+}
+
 contact::LawParams Contact::node_params(const Pair& p, const Slave& nd, const contact::LawParams& lp) const {
   contact::LawParams q = lp;
   q.sp = nd.scale;
@@ -549,7 +556,7 @@ contact::LawParams Contact::node_params(const Pair& p, const Slave& nd, const co
   // c has one meaning on every mesh); automatic: the node's stiffness scale.
   const double area = nd.area > 0.0 ? nd.area : 1.0;
   q.cn = p.cfg.c_normal > 0.0 ? p.cfg.c_normal * area : nd.scale * (p.persistence ? lp.dt : 1.0);
-  q.ct = p.cfg.c_tangent > 0.0 ? p.cfg.c_tangent * area : nd.scale * lp.dt;
+  q.ct = tangent_penalty(p, nd, lp.dt);
   q.force_active = nd.hold_active;
   q.force_inactive = nd.hold_inactive;
   q.force_tangent = nd.hold_tangent;
@@ -587,8 +594,7 @@ void Contact::count_flips(const Pair& p, Slave& nd) const {
   if (nd.normal_flips >= kFreezeAfter && is && !nd.hold_inactive) nd.hold_active = true;
   if (nd.tangent_flips >= kFreezeAfter && nd.hold_tangent == 0) {
     nd.hold_tangent = contact::Slip;
-    const double area = nd.area > 0.0 ? nd.area : 1.0;
-    const double ct = p.cfg.c_tangent > 0.0 ? p.cfg.c_tangent * area : nd.scale * dt_;
+    const double ct = tangent_penalty(p, nd, dt_);
     double ft[3], vt[3], q[3];
     tangential(nd.f, nd.normal, ft);
     tangential(nd.rel, nd.normal, vt);

@@ -234,6 +234,7 @@ class Contact {
   void read_scales(const la::CrsMatrix& K);
   void capture_rows(const la::RCP<la::CrsMatrix>& K);  // Pair::krow_* of the linearised pairs
   void count_flips(const Pair& p, Slave& nd) const;
+  static double tangent_penalty(const Pair& p, const Slave& nd, double dt);
   bool linearised_ = false;                            // some pair decides its sets from the last solve
   double alpha_ = 1.0;                                 // set_step_length()
   la::RCP<const la::CrsMatrix> rows_of_;               // the tangent capture_rows() read (its column map)

@@ -166,12 +166,17 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
     system_.input.load_time = t_new;
     system_.input.end_time = T;
   }
-  if (m_.contact) m_.contact->begin_step(s.t, dt, s.u_prev);
-  system_.begin_step(m_.dynamic ? 0.0 : m_.stabilization, &s.u_prev);
+  // What an attempt at the step starts from: the contact history of u_n, no held nodes, the
+  // stabilisation's increments from u_n (Model::stabilization is 0 in dynamic stages).
+  auto begin_attempt = [&] {
+    if (m_.contact) m_.contact->begin_step(s.t, dt, s.u_prev);
+    system_.begin_step(m_.stabilization, &s.u_prev);
+    system_.first_failed.clear();
+  };
+  begin_attempt();
   bool predicted = false;
   NewtonResult lifted;
   system_.inertia_scale = 0.0;
-  system_.first_failed.clear();
   predict(s, dt, t_new, predicted, lifted);
   NewtonResult nr = newton(s.u);
   // A guess that Newton could not converge from (inadmissible, or wrong: the static
@@ -182,9 +187,7 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
     const int first = nr.iterations, first_linear = nr.linear_iterations;
     s.u.update(1.0, s.u_prev, 0.0);
     m_.assembler->apply_dirichlet(s.u, t_new, T);
-    if (m_.contact) m_.contact->begin_step(s.t, dt, s.u_prev);
-    system_.begin_step(m_.dynamic ? 0.0 : m_.stabilization, &s.u_prev);
-    system_.first_failed.clear();
+    begin_attempt();
     nr = newton(s.u);
     nr.iterations += first;
     nr.linear_iterations += first_linear;
