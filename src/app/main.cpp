@@ -24,6 +24,7 @@
 #include "io/WriteError.hpp"
 #include "mesh/GmshReader.hpp"
 #include "run/Simulation.hpp"
+#include "run/StopRequest.hpp"
 #include "solver/SolverFailure.hpp"
 
 namespace {
@@ -51,7 +52,10 @@ const char* kUsage =
     "\n"
     "exit status: 0 success, 1 internal error, 2 invalid input (or an output folder that\n"
     "may not be used), 3 the solve or writing a result file failed, 4 out of memory;\n"
-    "under MPI an error on any one rank ends every rank with that status\n";
+    "under MPI an error on any one rank ends every rank with that status;\n"
+    "SIGTERM or SIGINT (a batch time limit, Ctrl-C) ends the step in progress, writes its\n"
+    "fields and a checkpoint and exits 143 or 130 (128 + the signal); a second signal\n"
+    "ends the run at once\n";
 
 #ifndef STENTOR_VERSION
 #define STENTOR_VERSION "unknown"
@@ -160,6 +164,7 @@ int main(int argc, char** argv) {
   argv = early.rest.data();
   Tpetra::ScopeGuard guard(&argc, &argv);
   const int rank = Tpetra::getDefaultComm()->getRank();
+  stentor::install_stop_handlers();
   if (early.help || early.version) {
     if (rank == 0) std::cout << (early.help ? kUsage : "") << (early.help && early.version ? "\n" : "")
                              << (early.version ? version_text() : "") << std::flush;

@@ -620,7 +620,7 @@ void Reporter::summary(const RunState& s) {
   if (m_.any_dynamic)
     out_ << "Energy balance" << (m_.cfg.any_static() ? " (dynamic stages)" : "") << ": max |E_{n+1} - E_n - (W_ext + W_sup - D" << (m_.contact ? " + W_contact - D_friction" : "")
          << ")| per step = " << fmt(s.energy.max_balance, 3) << "\n";
-  out_ << (s.failed ? "FAILED: " + s.failure + "\n" : "") << "Summary: " << s.step << " steps, " << s.control.total_cuts()
+  out_ << (s.failed ? (s.stopped_by ? "STOPPED: " : "FAILED: ") + s.failure + "\n" : "") << "Summary: " << s.step << " steps, " << s.control.total_cuts()
        << " cut-backs, " << s.newton_iterations << " Newton iterations, " << s.linear_iterations << " linear iterations, "
        << std::fixed << std::setprecision(2) << wall << " s\n";
   for (const auto& n : timers_.names())

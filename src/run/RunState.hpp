@@ -114,6 +114,7 @@ struct RunState {
   int newton_iterations = 0, linear_iterations = 0;  // all attempts, failed ones included
   bool failed = false;
   std::string failure;       // why the run stopped, for the summary
+  int stopped_by = 0;        // the signal that stopped the run (run/StopRequest.hpp; failed is set too)
 };
 
 }  // namespace stentor

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -24,6 +25,7 @@
 #include "run/RunState.hpp"
 #include "run/StentMetrics.hpp"
 #include "run/Stepper.hpp"
+#include "run/StopRequest.hpp"
 
 namespace stentor {
 
@@ -36,12 +38,39 @@ struct Run {
   RunState& state;
   Timers& timers;
   std::string checkpoint;  // the checkpoint file (the same on every rank)
+  int fields_step = -1;      // the last accepted step whose fields were written
+  int checkpoint_step = -1;  // the last accepted step checkpointed
 };
 
 void checkpoint(Run& r) {
   Timers::Scope t{r.timers, "checkpoint"};
   write_checkpoint(r.model, r.stepper, r.state, r.checkpoint, r.reporter.out());
+  r.checkpoint_step = r.state.step;
   r.model.linear->rebuild_preconditioner();  // as a run restarted from here will
+}
+
+void write_fields(Run& r) {
+  r.reporter.write_fields(r.state.t, r.state.u);
+  r.fields_step = r.state.step;
+}
+
+// A stop signal (run/StopRequest.hpp) reached every rank between two steps: the last
+// accepted step's fields and checkpoint are written (unless they already are) and the run
+// ends, its results in the .partial folder, with the command that continues it.
+void stop_on_signal(Run& r, int sig) {
+  RunState& s = r.state;
+  if (r.model.cfg.output.fields && r.fields_step != s.step) write_fields(r);
+  const bool ckpt = !r.checkpoint.empty();
+  if (ckpt && r.checkpoint_step != s.step) checkpoint(r);
+  std::ostringstream os;
+  os << (sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : "signal " + std::to_string(sig))
+     << " received: the run stopped after step " << s.step << " (t = " << s.t << ")";
+  if (ckpt)
+    os << "; checkpoint " << r.checkpoint << "; continue with: stentor --restart " << r.checkpoint << " "
+       << r.model.cfg.deck_path;
+  s.failure = os.str();
+  s.failed = true;
+  s.stopped_by = sig;
 }
 
 // --restart: the state of the checkpoint, the interrupted run's CSV rows up to it, the
@@ -60,7 +89,7 @@ void resume(Run& r, const Restart& rs) {
                    << ", next dt " << s.control.dt() << "\n";
   if (r.model.rank == 0) carry_rows(rs, r.reporter, r.reporter.out());
   r.reporter.initial_metrics(s);  // stent metrics restart here: gains and recoil count from the checkpoint
-  if (r.model.cfg.output.fields) r.reporter.write_fields(s.t, s.u);
+  if (r.model.cfg.output.fields) write_fields(r);
   if (r.model.cfg.output.checkpoint_every > 0) checkpoint(r);
 }
 
@@ -93,7 +122,7 @@ void initialize(Run& r) {
     for (const std::string& w : m.contact->initial_penetrations()) r.reporter.out() << "  " << w << "\n";
   }
   r.reporter.initial_metrics(r.state);
-  if (m.cfg.output.fields) r.reporter.write_fields(0.0, r.state.u);
+  if (m.cfg.output.fields) write_fields(r);
 }
 
 // The step the numeric range is checked with: the run's, or the smallest of the dynamic
@@ -185,8 +214,7 @@ bool accept_step(Run& r, double dt, const NewtonResult& nr, double end) {
   r.reporter.history_row(s, rec, energy);
   const bool last = s.t >= end * (1.0 - 1e-12);
   const auto& out = r.model.cfg.output;
-  if (out.fields && (s.step % out.every == 0 || last || output_time_reached(r.model.cfg, t0, s.t)))
-    r.reporter.write_fields(s.t, s.u);
+  if (out.fields && (s.step % out.every == 0 || last || output_time_reached(r.model.cfg, t0, s.t))) write_fields(r);
   const double dt_before = s.control.next();
   s.control.accepted(rec.newton.iterations, rec.contact.events);
   if (!s.control.reason().empty()) r.reporter.step_size_line(dt_before, s.control.next(), s.control.reason());
@@ -214,6 +242,10 @@ bool run_interval(Run& r, double end) {
   RunState& s = r.state;
   const long cap = r.model.cfg.stepping.step_cap();
   while (s.t < end * (1.0 - 1e-12)) {
+    if (const int sig = agreed_stop_signal(*r.model.comm)) {
+      stop_on_signal(r, sig);
+      return false;
+    }
     if (s.attempts >= cap) {
       std::ostringstream os;
       os << "reached Stepping->max steps = " << cap << " (" << s.step << " accepted, " << s.attempts - s.step
@@ -227,6 +259,7 @@ bool run_interval(Run& r, double end) {
     const NewtonResult nr = r.stepper.solve(s, dt);
     if (nr.converged) {
       if (!accept_step(r, dt, nr, end)) return false;
+      test_signal_hook(s.step, r.model.rank);
       continue;
     }
     r.stepper.reject(s);
@@ -348,6 +381,7 @@ int run_simulation(const Config& cfg, const RunOptions& opts, RunResult* result)
   if (result) fill_result(run, *result);
   reporter.summary(state);
   reporter.finish(state.failed);
+  if (state.stopped_by) return 128 + state.stopped_by;
   return state.failed ? 3 : 0;
 }
 

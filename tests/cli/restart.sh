@@ -7,6 +7,11 @@
 #                 file, the one before intact.
 #   MODE sigkill: `kill -9` from outside at an arbitrary moment after step 30 (the deck's `checkpoint every` set to 1 here, so that
 #                 the kill can land in any part of a step, a checkpoint write included).
+#   MODE signal:N[:R]  rank R (default 0) sends itself SIGTERM after step N
+#                 (STENTOR_TEST_SIGNAL_AT_STEP, run/StopRequest.hpp): every rank ends that
+#                 step, writes the fields and a checkpoint of it and exits 143, saying so.
+#   MODE sigterm: `kill -TERM` from outside at an arbitrary moment after step 30: the
+#                 step in progress ends, then the same.
 # The reference runs uninterrupted on NP_RESTART ranks; the killed run on NP_KILLED; the
 # restart (`--restart <out>.partial/<base>_checkpoint.h5`, same --output) on NP_RESTART.
 # Checked: the killed run left <out>.partial with a readable checkpoint (sigkill: and its
@@ -40,10 +45,13 @@ rc=$?
 if [ "${mode%%:*}" = hook ]; then
   STENTOR_TEST_KILL_CHECKPOINT=${mode#hook:} run "$np_killed" --output out "$deck" > killed.log 2>&1
   rc=$?
+elif [ "${mode%%:*}" = signal ]; then
+  STENTOR_TEST_SIGNAL_AT_STEP=${mode#signal:} run "$np_killed" --output out "$deck" > killed.log 2>&1
+  rc=$?
 else
   # The stentor process itself (one rank, no launcher): a SIGKILLed mpirun would leave
   # its ranks running.
-  [ "$np_killed" -eq 1 ] || fail "sigkill mode runs the killed run on 1 rank"
+  [ "$np_killed" -eq 1 ] || fail "$mode mode runs the killed run on 1 rank"
   "$stentor" --output out "$deck" > killed.log 2>&1 &
   pid=$!
   for _ in $(seq 1 1500); do  # a checkpoint, and 30 steps done (contact starts at step 21 in restart_bars)
@@ -51,13 +59,23 @@ else
     sleep 0.02
   done
   sleep "0.0$((RANDOM % 10))"
-  kill -9 "$pid" 2> /dev/null
+  if [ "$mode" = sigterm ]; then kill -TERM "$pid" 2> /dev/null; else kill -9 "$pid" 2> /dev/null; fi
   wait "$pid"
   rc=$?
 fi
 echo "killed run: exit status $rc; $(grep -c '^  step' killed.log) steps logged"
 [ "$rc" -ne 0 ] || fail "the run ended before it was killed (exit 0): nothing tested"
 ck=out.partial/${base}_checkpoint.h5
+stopped_at=
+if [ "${mode%%:*}" = signal ] || [ "$mode" = sigterm ]; then
+  tail -n 12 killed.log
+  [ "$rc" -eq 143 ] || fail "stopped by SIGTERM: exit status $rc, expected 143"
+  line=$(grep "^STOPPED: SIGTERM received: the run stopped after step " killed.log) || fail "no STOPPED line in the log"
+  echo "$line" | grep -q "continue with: stentor --restart $ck " || fail "the STOPPED line does not give the restart command"
+  grep -q "^Partial results kept in out.partial" killed.log || fail "the log does not say where the partial results are"
+  stopped_at=$(echo "$line" | sed 's/.*after step \([0-9]*\).*/\1/')
+  [ "${mode%%:*}" = signal ] && { n=${mode#signal:}; [ "$stopped_at" = "${n%%:*}" ] || fail "stopped after step $stopped_at, not ${n%%:*}"; }
+fi
 [ -f "$ck" ] || { ls -la out.partial; fail "no checkpoint $ck after the kill"; }
 ls out.partial
 if [ "$mode" = sigkill ]; then
@@ -78,6 +96,9 @@ rc=$?
 [ "$rc" -eq 0 ] || { cat restart.log; fail "restart: exit status $rc"; }
 grep "restart " restart.log
 grep -q "restart  from $ck: step" restart.log || fail "the log does not say where it restarted from"
+if [ -n "$stopped_at" ]; then  # the checkpoint is of the step the run stopped after
+  grep -q "restart  from $ck: step $stopped_at," restart.log || fail "the restart is not from step $stopped_at"
+fi
 [ -d out.interrupted ] || fail "out.interrupted (the killed run's results) missing"
 [ -f "out/${base}_checkpoint.h5" ] || fail "no final checkpoint in out/"
 
