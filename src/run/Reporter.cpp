@@ -305,13 +305,22 @@ void Reporter::open() {
 
 // The HDF5/XDMF writer, on every rank (collective), in rank 0's staging folder.
 void Reporter::open_fields() {
+  xdmf_ = make_writer(cfg_.output.basename);
+  node_rows_ = std::make_unique<NodeRows>(*m_.dist, m_.mesh.num_nodes(), m_.comm, xdmf_->node_rows());
+  master_traction_ = false;
+  for (const ContactPairConfig& c : cfg_.contact) master_traction_ = master_traction_ || !c.master.empty();
+}
+
+// An HDF5/XDMF writer <basename>.xdmf/.h5 in the staging folder, on every rank (collective).
+std::unique_ptr<XdmfWriter> Reporter::make_writer(const std::string& basename) {
   const std::string& dir = staging_dir_;
   const MPI_Comm comm = raw_mpi_comm(*m_.comm);
   const XdmfMesh rows = xdmf_mesh_on_rows(m_.mesh, *m_.dist, comm);  // collective
+  std::unique_ptr<XdmfWriter> w;
   std::string local;
   int code = 0;
   try {
-    xdmf_ = std::make_unique<XdmfWriter>(dir, cfg_.output.basename, rows, comm);
+    w = std::make_unique<XdmfWriter>(dir, basename, rows, comm);
   } catch (const WriteError& e) {
     code = 2, local = e.what();
   } catch (const std::exception& e) {
@@ -325,9 +334,7 @@ void Reporter::open_fields() {
     if (worst == 2) throw WriteError(what);
     throw InputError(what);
   }
-  node_rows_ = std::make_unique<NodeRows>(*m_.dist, m_.mesh.num_nodes(), m_.comm, xdmf_->node_rows());
-  master_traction_ = false;
-  for (const ContactPairConfig& c : cfg_.contact) master_traction_ = master_traction_ || !c.master.empty();
+  return w;
 }
 
 void Reporter::discard() {
@@ -343,6 +350,22 @@ void Reporter::discard() {
 // rank stops every rank with WriteError (the ranks vote: parallel/Agreement.hpp).
 void Reporter::write_fields(double t, const la::Vector& u) {
   Timers::Scope s{timers_, "output"};
+  write_frame(*xdmf_, t, u, true);
+}
+
+void Reporter::write_failed_state(double t, const la::Vector& u) {
+  if (!xdmf_) return;  // Output->fields = false
+  Timers::Scope s{timers_, "output"};
+  std::unique_ptr<XdmfWriter> w = make_writer(cfg_.output.basename + "_failed");
+  write_frame(*w, t, u, false);
+  const std::string path = w->xdmf_path();
+  w.reset();  // collective
+  out_ << "  the failed step's last iterate (t = " << t << ") is in " << path << "\n";
+}
+
+// One frame of the fields the deck asks for into `w` (collective); `obstacles`: the
+// rigid obstacles' frame at t too.
+void Reporter::write_frame(XdmfWriter& w, double t, const la::Vector& u, bool obstacles) {
   const OutputConfig& o = cfg_.output;
   Assembler::CellFieldRequest req;
   req.green_lagrange = o.wants("green_lagrange_strain");
@@ -368,7 +391,7 @@ void Reporter::write_fields(double t, const la::Vector& u) {
   want_cells("log_strain", 6, cf.log_strain);
   const MPI_Comm comm = raw_mpi_comm(*m_.comm);
   std::vector<double> owner;
-  cells_to_rows(comm, cf.cell_ids, cols, m_.mesh.num_volume_cells(), xdmf_->cell_rows(), owner);
+  cells_to_rows(comm, cf.cell_ids, cols, m_.mesh.num_volume_cells(), w.cell_rows(), owner);
   std::vector<const std::vector<double>*> recovered;  // cauchy_stress_nodal, von_mises_nodal
   std::vector<int> rk;
   if (o.wants("cauchy_stress_nodal")) recovered.push_back(&cf.stress), rk.push_back(6);
@@ -377,19 +400,19 @@ void Reporter::write_fields(double t, const la::Vector& u) {
   // still send every cell to the ranks of its nodes).
   const std::vector<std::vector<double>> nodal =
       recovered.empty() ? std::vector<std::vector<double>>{}
-                        : recover_on_rows(m_.mesh, comm, xdmf_->node_rows(), cf.cell_ids, recovered, rk, cf.volume);
+                        : recover_on_rows(m_.mesh, comm, w.node_rows(), cf.cell_ids, recovered, rk, cf.volume);
   std::string failure;
   try {
-    xdmf_->begin_step(t);
-    write_node_fields(u, nodal);
+    w.begin_step(t);
+    write_node_fields(w, u, nodal);
     for (const CellColumn& c : cols) {
-      xdmf_->cell_field(c.name, c.k, c.rows);
-      if (c.name == "J" && o.wants("mpi_rank")) xdmf_->cell_field("mpi_rank", 1, owner);
+      w.cell_field(c.name, c.k, c.rows);
+      if (c.name == "J" && o.wants("mpi_rank")) w.cell_field("mpi_rank", 1, owner);
     }
-    if (!o.wants("J") && o.wants("mpi_rank")) xdmf_->cell_field("mpi_rank", 1, owner);
-    if (m_.contact) write_contact(comm);
-    xdmf_->end_step();
-    write_obstacles(t);
+    if (!o.wants("J") && o.wants("mpi_rank")) w.cell_field("mpi_rank", 1, owner);
+    if (m_.contact) write_contact(w, comm);
+    w.end_step();
+    if (obstacles) write_obstacles(t);
   } catch (const WriteError& e) {
     failure = e.what();
   }
@@ -399,11 +422,11 @@ void Reporter::write_fields(double t, const la::Vector& u) {
 
 // The step's node fields but the contact ones: displacement, velocity, reaction_force,
 // then the recovered ones (`nodal`: cauchy_stress_nodal, von_mises_nodal as wanted).
-void Reporter::write_node_fields(const la::Vector& u, const std::vector<std::vector<double>>& nodal) {
+void Reporter::write_node_fields(XdmfWriter& w, const la::Vector& u, const std::vector<std::vector<double>>& nodal) {
   const OutputConfig& o = cfg_.output;
-  const RowRange rows = xdmf_->node_rows();
-  if (o.wants("displacement")) xdmf_->node_field("displacement", 3, node_rows_->values(u));
-  if (o.wants("velocity")) xdmf_->node_field("velocity", 3, node_rows_->values(m_.integrator->velocity()));
+  const RowRange rows = w.node_rows();
+  if (o.wants("displacement")) w.node_field("displacement", 3, node_rows_->values(u));
+  if (o.wants("velocity")) w.node_field("velocity", 3, node_rows_->values(m_.integrator->velocity()));
   if (o.wants("reaction_force")) {
     const Assembler::DofReactions d = m_.assembler->dof_reactions();
     std::vector<long long> nodes;
@@ -417,16 +440,16 @@ void Reporter::write_node_fields(const la::Vector& u, const std::vector<std::vec
     std::vector<double> rf(3 * rows.size(), 0.0);
     for (std::size_t i = 0; i < r.ids.size(); ++i)
       rf[3 * (static_cast<std::size_t>(r.ids[i]) - rows.begin) + static_cast<std::size_t>(r.values[2 * i])] = r.values[2 * i + 1];
-    xdmf_->node_field("reaction_force", 3, rf);
+    w.node_field("reaction_force", 3, rf);
   }
   std::size_t k = 0;
-  if (o.wants("cauchy_stress_nodal")) xdmf_->node_field("cauchy_stress_nodal", 6, nodal[k++]);
-  if (o.wants("von_mises_nodal")) xdmf_->node_field("von_mises_nodal", 1, nodal[k++]);
+  if (o.wants("cauchy_stress_nodal")) w.node_field("cauchy_stress_nodal", 6, nodal[k++]);
+  if (o.wants("von_mises_nodal")) w.node_field("von_mises_nodal", 1, nodal[k++]);
 }
 
 // The contact fields: the slave nodes' values routed to their rows; the master surfaces'
 // forces gathered on rank 0 (few nodes), projected there and routed to their rows.
-void Reporter::write_contact(MPI_Comm comm) {
+void Reporter::write_contact(XdmfWriter& w, MPI_Comm comm) {
   const Contact::NodalFields nf = m_.contact->nodal_fields();
   const Records slaves = route_to_rows(comm, m_.mesh.num_nodes(), nf.nodes, nf.values, Contact::kNodalValues);
   const Contact::NodalFields mf = m_.contact->master_fields();
@@ -439,7 +462,7 @@ void Reporter::write_contact(MPI_Comm comm) {
     if (m_.rank == 0) master_traction(masters, *master_surface_, ids, values);
     t = route_to_rows(comm, m_.mesh.num_nodes(), ids, values, 3);
   }
-  write_contact_fields(*xdmf_, cfg_.output, slaves, traction ? &t : nullptr);
+  write_contact_fields(w, cfg_.output, slaves, traction ? &t : nullptr);
 }
 
 // The rigid obstacles at t in <basename>_obstacles.xdmf/.h5 (rank 0, with the fields).

@@ -45,6 +45,11 @@ class Reporter {
   void discard();
 
   void write_fields(double t, const la::Vector& u);  // collective
+  // The last iterate u of a step that failed for good (at the time t it aimed for), as
+  // <basename>_failed.xdmf/.h5 in the staging folder: one frame of the deck's fields, to
+  // see in ParaView where and how the solve went wrong (collective; nothing when the deck
+  // writes no fields).
+  void write_failed_state(double t, const la::Vector& u);
   void energy_row(int step, double t, const EnergyAudit& au, const EnergyTotals& e);
   // One row of <basename>_history.csv (collective: probes).
   void history_row(const RunState& s, const StepRecord& rec, double energy);
@@ -111,8 +116,10 @@ class Reporter {
   std::unique_ptr<SurfaceProjection> master_surface_;  // rank 0, fields on and master surfaces present
   void write_obstacles(double t);
   void open_fields();  // collective
-  void write_node_fields(const la::Vector& u, const std::vector<std::vector<double>>& nodal);
-  void write_contact(MPI_Comm comm);  // collective
+  std::unique_ptr<XdmfWriter> make_writer(const std::string& basename);  // collective
+  void write_frame(XdmfWriter& w, double t, const la::Vector& u, bool obstacles);  // collective
+  void write_node_fields(XdmfWriter& w, const la::Vector& u, const std::vector<std::vector<double>>& nodal);
+  void write_contact(XdmfWriter& w, MPI_Comm comm);  // collective
   std::unique_ptr<NodeRows> node_rows_;  // the dof vectors on the writer's node rows
   bool master_traction_ = false;        // a contact pair with a master surface
   double total_energy_ = 0.0;               // kinetic + strain of the last energy_row

@@ -262,13 +262,15 @@ bool run_interval(Run& r, double end) {
       test_signal_hook(s.step, r.model.rank);
       continue;
     }
-    r.stepper.reject(s);
     const StepControl::Cut why = s.control.cut();
     if (why != StepControl::Cut::Ok) {
+      r.reporter.write_failed_state(s.t + dt, s.u);  // before reject() puts u_n back
+      r.stepper.reject(s);
       s.failure = cutback_failure(s, dt, nr, why);
       s.failed = true;
       return false;
     }
+    r.stepper.reject(s);
     r.reporter.cutback_line(s, s.t + dt, nr, s.control.dt());
   }
   return true;

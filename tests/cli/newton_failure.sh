@@ -4,6 +4,9 @@
 # No CSV in <out>.partial holds nan or inf, nor any HDF5 dataset there (read with h5py:
 # Debian's /usr/bin/python3 with python3-h5py; the scan is skipped, with a note, where no
 # python has h5py). Each FRAGMENT must occur in the log.
+# A step that failed for good (its cut-backs used up, or below the minimum step) of a deck
+# that writes fields leaves its last Newton iterate in <out>.partial/<basename>_failed.xdmf/.h5,
+# and the log says so.
 # --no-cut: a failure that no cut-back could help (the run stops without "cutting dt").
 # usage: newton_failure.sh [--no-cut] STENTOR WORKDIR DECK [FRAGMENT]...
 set -u
@@ -31,6 +34,10 @@ ls "$out.partial"/*_history.csv > /dev/null 2>&1 || fail "no history CSV in $out
 for f in "$@"; do
   grep -qF -- "$f" log.txt || fail "the log does not contain '$f'"
 done
+if grep -q "^FAILED: Newton failed at t = " log.txt && ls "$out.partial"/*.xdmf > /dev/null 2>&1; then
+  ls "$out.partial"/*_failed.xdmf "$out.partial"/*_failed.h5 > /dev/null 2>&1 || fail "no <basename>_failed.xdmf/.h5 in $out.partial"
+  grep -q "^  the failed step's last iterate (t = .*) is in .*_failed.xdmf" log.txt || fail "the log does not name the failed-state file"
+fi
 for c in "$out.partial"/*.csv; do
   tail -n +2 "$c" | grep -qi -e nan -e inf && fail "$c holds nan or inf"
 done
