@@ -555,6 +555,14 @@ void Reporter::begin_interval(double t0, double t1) {
   interval_start_ = std::chrono::steady_clock::now();
   interval_t0_ = t0;
   interval_t1_ = t1;
+  // What the progress line's columns are (step_line).
+  out_ << "  columns: t time, dt its step, Newton and linear iterations of the step, |r| final residual, W strain energy";
+  if (m_.contact) {
+    out_ << ", contact active/stick/slip nodes of";
+    for (const ContactPairConfig& c : cfg_.contact) out_ << " '" << c.name << "'";
+  }
+  if (m_.any_dynamic) out_ << ", K kinetic and E total energy, balance E_{n+1} - E_n - (work - dissipation) of the step";
+  out_ << "; [" << (cfg_.stages.empty() ? "" : "stage k/n: its time of its duration; ") << "wall time, time left]\n";
 }
 
 namespace {
