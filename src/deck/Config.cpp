@@ -1,6 +1,7 @@
 // Input deck reader: Teuchos ParameterList XML -> stentor::Config, validated against
 // the schema of deck/Schema.cpp. Every problem throws InputError("<deck>: ...").
 #include "deck/Config.hpp"
+#include "deck/MeshParameters.hpp"
 #include "deck/InputLimits.hpp"
 
 #include <Teuchos_Array.hpp>
@@ -796,6 +797,8 @@ void DeckReader::read_mesh(const ParameterList& pl) {
   if (m.generator.empty() && pl.isParameter("write mesh"))
     fail("'Mesh->write mesh' applies to 'Mesh->generator', not to a mesh file");
   if (pl.isSublist("Stent") && m.generator != "stent") fail("'Mesh->Stent' needs 'Mesh->generator' = stent");
+  if (pl.isSublist("Parameters") && !m.generator.empty())
+    fail("'Mesh->Parameters' sets the parameters of a .geo 'Mesh->file', not of 'Mesh->generator'");
   m.max_cells = get_double(pl, ls, "max cells");
   if (m.generator == "stent") {
     for (const char* p : {"size", "order", "recombine", "dimension", "time limit"})
@@ -819,6 +822,10 @@ void DeckReader::read_mesh(const ParameterList& pl) {
   if (!fs::exists(f, ec)) fail("'Mesh->file': mesh file '" + m.file + "' does not exist (resolved from '" + file +
                                "' relative to the deck's folder)");
   if (!fs::is_regular_file(f, ec)) fail("'Mesh->file': '" + m.file + "' is not a regular file");
+  if (pl.isSublist("Parameters")) {
+    if (ext != ".geo") fail("'Mesh->Parameters' sets the DefineNumber parameters of a .geo file; '" + file + "' is a .msh");
+    m.parameters = read_mesh_parameters(pl.sublist("Parameters"), file_);
+  }
   m.size = get_double(pl, ls, "size");
   m.order = get_int(pl, ls, "order");
   m.recombine = get_bool(pl, ls, "recombine");

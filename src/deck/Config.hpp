@@ -6,6 +6,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "deck/StentConfig.hpp"
@@ -61,6 +62,8 @@ struct MeshConfig {
   std::string generator;   // "Mesh"->"generator": "" (read `file`) or "stent" (generated from `stent`)
   StentConfig stent;       // "Mesh"->"Stent" (with generator "stent")
   bool write_mesh = false; // "Mesh"->"write mesh": the generated mesh as <basename>_mesh.msh in the output folder
+  // "Mesh"->"Parameters": (ONELAB name, value) for the .geo's DefineNumber parameters, in deck order.
+  std::vector<std::pair<std::string, double>> parameters;
 };
 
 struct MaterialConfig {

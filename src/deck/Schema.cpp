@@ -143,7 +143,20 @@ std::vector<ListSpec> build_schema() {
            "them it is stopped and the deck refused (a loop in the `.geo`, a mesh far too fine); raise it for a "
            "slow mesh on purpose.")
            .gt(0.0)});
-    l.sublists = {"Stent"};
+    l.sublists = {"Stent", "Parameters"};
+    s.push_back(l);
+  }
+  {
+    auto l = list(
+        "Mesh/Parameters", "Mesh->Parameters",
+        "Numbers handed to the `.geo` file's `DefineNumber` parameters before gmsh reads it, as gmsh's "
+        "`-setnumber` (and its GUI) do: `<Parameter name=\"n\" type=\"double\" value=\"20\"/>` sets the ONELAB "
+        "parameter `Parameters/n`, which `n = DefineNumber[40, Name \"Parameters/n\"];` then takes instead of its "
+        "default (a name with a `/` is the full ONELAB name). Each entry is a `double` or an `int`, finite. A value "
+        "that the `.geo` (with the files it includes) does not read through a `DefineNumber` of that name is refused "
+        "(exit 2, naming it and listing the ones it has): a plain `n = 40;` cannot be set. Only with a `.geo` "
+        "`file`.");
+    l.passthrough = true;  // the entries are the .geo's; deck/Config.cpp checks them
     s.push_back(l);
   }
   s.push_back(list(

@@ -269,6 +269,28 @@ std::vector<std::string> screen_mesh_file(const std::string& file) {
   return files;
 }
 
+// Mesh->Parameters: each must have been read by a DefineNumber of the .geo (gmsh then lists
+// itself among the ONELAB parameter's clients); else the deck's value changed nothing.
+void check_parameters_read(const MeshConfig& cfg, const std::string& file) {
+  if (cfg.parameters.empty()) return;
+  const auto read_by_gmsh = [](const std::string& name) {
+    std::string json;
+    gmsh::onelab::get(json, name);
+    return json.find("\"clients\"") != std::string::npos;
+  };
+  std::vector<std::string> names, defined;
+  gmsh::onelab::getNames(names);
+  for (const std::string& n : names)  // the .geo's own, not gmsh's (Gmsh/..., "}Gmsh/...")
+    if (n.find("Gmsh/") == std::string::npos && read_by_gmsh(n)) defined.push_back(n);
+  for (const auto& p : cfg.parameters) {
+    if (read_by_gmsh(p.first)) continue;
+    const std::string shown = p.first.rfind("Parameters/", 0) == 0 ? p.first.substr(11) : p.first;
+    throw InputError("'Mesh->Parameters->" + shown + "': " + file + " has no DefineNumber parameter '" + p.first +
+                     "', so the value would change nothing; " +
+                     (defined.empty() ? std::string("it defines none") : "its parameters: " + join(defined, ", ")));
+  }
+}
+
 // read_mesh() in this process.
 Mesh read_mesh_here(const MeshConfig& cfg, bool verbose) {
   const std::string& file = cfg.file;
@@ -290,7 +312,9 @@ Mesh read_mesh_here(const MeshConfig& cfg, bool verbose) {
 
   screen_mesh_file(file);  // before gmsh runs any of it
   GmshSession session(verbose);
+  for (const auto& [name, value] : cfg.parameters) gmsh::onelab::setNumber(name, {value});
   gmsh_call(session, file, "read the file", [&] { gmsh::open(file); });
+  check_parameters_read(cfg, file);
 
   gmsh::vectorpair groups;
   gmsh::model::getPhysicalGroups(groups);
@@ -514,6 +538,10 @@ Mesh read_mesh_in_child(const MeshConfig& cfg, bool verbose) {
                                    std::to_string(cfg.order), cfg.recombine ? "1" : "0", std::to_string(cfg.dimension),
                                    num17(cfg.max_cells), verbose ? "1" : "0", std::to_string(::getpid()),
                                    std::to_string(input_limits().text), std::to_string(input_limits().mesh)};
+  for (const auto& [name, value] : cfg.parameters) {  // Mesh->Parameters: name, value pairs after the fixed ones
+    args.push_back(name);
+    args.push_back(num17(value));
+  }
   std::vector<char*> argv;
   for (auto& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -632,7 +660,7 @@ Mesh read_mesh(const MeshConfig& cfg, bool verbose) {
 }
 
 int gmsh_helper_main(int argc, char** argv) {
-  if (argc != 13) {
+  if (argc < 13 || (argc - 13) % 2 != 0) {
     std::fprintf(stderr, "stentor --gmsh-helper: internal use only\n");
     return 1;
   }
@@ -667,6 +695,7 @@ int gmsh_helper_main(int argc, char** argv) {
   const bool verbose = std::atoi(argv[9]) != 0;
   input_limits().text = std::strtoull(argv[11], nullptr, 10);
   input_limits().mesh = std::strtoull(argv[12], nullptr, 10);
+  for (int i = 13; i + 1 < argc; i += 2) cfg.parameters.emplace_back(argv[i], std::strtod(argv[i + 1], nullptr));
   try {
     // Confined before gmsh reads anything: reads only the screened files, writes only in `dir`.
     const std::string why = confine_process(dir, screen_mesh_file(cfg.file));
