@@ -12,6 +12,7 @@
 //     plastic radius at full expansion, the residual bore displacement and hoop stress.
 //  3. The same on a hex8 slice (u_z = 0 on both faces) with the rigid `cylinder`: F-bar
 //     follows the reference, full hex8 locks.
+//  4. Linear hardening H = 20 on tri6.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -195,8 +196,10 @@ struct Case {
   bool slice = false;          // hex8 slice (else tri6 plane strain)
   std::string tech = "full";   // hex8: full or f-bar
   int load_steps = 10;         // and as many to release
+  double H = 0.0;              // linear hardening modulus
   std::string tag() const {
-    return (slice ? "hex8_" + tech : std::string("tri6")) + "_nr" + std::to_string(nr) + "_s" + std::to_string(load_steps);
+    return (slice ? "hex8_" + tech : std::string("tri6")) + "_nr" + std::to_string(nr) + "_s" + std::to_string(load_steps) +
+           (H > 0 ? "_H" + std::to_string(static_cast<int>(H)) : "");
   }
 };
 
@@ -209,7 +212,8 @@ Config mandrel_deck(const Case& c) {
     << (c.slice ? "" : param("order", "int", "2")) << "</ParameterList>\n"
     << "<ParameterList name=\"Materials\"><ParameterList name=\"steel\">" << param("model", "string", "neo-Hookean plasticity")
     << param("E", "double", std::to_string(kE)) << param("nu", "double", std::to_string(kNu))
-    << param("yield stress", "double", std::to_string(kY)) << "</ParameterList></ParameterList>\n"
+    << param("yield stress", "double", std::to_string(kY)) << (c.H > 0 ? param("hardening", "double", std::to_string(c.H)) : "")
+    << "</ParameterList></ParameterList>\n"
     << "<ParameterList name=\"Bodies\"><ParameterList name=\"wall\">" << param("material", "string", "steel")
     << (c.slice ? param("element technology", "string", c.tech) : "") << "</ParameterList></ParameterList>\n"
     << "<ParameterList name=\"Boundary Conditions\">\n"
@@ -453,4 +457,24 @@ TEST(MandrelTube, Hex8SliceFBarFollowsTheReferenceFullHex8Locks) {
   EXPECT_GT(full4.ua_res, 3 * fbar4.ua_res);
   EXPECT_GT(full8.ua_res, 3 * fbar8.ua_res);
   EXPECT_GT(full8.p, fbar8.p);
+}
+
+// Linear hardening, H = E/10 = 20 (sigma_y = Y + H alpha): the same comparison on tri6.
+TEST(MandrelTube, Tri6LinearHardening) {
+  const Expansion ref = expand_and_release(neo_hookean_plastic(kE, kNu, kY, 20.0), kA, kB, 2000, kUmax, 100, 20);
+  std::printf("[mandrel tube] reference, H = 20: p_max %.5f, c %.4f, ua residual %.5e, bore hoop residual %.4f\n", ref.p_max,
+              ref.c, ref.ua_residual, ref.hoop_residual);
+  const Errors e4 = compare({4, false, "full", 10, 20.0}, ref);
+  const Errors e8 = compare({8, false, "full", 10, 20.0}, ref);
+  // Measured (nr = 4 / 8): p 1.5e-3 / 2.8e-4, c (fit) 2.2e-3 / 2.2e-4, ua residual 6.8e-4 /
+  // 1.4e-4, hoop stress in the cells 5.1e-3 / 4.1e-3 Y, at the bore 1.3e-3 / 6.3e-3 Y.
+  EXPECT_LT(e4.p, 3e-3);
+  EXPECT_LT(e8.p, 1e-3);
+  EXPECT_LT(e8.c_fit, 1e-3);
+  EXPECT_LT(e4.ua_res, 2e-3);
+  EXPECT_LT(e8.ua_res, 4e-4);
+  EXPECT_LT(e8.hoop_field, 8e-3);
+  EXPECT_LT(e8.hoop_bore, 2e-2);
+  EXPECT_LT(e8.p, e4.p);
+  EXPECT_LT(e8.ua_res, e4.ua_res);
 }
