@@ -16,9 +16,10 @@
 // (P_r dN_i/dR + P_t N_i/R) R dR = f_ext,i, with f_ext,0 = p (a + u(a)) (the pressure times
 // the current bore radius). Solved here by linear elements in R with one Gauss point (the
 // element midpoint: one volume constraint per element, so a nearly incompressible wall
-// does not lock), backward-Euler increments in the load, Newton with a one-sided-difference
-// tridiagonal tangent (the tangent only steers the iteration; convergence is asserted on
-// the residual). Two point laws, with the same interface:
+// does not lock), backward-Euler increments in the load, Newton with a forward-difference
+// tridiagonal tangent, that of the elastic law in the first iteration of a release (the
+// tangent only steers the iteration; convergence is asserted on the residual). Two point
+// laws, with the same interface:
 //  - SmallStrainJ2: linear isotropic elasticity (E, nu), von Mises yield Y + H alpha,
 //    radial return (exact for this law: one step, Delta gamma = f_trial / (3G + H));
 //  - FiniteStrain<Law>: Stentor's multiplicative law itself (neo-Hookean plasticity, the
