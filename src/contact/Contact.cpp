@@ -1150,7 +1150,8 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
   auto uh = u_np1.getLocalViewHost(Tpetra::Access::ReadOnly);
   if (has_master_) update_master_positions(u_np1, master_x_);
   const std::size_t np = pairs_.size();
-  std::vector<double> loc(np * 6 + 3, 0.0), glob(loc.size(), 0.0), mloc(np, 1e300), mglob(np, 0.0);
+  constexpr std::size_t kPer = 7;  // per pair: active, stick, slip, force x y z, normal force
+  std::vector<double> loc(np * kPer + 3, 0.0), glob(loc.size(), 0.0), mloc(np, 1e300), mglob(np, 0.0);
   for (std::size_t i = 0; i < np; ++i) {
     auto& p = pairs_[i];
     if (p.mortar)
@@ -1177,14 +1178,15 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
       for (int c = 0; c < 3; ++c) nd.normal[c] = n[c], nd.rel[c] = rel[c];
       mloc[i] = std::min(mloc[i], d);
       if (nd.state >= contact::Stick) {
-        loc[6 * i] += 1;
-        loc[6 * i + 1] += nd.state == contact::Stick;
-        loc[6 * i + 2] += nd.state == contact::Slip;
-        for (int c = 0; c < 3; ++c) loc[6 * i + 3 + static_cast<std::size_t>(c)] += nd.f[c];
+        loc[kPer * i] += 1;
+        loc[kPer * i + 1] += nd.state == contact::Stick;
+        loc[kPer * i + 2] += nd.state == contact::Slip;
+        for (int c = 0; c < 3; ++c) loc[kPer * i + 3 + static_cast<std::size_t>(c)] += nd.f[c];
         // F = r_p on the slave (and -F at the master's contact point): its work over the
         // step is F . rel (+ F . dw for a moving rigid obstacle, work done by the obstacle's
         // motion). Normal part: contact work; tangential part: -(frictional dissipation).
         const double fn = dot3(nd.f, n);
+        loc[kPer * i + 6] += fn;
         double ft[3], relt[3], dwt[3];
         const double reln = dot3(rel, n), dwn = dot3(ob.dw, n);
         for (int c = 0; c < 3; ++c) {
@@ -1193,12 +1195,12 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
           dwt[c] = p.master ? 0.0 : ob.dw[c] - dwn * n[c];
         }
         const double dun = p.master ? reln : reln + dwn;
-        loc[6 * np] += fn * dun + dot3(ft, dwt);
-        loc[6 * np + 1] += -dot3(ft, relt);
+        loc[kPer * np] += fn * dun + dot3(ft, dwt);
+        loc[kPer * np + 1] += -dot3(ft, relt);
       }
       nd.d_prev = nd.d_n;
       nd.d_n = d;
-      loc[6 * np + 2] += nd.was_active != (nd.state >= contact::Stick);
+      loc[kPer * np + 2] += nd.was_active != (nd.state >= contact::Stick);
       nd.was_active = nd.state >= contact::Stick;
     }
   }
@@ -1208,16 +1210,17 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
   StepStats s;
   for (std::size_t i = 0; i < np; ++i) {
     PairStats ps;
-    ps.active = static_cast<long>(glob[6 * i]);
-    ps.stick = static_cast<long>(glob[6 * i + 1]);
-    ps.slip = static_cast<long>(glob[6 * i + 2]);
-    ps.force = {glob[6 * i + 3], glob[6 * i + 4], glob[6 * i + 5]};
+    ps.active = static_cast<long>(glob[kPer * i]);
+    ps.stick = static_cast<long>(glob[kPer * i + 1]);
+    ps.slip = static_cast<long>(glob[kPer * i + 2]);
+    ps.force = {glob[kPer * i + 3], glob[kPer * i + 4], glob[kPer * i + 5]};
+    ps.normal_force = glob[kPer * i + 6];
     ps.min_gap = mglob[i];
     s.pairs.push_back(ps);
   }
-  s.work = glob[6 * np];
-  s.friction_dissipation = glob[6 * np + 1];
-  s.events = static_cast<long>(glob[6 * np + 2]);
+  s.work = glob[kPer * np];
+  s.friction_dissipation = glob[kPer * np + 1];
+  s.events = static_cast<long>(glob[kPer * np + 2]);
   return s;
 }
 
@@ -1300,6 +1303,7 @@ std::vector<std::string> Contact::history_columns() const {
     c.push_back(b + "stick");
     c.push_back(b + "slip");
     for (int k = 0; k < dim_; ++k) c.push_back(b + "force_" + kAxes[k]);
+    c.push_back(b + "normal_force");
     c.push_back(b + "min_gap");
   }
   return c;
@@ -1312,6 +1316,7 @@ std::vector<double> Contact::history_values(const StepStats& s) const {
     v.push_back(static_cast<double>(ps.stick));
     v.push_back(static_cast<double>(ps.slip));
     for (int k = 0; k < dim_; ++k) v.push_back(ps.force[static_cast<std::size_t>(k)]);
+    v.push_back(ps.normal_force);
     v.push_back(ps.min_gap);
   }
   return v;

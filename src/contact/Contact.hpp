@@ -100,6 +100,7 @@ class Contact {
   struct PairStats {
     long active = 0, stick = 0, slip = 0;
     std::array<double, 3> force{};  // total contact force on the slave body (sum over active nodes)
+    double normal_force = 0.0;      // sum of the active nodes' normal forces n . f (compression > 0): radial for a cylinder
     double min_gap = 0.0;
   };
   struct StepStats {

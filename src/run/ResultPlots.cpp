@@ -31,7 +31,8 @@ void prepend_initial_row(PlotTable& h, const Model& m, const InitialState& init)
   for (std::size_t c = 0; c < h.names.size(); ++c) {
     const std::string& n = h.names[c];
     if (n == "time" || n == "step") row[c] = 0.0;
-    const bool force = n.rfind("reaction_", 0) == 0 || (n.rfind("contact_", 0) == 0 && n.find("_force_") != std::string::npos);
+    const bool force = n.rfind("reaction_", 0) == 0 ||
+                       (n.rfind("contact_", 0) == 0 && (n.find("_force_") != std::string::npos || n.find("_normal_force") != std::string::npos));
     if (force && init.known && init.at_rest_unloaded) row[c] = 0.0;
   }
   for (std::size_t p = 0; init.known && p < m.cfg.output.probes.size() && 3 * p + 2 < init.probes.size(); ++p)
@@ -83,12 +84,13 @@ void history_plots(const Model& m, const PlotTable& h, const std::string& stem, 
       if (h.find(col) >= 0) probes.curves.push_back({col, p.name + ": u_" + kAxes[k], ""});
     }
   if (!probes.curves.empty() && plot_png(h, stem + "_probes.png", probes)) made.push_back(stem + "_probes.png");
-  PlotSpec contact{"Contact force on the slave side of each pair", with_unit("time", u.time), with_unit("contact force", u.force), "time", {}, true};
-  for (const auto& c : m.cfg.contact)
-    for (int k = 0; k < m.dim; ++k) {
-      const std::string col = "contact_" + c.name + "_force_" + kAxes[k];
-      if (h.find(col) >= 0) contact.curves.push_back({col, c.name + ": force " + kAxes[k], ""});
-    }
+  // The normal force of each pair (the sum of its nodes' normal forces: the radial force
+  // against a cylinder or a balloon), not the vector sum, in which opposite walls cancel.
+  PlotSpec contact{"Normal contact force of each pair (compression > 0)", with_unit("time", u.time), with_unit("normal force", u.force), "time", {}, true};
+  for (const auto& c : m.cfg.contact) {
+    const std::string col = "contact_" + c.name + "_normal_force";
+    if (h.find(col) >= 0) contact.curves.push_back({col, c.name, ""});
+  }
   if (m.contact && !contact.curves.empty() && plot_png(h, stem + "_contact.png", contact)) made.push_back(stem + "_contact.png");
 }
 

@@ -6,7 +6,7 @@
 //   <b>_reaction_<set>.png     reaction vs the set's prescribed displacement, for each set
 //                              with a non-zero prescribed value (not for clamps)
 //   <b>_probes.png             probe displacements vs time (Output->Probes)
-//   <b>_contact.png            contact force of each pair vs time (Contact)
+//   <b>_contact.png            normal contact force of each pair vs time (Contact)
 //   <b>_energy.png             dynamics only: every term of the energy balance,
 //                              kinetic, strain, their sum, external and support work,
 //                              viscous and plastic dissipation, contact work, frictional

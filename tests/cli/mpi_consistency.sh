@@ -49,7 +49,7 @@ for run in "$@"; do
       if (name == "strain_energy") return "energy"
       if (name == "plastic_dissipation") return "plastic"
       if (name == "newton_iterations" || name == "linear_iterations") return ""
-      if (name ~ /_force_[xyz]$/) return "contact_force"
+      if (name ~ /_force_[xyz]$/ || name ~ /_normal_force$/) return "contact_force"
       if (name ~ /_min_gap$/) return "gap"
       return "exact"
     }

@@ -66,7 +66,7 @@ has d/dynamic_energy.gp "set xlabel 'time [s]'" "set ylabel 'energy [J/m]'" "tit
   "title 'balance error E - E_0 - (W_ext + W_sup + W_contact - D - D_friction)'"
 has d/dynamic_balance.gp "set ylabel 'balance residual [J/m]'" \
   "title 'E_{n+1} - E_n - (W_ext + W_sup + W_contact - D - D_friction) of the step'"
-has d/dynamic_contact.gp "set ylabel 'contact force [N/m]'" "title 'floor: force x'" "title 'floor: force y'"
+has d/dynamic_contact.gp "set ylabel 'normal force [N/m]'" "title 'floor'" "Normal contact force of each pair (compression > 0)"
 has d/dynamic_probes.gp "set ylabel 'displacement [m]'" "title 'corner: u_y'"
 [ "$(first_row d/dynamic_energy.gp | cut -d' ' -f1)" = "0" ] || fail "the energy plot does not start at t = 0"
 [ "$(first_row d/dynamic_probes.gp | cut -d' ' -f1)" = "0" ] || fail "the probe plot does not start at t = 0"

@@ -77,6 +77,8 @@ TEST(Contact, StaticBlockOnPlane) {
     EXPECT_GT(fy, 0.0);
     EXPECT_NEAR(fy, -reac, 1e-9 * std::abs(reac));
     EXPECT_NEAR(r.history["contact_floor_force_x"][i], -r.history["reaction_press_x"][i], 1e-9 * std::abs(reac));
+    // Frictionless on the plane y = 0 (normal +y): the normal force is the force's y part.
+    EXPECT_NEAR(r.history["contact_floor_normal_force"][i], fy, 1e-12 * std::abs(fy));
     EXPECT_GE(r.history["contact_floor_min_gap"][i], -1e-10);
     EXPECT_EQ(r.history["contact_floor_active"][i], 9.0);  // every bottom node (h = 1/8)
   }
