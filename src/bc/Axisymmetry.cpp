@@ -24,7 +24,15 @@ void check_axisymmetric_deck(const Config& cfg) {
   for (const auto& c : cfg.contact)
     if (!c.master.empty() && c.discretization == "mortar")
       throw InputError(refused(cfg, "'Contact->" + c.name + "->discretization' = mortar"));
-  if (cfg.output.metrics.enabled) throw InputError(refused(cfg, "'Output->Stent Metrics'"));
+  if (cfg.output.metrics.enabled) {
+    // The vessel axis is the axis of revolution: radii are r = x, the circumferential
+    // stress is the hoop stress sigma_thth (docs/axisymmetric.md, Output).
+    const auto& m = cfg.output.metrics;
+    const bool along_y = std::abs(m.axis[0]) < 1e-12 && std::abs(m.axis[2]) < 1e-12;
+    if (!along_y || m.axis_point[0] != 0.0)
+      throw InputError(cfg.deck_path + ": 'Output->Stent Metrics->axis' and 'axis point': in an axisymmetric run the vessel "
+                       "axis is the axis of revolution, the mesh's y axis: expected axis (0, 1, 0) through a point with x = 0");
+  }
   const auto& w = cfg.initial.angular_velocity;
   if (w[0] != 0.0 || w[1] != 0.0 || w[2] != 0.0)
     throw InputError(refused(cfg, "a nonzero 'Initial Conditions->angular velocity' (a rotation of the section is not axisymmetric)"));

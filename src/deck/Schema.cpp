@@ -635,7 +635,10 @@ std::vector<ListSpec> build_schema() {
       "the end of each stage in <basename>_stages.csv and the log. Radii are distances of the current node positions "
       "from the vessel axis (the line through `axis point` along `axis`). With the axis in the model (2D axial section, "
       "3D) the stent's axial extent gives dogboning and foreshortening; with the axis normal to a 2D model (a "
-      "cross-section) the lumen area is that of the `lumen` curve (star-shaped about the axis point).",
+      "cross-section) the lumen area is that of the `lumen` curve (star-shaped about the axis point). In an "
+      "axisymmetric run (`Problem->kinematics`) the vessel axis is the axis of revolution: `axis point` (0, z), `axis` "
+      "(0, 1, 0); radii are the nodes' r = x and the circumferential stress is the hoop stress sigma_thth "
+      "(docs/axisymmetric.md).",
       {arr("axis point", "A point of the vessel axis [m] (one value per dimension).").req().len(2, 3),
        arr("axis", "Direction of the vessel axis (3 values, normalized): in the plane for an axial section, (0, 0, 1) "
                    "for a 2D cross-section.")

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <iomanip>
 
+#include "io/Units.hpp"
+
 namespace stentor {
 
 MetricsReport::MetricsReport(const Model& model)
@@ -70,8 +72,10 @@ void MetricsReport::end_stage(const RunState& s, const std::string& name, std::o
       << 100.0 * recoil << "%)";
   if (metrics_.axial())
     log << ", dogboning " << 100.0 * at(now_, "dogboning") << "%, foreshortening " << 100.0 * at(now_, "foreshortening") << "%";
-  log << std::scientific << std::setprecision(3) << "\n  stage maxima: contact pressure " << pmax << " Pa, wall von Mises "
-      << vm << " Pa, wall hoop stress " << hoop << " Pa; energy: dE " << dE << ", W_ext " << wext << ", W_contact " << wc
+  const UnitLabels u = unit_labels(m_.cfg.problem.units, m_.dim, m_.cfg.problem.axisymmetric());
+  const std::string stress = u.stress.empty() ? "" : " " + u.stress;
+  log << std::scientific << std::setprecision(3) << "\n  stage maxima: contact pressure " << pmax << stress << ", wall von Mises "
+      << vm << stress << ", wall hoop stress " << hoop << stress << "; energy: dE " << dE << ", W_ext " << wext << ", W_contact " << wc
       << (plastic_ ? ", D_visc + D_plastic " : ", D_visc ") << diss << ", D_fric " << fric;
   if (plastic_) log << ", D_plastic " << plast;
   log << "\n"

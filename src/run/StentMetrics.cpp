@@ -15,7 +15,8 @@ double dot(const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] 
 
 }  // namespace
 
-StentMetrics::StentMetrics(const Model& model) : m_(model), c_(model.cfg.output.metrics) {
+StentMetrics::StentMetrics(const Model& model)
+    : m_(model), c_(model.cfg.output.metrics), axisymmetric_(model.cfg.problem.axisymmetric()) {
   const Mesh& mesh = m_.mesh;
   require_group(mesh, c_.stent, true, std::string(kPath) + "stent");
   require_group(mesh, c_.lumen, true, std::string(kPath) + "lumen");
@@ -83,7 +84,8 @@ std::vector<double> StentMetrics::positions(const Group& g, const la::Vector& u)
 }
 
 // Largest von Mises and circumferential (e_t . sigma e_t, e_t = axis x e_r at the cell's
-// reference centroid) Cauchy stress over the artery's cells.
+// reference centroid; in axisymmetry the hoop component sigma_thth) Cauchy stress over the
+// artery's cells.
 void StentMetrics::stresses(const la::Vector& u, double& von_mises, double& hoop) const {
   const Assembler::CellFields cf = m_.assembler->cell_fields(u);
   const Mesh& mesh = m_.mesh;
@@ -106,7 +108,9 @@ void StentMetrics::stresses(const la::Vector& u, double& von_mises, double& hoop
       double et[3] = {a[1] * er[2] - a[2] * er[1], a[2] * er[0] - a[0] * er[2], a[0] * er[1] - a[1] * er[0]};
       const double len = std::sqrt(dot(et, et));
       const double* s = &cf.stress[6 * c];  // xx yy zz xy yz xz
-      if (len > 0.0) {
+      if (axisymmetric_) {
+        loc[1] = std::max(loc[1], s[2]);  // (rr, zz, thth, rz, 0, 0): the hoop stress
+      } else if (len > 0.0) {
         for (double& e : et) e /= len;
         const double st = s[0] * et[0] * et[0] + s[1] * et[1] * et[1] + s[2] * et[2] * et[2] +
                           2.0 * (s[3] * et[0] * et[1] + s[4] * et[1] * et[2] + s[5] * et[0] * et[2]);

@@ -4,7 +4,9 @@
 // contact pressure. Radii are distances of the current node positions from the vessel
 // axis. Every rank computes the same values (the group nodes' displacements are summed
 // over ranks, each node from its owner only; maxima are reduced), so they do not depend
-// on the number of ranks.
+// on the number of ranks. In an axisymmetric run (the axis the axis of revolution, x = 0,
+// checked by check_axisymmetric_deck) the radii are r = x of the section's nodes and the
+// circumferential stress is the hoop stress sigma_thth, the output's third component.
 #pragma once
 #include <string>
 #include <vector>
@@ -38,6 +40,7 @@ class StentMetrics {
 
   const Model& m_;
   const StentMetricsConfig& c_;
+  bool axisymmetric_ = false;  // Problem->kinematics = axisymmetric
   bool axial_ = true;
   Group stent_, lumen_;
   std::vector<int> artery_blocks_;  // Mesh::volumes indices of the artery group

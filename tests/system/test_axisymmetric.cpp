@@ -16,6 +16,9 @@
 //  i. Node-to-segment contact between two bodies: the contact pressure of a stacked pair.
 //  j. Plasticity and fibres in the axisymmetric kernel: global tangents against differences.
 //  k. A spinning cylinder (centrifugal body force field) against linear elasticity.
+//  l. Output->Stent Metrics of a homogeneously expanded tube: radii, recoil, foreshortening
+//     and the hoop stress against the closed form.
+//  m. The scene S4-axi, coarse: the balloon's radius and the thin ring's elastic spring-back.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -780,4 +783,128 @@ TEST(Axisymmetric, SpinningCylinderAgainstLinearElasticity) {
   }
   EXPECT_LT(err[0], 1e-3);
   EXPECT_LT(err[1], 0.5 * err[0]);
+}
+
+// ---------------------------------------------------------------------------------------
+// l. Output->Stent Metrics in axisymmetry: a tube section r in [1.5, 2.25], z in [0, 1]
+// (quad4) driven through the homogeneous state u = f (a r, b z) by Dirichlet sets on its
+// four sides (u_r = f a R on the bore and the mantle, u_z = f b on the top), f = 1 at the
+// end of stage "expand", f2 = 0.9 at the end of stage "recoil". F = diag(1 + a f, 1 + b f,
+// 1 + a f) everywhere, so with the bore as the lumen and the mantle as the "stent":
+// lumen radius 1.5 (1 + a f), stent radius 2.25 (1 + a f) (middle = ends, dogboning 0),
+// stent length 1 + b f (foreshortening -b f), the hoop stress sigma_thth = sigma_rr of the
+// neo-Hookean law (the plane-strain metric would report sigma_zz out of the plane, here the
+// axial stress), von Mises |sigma_rr - sigma_zz|, and the radial recoil of stage 2
+// a (1 - f2) / (1 + a).
+namespace {
+
+std::string stent_metrics_tube_deck(double a, double b, double f2) {
+  const std::string geo = rectangle_geo("metrics_tube.geo", 1.5, 2.25, 0.0, 1.0);
+  std::ostringstream x;
+  x.precision(17);
+  auto load = [&](const std::string& name, const std::string& group, const char* comp, double v) {
+    x << "<ParameterList name=\"" << name << "\"><Parameter name=\"type\" type=\"string\" value=\"Dirichlet\"/>"
+      << "<Parameter name=\"boundary\" type=\"string\" value=\"" << group << "\"/>"
+      << "<Parameter name=\"components\" type=\"string\" value=\"" << comp << "\"/>"
+      << "<Parameter name=\"values\" type=\"Array(double)\" value=\"{" << v << "}\"/></ParameterList>\n";
+  };
+  x << "<ParameterList name=\"stentor\">\n"
+    << "<ParameterList name=\"Problem\"><Parameter name=\"kinematics\" type=\"string\" value=\"axisymmetric\"/></ParameterList>\n"
+    << "<ParameterList name=\"Mesh\"><Parameter name=\"file\" type=\"string\" value=\"" << geo << "\"/>"
+    << "<Parameter name=\"size\" type=\"double\" value=\"0.25\"/><Parameter name=\"recombine\" type=\"bool\" value=\"true\"/></ParameterList>\n"
+    << "<ParameterList name=\"Materials\"><ParameterList name=\"m\"><Parameter name=\"model\" type=\"string\" value=\"neo-Hookean\"/>"
+    << "<Parameter name=\"mu\" type=\"double\" value=\"1\"/><Parameter name=\"lambda\" type=\"double\" value=\"3\"/></ParameterList></ParameterList>\n"
+    << "<ParameterList name=\"Bodies\"><ParameterList name=\"wall\"><Parameter name=\"material\" type=\"string\" value=\"m\"/></ParameterList></ParameterList>\n"
+    << "<ParameterList name=\"Boundary Conditions\">\n";
+  load("bore", "inner", "x", a * 1.5);
+  load("mantle", "outer", "x", a * 2.25);
+  load("bottom", "bottom", "y", 0.0);
+  load("top", "top", "y", b);
+  x << "</ParameterList>\n<ParameterList name=\"Stages\">\n"
+    << "<ParameterList name=\"expand\"><Parameter name=\"duration\" type=\"double\" value=\"1\"/><Parameter name=\"steps\" type=\"int\" value=\"2\"/></ParameterList>\n"
+    << "<ParameterList name=\"recoil\"><Parameter name=\"duration\" type=\"double\" value=\"1\"/><ParameterList name=\"Ramps\">";
+  for (const char* l : {"bore", "mantle", "top"})
+    x << "<ParameterList name=\"" << l << "\"><Parameter name=\"ramp\" type=\"string\" value=\"table\"/>"
+      << "<Parameter name=\"ramp times\" type=\"Array(double)\" value=\"{0, 1}\"/>"
+      << "<Parameter name=\"ramp factors\" type=\"Array(double)\" value=\"{1, " << f2 << "}\"/></ParameterList>";
+  x << "</ParameterList></ParameterList>\n</ParameterList>\n"
+    << "<ParameterList name=\"Newton\"><Parameter name=\"relative residual tolerance\" type=\"double\" value=\"1e-13\"/>"
+    << "<Parameter name=\"absolute residual tolerance\" type=\"double\" value=\"1e-14\"/></ParameterList>\n"
+    << "<ParameterList name=\"Linear Solver\"><Parameter name=\"method\" type=\"string\" value=\"direct\"/></ParameterList>\n"
+    << "<ParameterList name=\"Output\"><Parameter name=\"fields\" type=\"bool\" value=\"false\"/>"
+    << "<Parameter name=\"basename\" type=\"string\" value=\"tube\"/><ParameterList name=\"Stent Metrics\">"
+    << "<Parameter name=\"axis point\" type=\"Array(double)\" value=\"{0, 0}\"/>"
+    << "<Parameter name=\"axis\" type=\"Array(double)\" value=\"{0, 1, 0}\"/>"
+    << "<Parameter name=\"stent\" type=\"string\" value=\"outer\"/><Parameter name=\"lumen\" type=\"string\" value=\"inner\"/>"
+    << "<Parameter name=\"artery\" type=\"string\" value=\"wall\"/></ParameterList></ParameterList>\n</ParameterList>\n";
+  return write_file("metrics_tube.xml", x.str());
+}
+
+}  // namespace
+
+TEST(Axisymmetric, StentMetricsOfAHomogeneouslyExpandedTube) {
+  const double a = 0.2, b = -0.05, f2 = 0.9, mu = 1.0, lambda = 3.0;
+  const Config cfg = read_deck(stent_metrics_tube_deck(a, b, f2));
+  run(cfg, "metrics_tube");
+  const Series s = read_csv(kDir / "metrics_tube" / "tube_metrics.csv");
+  const Series st = read_csv(kDir / "metrics_tube" / "tube_stages.csv");
+  ASSERT_EQ(s.rows(), 4u);  // t = 0, 2 steps of "expand", 1 of "recoil"
+  ASSERT_EQ(st.rows(), 2u);
+  double err = 0.0;
+  auto check = [&](double got, double want) { err = std::max(err, std::abs(got - want) / std::max(1.0, std::abs(want))); };
+  for (std::size_t i = 0; i < s.rows(); ++i) {
+    const double f = i == 0 ? 0.0 : i == 1 ? 0.5 : i == 2 ? 1.0 : f2;
+    const double lr = 1 + a * f, lz = 1 + b * f, J = lr * lr * lz, lnJ = std::log(J);
+    const double s_rr = mu / J * (lr * lr - 1) + lambda * lnJ / J, s_zz = mu / J * (lz * lz - 1) + lambda * lnJ / J;
+    check(s["lumen_radius_mean"][i], 1.5 * lr);
+    check(s["lumen_radius_min"][i], 1.5 * lr);
+    for (const char* c : {"stent_radius_mean", "stent_radius_middle", "stent_radius_ends"}) check(s[c][i], 2.25 * lr);
+    check(s["dogboning"][i], 0.0);
+    check(s["stent_length"][i], lz);
+    check(s["foreshortening"][i], -b * f);
+    check(s["artery_hoop_stress_max"][i], s_rr);
+    check(s["artery_von_mises_max"][i], std::abs(s_rr - s_zz));
+    check(s["contact_pressure_max"][i], 0.0);
+    if (i == 2) std::printf("[axisymmetric] stent metrics at f = 1: lumen radius %.15f (1.5 (1 + a) = %.15f), hoop stress %.15f "
+                            "(closed form %.15f)\n", s["lumen_radius_mean"][i], 1.5 * lr, s["artery_hoop_stress_max"][i], s_rr);
+  }
+  check(st["lumen_gain"][0], a);
+  check(st["lumen_gain"][1], a * f2);
+  check(st["stent_radius_max"][1], 2.25 * (1 + a));
+  check(st["radial_recoil"][0], 0.0);
+  check(st["radial_recoil"][1], a * (1 - f2) / (1 + a));
+  std::printf("[axisymmetric] stent metrics: radial recoil %.15f (a (1 - f2)/(1 + a) = %.15f), largest error over every "
+              "column and row %.1e\n", st["radial_recoil"][1], a * (1 - f2) / (1 + a), err);
+  EXPECT_LT(err, 1e-12);
+}
+
+// ---------------------------------------------------------------------------------------
+// m. The scene S4-axi (inputs/s4_axi.xml) on a coarse section (tests/cli/decks/
+// s4_axi_coarse.geo: 2 wire turns, 209 cells): the rigid balloon (radius 1.25 + 0.35)
+// holds the rings' inner faces at r = 1.6 at the end of inflation (stent radius 1.6, no
+// dogboning), and the radial recoil after deflation is the elastic spring-back of a thin
+// 316L ring that unloads from the yield stress, (Y + H alpha)/E with alpha = ln(r_m/r_m0)
+// the plastic hoop strain of its mid radius (r_m0 = 1.40; r_m = 1.6 + w'/2 with the side
+// w' = w / sqrt(r_m/r_m0) of an isochoric section). The estimate neglects the radial stress
+// (the balloon's pressure, about sigma w / r, 6 % of sigma at the inner face, 3 % on
+// average) and the artery's small residual load: 10 % tolerance.
+TEST(Axisymmetric, S4AxiCoarseRecoilIsTheElasticSpringBack) {
+  Config cfg = read_deck(std::string(STENTOR_SOURCE_DIR) + "/inputs/s4_axi.xml");
+  cfg.mesh.file = std::string(STENTOR_SOURCE_DIR) + "/tests/cli/decks/s4_axi_coarse.geo";
+  cfg.output.fields = false;
+  run(cfg, "s4_axi_coarse");
+  const Series st = read_csv(kDir / "s4_axi_coarse" / "s4_axi_stages.csv");
+  ASSERT_EQ(st.rows(), 3u);  // inflation, deflation, withdrawal
+  const double E = 196000.0, Y = 205.0, H = 694.45, w = 0.1, rm0 = 1.40;
+  double rm = 1.65;
+  for (int k = 0; k < 50; ++k) rm = 1.6 + 0.5 * w / std::sqrt(rm / rm0);
+  const double recoil = (Y + H * std::log(rm / rm0)) / E;
+  std::printf("[axisymmetric] S4-axi coarse: stent radius %.12f after inflation, dogboning %.1e; lumen gain %.4f; "
+              "radial recoil %.5f against the thin-ring spring-back %.5f (r_m %.4f)\n",
+              st["stent_radius_mean"][0], st["dogboning"][0], st["lumen_gain"][1], st["radial_recoil"][1], recoil, rm);
+  EXPECT_NEAR(st["stent_radius_mean"][0], 1.6, 1e-9);
+  EXPECT_NEAR(st["dogboning"][0], 0.0, 1e-9);
+  EXPECT_NEAR(st["radial_recoil"][1], recoil, 0.1 * recoil);
+  EXPECT_NEAR(st["radial_recoil"][2], st["radial_recoil"][1], 1e-3 * recoil);  // the withdrawn balloon touches nothing
+  EXPECT_GT(st["lumen_gain"][1], 0.1);                          // the stent holds the lumen open
 }
