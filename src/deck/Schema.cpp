@@ -311,9 +311,9 @@ std::vector<ListSpec> build_schema() {
            .dflt_doc("none"),
        str("plastic dynamic step", "incremental potential",
            "Stress of the momentum equation in the `gonzalez` dynamic step of `Ciarlet-Geymonat plasticity` and "
-           "`neo-Hookean plasticity` (docs/plasticity.md, Dynamics): `incremental potential`, the discrete "
-           "gradient of the return map's incremental potential (the plastic flow of the step inside the stress, "
-           "plastic dissipation Y dalpha); `lagged`, the discrete gradient of the elastic energy at the plastic "
+           "`neo-Hookean plasticity` (docs/plasticity.md, Dynamics): `incremental potential`, the return-map "
+           "stress at a mean-value point of the step's incremental potential (the plastic flow of the step inside "
+           "the stress, on the yield surface; plastic dissipation Y dalpha); `lagged`, the discrete gradient of the elastic energy at the plastic "
            "state of the step's start (the flow enters the stress one step late, overshooting the yield surface). "
            "Both keep the energy balance exact.")
            .one_of({"incremental potential", "lagged"}),

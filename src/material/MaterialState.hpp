@@ -74,6 +74,7 @@ inline constexpr bool kHasHistory = LawHistorySize<Law>::value > 0;
 //   template <bool WithTangent, class HIn, class HOut>
 //   PointResponse dynamic_update(const Mat3& C_n, const Mat3& C_np1, const HIn& h_n,
 //                                const HOut& h_np1, Ten4& D) const;
+// (Plasticity.hpp adds an optional out-argument, the mean-value point of its step.)
 // S = the stress Sigma of the momentum equation, D = dSigma/dC_np1, and
 // Psi_{n+1} - Psi_n = 1/2 Sigma : (C_np1 - C_n) - dissipation. Without it the kernel takes the
 // discrete gradient of frozen_potential(h_n) (HyperelasticElement.hpp, history_gonzalez).

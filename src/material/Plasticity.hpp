@@ -84,10 +84,11 @@
 // where the elastic-predictor work W(Ce^tr) - W(Ce_n) = 1/2 Sigma : (C_{n+1} - C_n) exactly
 // with Sigma the Gonzalez discrete gradient (DiscreteGradient.hpp) of the frozen-state
 // potential C -> W(G^T C G) (FrozenPlasticPotential below): the lagged dynamic step.
-// The default dynamic step (dynamic_update) takes the discrete gradient of the incremental
-// potential W_inc(C) = Psi(C, return map) + Y dg instead (IncrementalPotential below), whose
-// gradient is the return-map stress: the plastic flow of the step is in the momentum stress,
-// and Dp = Y dg exactly.
+// The default dynamic step (dynamic_update) takes the return-map stress at a mean-value point of
+// the incremental potential W_inc(C) = Psi(C, return map) + Y dg instead (IncrementalPotential
+// below), whose gradient is the return-map stress: the plastic flow of the step is in the
+// momentum stress, which is an admissible stress (on the yield surface where it flows), and
+// Dp = Y dg exactly.
 #pragma once
 #include <cmath>
 
@@ -332,17 +333,23 @@ struct MultiplicativePlasticity {
     return r;
   }
 
-  // Gonzalez (energy-dissipative) dynamic step from C0 = C_n to C1 = C_{n+1} (docs/plasticity.md,
+  // Energy-dissipative dynamic step from C0 = C_n to C1 = C_{n+1} (docs/plasticity.md,
   // "Dynamics"): the state h_{n+1} of the return map at C1, Psi_{n+1} and the step's dissipation,
   // with r.S = Sigma the stress of the momentum equation (P = F_{n+1/2} Sigma) and, WithTangent,
-  // D = dSigma/dC1 (r.CC unset). Sigma is Gonzalez's discrete gradient of the incremental
-  // potential W_inc(C; h_n) (IncrementalPotential below, the default) or, lagged_dynamics, of
-  // the frozen elastic potential W(G^T C G) (FrozenPotential). Both close
+  // D = dSigma/dC1 (r.CC unset). Default: Sigma = S(C0 + s dC), the return-map stress from h_n
+  // at the mean-value point s of the incremental potential W_inc(C; h_n) on the segment
+  // (IncrementalPotential::mean_value_stress); where the segment's three samples C0, Cm, C1 are
+  // elastic (W_inc smooth there), or |dC| < kGonzalezGuard, Gonzalez's discrete gradient of
+  // W_inc (= that of the frozen elastic potential, bit for bit the lagged step's below
+  // |dC| = 1e-3). lagged_dynamics: Gonzalez's discrete gradient of the frozen elastic potential
+  // W(G^T C G) (FrozenPotential). Both close
   //   Psi_{n+1} - Psi_n = 1/2 Sigma : (C1 - C0) - Dp,  Dp >= 0;
   // the incremental one with Dp = Y dg (+ a gap >= 0 that is 0 when h_n is admissible at C0).
+  // mean_point (if given) receives s, or -1 where Gonzalez's form was taken.
   template <bool WithTangent, class HIn, class HOut>
   KOKKOS_INLINE_FUNCTION PointResponse dynamic_update(const Mat3& C0, const Mat3& C1, const HIn& hn,
-                                                      const HOut& h1, Ten4& D) const {
+                                                      const HOut& h1, Ten4& D,
+                                                      double* mean_point = nullptr) const {
     if (lagged_dynamics) {
       PointResponse r = update<false>(C1, hn, h1);
       const FrozenPotential<Elastic> frozen = frozen_potential(hn);
@@ -358,10 +365,15 @@ struct MultiplicativePlasticity {
     IncrementalPotential<Elastic> pot{*this, s0, inverse(s0.Ftr)};
     pot.remember(C1, r, st.dgamma);
     r.dissipation = Y * st.dgamma + pot.start_gap(C0);
-    if constexpr (WithTangent)
-      gonzalez_stress_and_tangent(pot, C0, C1, r.S, D);
-    else
-      r.S = gonzalez_stress(pot, C0, C1);
+    double s = -1.0;  // the mean-value point, -1 where Gonzalez's form is taken
+    if (!(std::sqrt(ddot(C1 - C0, C1 - C0)) >= kGonzalezGuard) || pot.smooth_between(C0, C1) ||
+        !pot.template mean_value_stress<WithTangent>(C0, C1, r.S, D, s)) {
+      if constexpr (WithTangent)
+        gonzalez_stress_and_tangent(pot, C0, C1, r.S, D);
+      else
+        r.S = gonzalez_stress(pot, C0, C1);
+    }
+    if (mean_point) *mean_point = s;
     r.converged = r.converged && pot.converged;
     write_state(st, hn, r.dissipation, h1);
     return r;
@@ -627,6 +639,27 @@ struct MultiplicativePlasticity {
 // smooth W) is taken only where Ce^tr of the three samples C0, Cm, C1 is inside the yield surface;
 // otherwise g is the energy difference itself. `converged` records a failed return map at any
 // sample.
+//
+// Mean-value stress (mean_value_stress; the default step where the segment flows). Gonzalez's
+// Sigma = S(Cm) + 2 g dC/|dC|^2 is an admissible stress plus a correction of O(|dC|^2), which
+// can put it that far outside the yield surface. Instead: w(s) = W_inc(C0 + s dC) is C^1 on
+// [0, 1] with w'(s) = 1/2 S(C0 + s dC):dC, so by the mean-value theorem some s* in (0, 1) has
+//   phi(s*) = 1/2 S(C0 + s* dC):dC - [W_inc(C1) - W_inc(C0)] = 0,
+// and Sigma = S(C0 + s* dC) closes the energy identity exactly while being itself a return-mapped
+// stress from h_n (the state of a point of the step's path): its Mandel stress satisfies the
+// yield condition and the flow rule there, to the return map's tolerance. phi'(s) =
+// 1/4 dC:CC(C0 + s dC):dC (CC the consistent tangent; > 0 where W_inc is strictly convex along
+// the segment, then s* is unique); for a quadratic W_inc, s* = 1/2 and Sigma = S(Cm). The root
+// is found by Newton safeguarded by bisection in a sign-change bracket of phi (phi(0) and
+// phi(1) have opposite signs where w is convex; otherwise phi(1/2) is tried; no bracket:
+// Gonzalez's form instead, never met in the tests), to |phi| <= 1e-15 (|W_inc(C0)| +
+// |W_inc(C1)| + |phi(0)| + |phi(1)|) or a Newton step |phi/phi_s| <= 1e-13 (then the identity
+// holds to 1e-13 phi_s = 1e-13 dC:CC:dC/4, an energy of the step's own increment). Tangent, C0 fixed: phi(s*(C1), C1) = 0 gives
+//   phi_s ds* = -dphi/dC1 : dC1,  dphi/dC1 = 1/2 (S* - S1) + 1/4 s* CC*:dC,
+// (S1 = S(C1) = 2 dW_inc/dC1, major symmetry of CC), so with A = 1/2 CC*:dC = dS/ds and
+// B = 1/2 (S1 - S*) - 1/2 s* A,
+//   D = dSigma/dC1 = 1/2 s* CC* + A (x) B / phi_s,   phi_s = 1/2 A:dC.
+// D has the minor symmetries, not the major one (A (x) B), like Gonzalez's tangent.
 template <class Elastic>
 struct IncrementalPotential {
   using Law = MultiplicativePlasticity<Elastic>;
@@ -696,6 +729,70 @@ struct IncrementalPotential {
   KOKKOS_INLINE_FUNCTION bool smooth_between(const Mat3& C0, const Mat3& C1) const {
     return inside(C0) && inside(0.5 * (C0 + C1)) && inside(C1);
   }
+  // The mean-value stress Sigma = S(C0 + s dC) (docs/plasticity.md, "Dynamics"): s in [0, 1]
+  // the root of phi(s) = 1/2 S(C0 + s dC):dC - [W_inc(C1) - W_inc(C0)], dC = C1 - C0, by Newton
+  // (phi' = 1/4 dC:CC:dC) safeguarded by bisection in a sign-change bracket, started from the
+  // secant of phi(0), phi(1). WithTangent, D = dSigma/dC1 = 1/2 s CC + A (x) B / phi' with
+  // A = 1/2 CC:dC and B = 1/2 (S(C1) - Sigma) - 1/2 s A. False (Sigma, D untouched) where
+  // phi(0), phi(1/2), phi(1) have one sign: no bracket found.
+  template <bool WithTangent>
+  KOKKOS_INLINE_FUNCTION bool mean_value_stress(const Mat3& C0, const Mat3& C1, Mat3& Sigma, Ten4& D,
+                                                double& s_out) const {
+    Mat3 dC;  // symmetric part, so that D is symmetric in KL for any input
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) dC(i, j) = 0.5 * ((C1(i, j) - C0(i, j)) + (C1(j, i) - C0(j, i)));
+    Mat3 S0, S1;
+    double W0, W1;
+    evaluate(C0, S0, W0);
+    evaluate(C1, S1, W1);
+    const double dW = W1 - W0;
+    double lo = 0.0, hi = 1.0;
+    double flo = 0.5 * ddot(S0, dC) - dW, fhi = 0.5 * ddot(S1, dC) - dW;
+    const double tol = 1e-15 * (std::fabs(W0) + std::fabs(W1) + std::fabs(flo) + std::fabs(fhi));
+    double s = flo != fhi ? flo / (flo - fhi) : 0.5;
+    if (flo * fhi > 0.0) s = 0.5;  // no sign change at the ends: try the middle first
+    typename Law::Step st;
+    PointResponse r;
+    double f = 0.0, fs = 0.0;
+    Mat3 A;
+    for (int it = 0; it < kMaxMeanValueIterations; ++it) {
+      r = law.template update_state<true>(C0 + s * dC, s0, st);
+      converged = converged && r.converged;
+      f = 0.5 * ddot(r.S, dC) - dW;
+      for (int i = 0; i < 3; ++i)  // A = 1/2 CC:dC = dS/ds
+        for (int j = 0; j < 3; ++j) {
+          double v = 0.0;
+          for (int k = 0; k < 3; ++k)
+            for (int l = 0; l < 3; ++l) v += r.CC(i, j, k, l) * dC(k, l);
+          A(i, j) = 0.5 * v;
+        }
+      fs = 0.5 * ddot(A, dC);
+      if (std::fabs(f) <= tol || std::fabs(f) <= 1e-13 * fs) break;  // or a Newton step in s below 1e-13
+      if (flo * fhi > 0.0) {  // first evaluation at s = 1/2 without a bracket
+        if (f * flo > 0.0) return false;
+        hi = s, fhi = f;
+      } else if ((f < 0.0) == (flo < 0.0)) {
+        lo = s, flo = f;
+      } else {
+        hi = s, fhi = f;
+      }
+      if (hi - lo <= 4e-16) break;
+      const double sn = s - f / fs;
+      s = sn > lo && sn < hi ? sn : 0.5 * (lo + hi);
+    }
+    s_out = s;
+    Sigma = r.S;
+    if constexpr (WithTangent) {
+      const Mat3 B = 0.5 * (S1 - r.S) - (0.5 * s) * A;
+      const double c = fs != 0.0 ? 1.0 / fs : 0.0;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+          for (int k = 0; k < 3; ++k)
+            for (int l = 0; l < 3; ++l) D(i, j, k, l) = 0.5 * s * r.CC(i, j, k, l) + c * A(i, j) * B(k, l);
+    }
+    return true;
+  }
+  static constexpr int kMaxMeanValueIterations = 60;
   // Psi(C0, h_n) - W_inc(C0) >= 0: 0 when h_n is admissible at C0 (always after a converged step,
   // whose state satisfies the yield condition at C_n); otherwise the algorithmic dissipation of
   // the return map at C0 minus Y dg, >= 0 (Plasticity.hpp header). Call it once.
