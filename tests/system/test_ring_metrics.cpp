@@ -10,9 +10,13 @@
 //  3. a quarter ring and the full ring under the same field (symmetric about x = 0 and
 //     y = 0, varying around the ring and along it): every metric equal to 1e-12 (the
 //     symmetry weights and factors of RingMetrics);
-//  4. two rings with links: the links' diameters and the stent length (2 rings + gap).
+//  4. two rings with links: the links' diameters and the stent length (2 rings + gap);
+//  5. four rings with links: the quarter of the half length and the whole stent under
+//     the same field (mirror-symmetric about the middle plane): every metric, dogboning
+//     included, equal to 1e-12.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -180,4 +184,35 @@ TEST(RingMetrics, TwoRingsWithLinksMeasureTheLinksAndTheWholeLength) {
     EXPECT_NEAR(r.get(v, c), 3.3, 1e-12) << c;
   EXPECT_NEAR(r.get(v, "length [mm]"), r.cfg.mesh.stent.total_length(), 1e-12);
   EXPECT_NEAR(r.get(v, "ring1_length [mm]"), 1.0, 1e-12);
+}
+
+TEST(RingMetrics, QuarterOfTheHalfLengthEqualsTheWholeStent) {
+  const std::string four = R"(
+      <Parameter name="rings" type="int" value="4"/><Parameter name="gap" type="double" value="0.3"/>
+      <Parameter name="links per ring" type="int" value="8"/>)";
+  Rig full(deck("full", four), "four_full"), part(deck("quarter", four + R"(
+      <Parameter name="half length" type="bool" value="true"/>)"), "four_part");
+  const double zc = 0.5 * full.cfg.mesh.stent.total_length();
+  // Symmetric about x = 0, y = 0 and z = zc: the ends expand more than the middle.
+  auto f = [=](double s) {
+    return [=](const double* x, double* u) {
+      const double th = std::atan2(x[1], x[0]), r = std::hypot(x[0], x[1]), d = x[2] - zc;
+      const double ur = s * (0.2 + 0.05 * std::cos(4.0 * th) + 0.04 * d * d);
+      u[0] = ur * x[0] / r, u[1] = ur * x[1] / r, u[2] = -s * 0.05 * d * (1.0 + 0.2 * std::cos(8.0 * th));
+    };
+  };
+  const auto cols = full.rm->columns();
+  ASSERT_EQ(std::count(cols.begin(), cols.end(), "dogboning [-]"), 1);
+  // The part holds rings 0 and 1 of the four: its columns are the whole stent's less
+  // rings 2 and 3.
+  const auto pc = part.rm->columns();
+  for (double s : {0.0, 1.0, 0.6}) {
+    const auto a = full.at(f(s), s), b = part.at(f(s), s);
+    for (std::size_t j = 0; j < pc.size(); ++j) {
+      const auto i = static_cast<std::size_t>(std::find(cols.begin(), cols.end(), pc[j]) - cols.begin());
+      ASSERT_LT(i, cols.size()) << pc[j];
+      EXPECT_NEAR(a[i], b[j], 1e-12 * (1.0 + std::abs(a[i]))) << pc[j] << " at " << s;
+    }
+    EXPECT_GT(full.get(a, "dogboning [-]"), s > 0.0 ? 1e-3 : -1.0);
+  }
 }
