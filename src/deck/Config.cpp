@@ -1637,6 +1637,21 @@ void DeckReader::read_stent_metrics(const ParameterList& sub) {
   require(sub, path, {&ls});
   StentMetricsConfig& m = cfg_.output.metrics;
   m.enabled = true;
+  m.end_fraction = get_double(sub, ls, "end fraction");
+  const char* named[] = {"axis point", "axis", "stent", "lumen", "artery"};
+  if (cfg_.mesh.generator == "stent") {
+    // The generated stent's axis is z through the origin and its groups are the generator's.
+    for (const char* n : named)
+      if (sub.isParameter(n))
+        fail(quoted(path + "->" + n) + ": not with 'Mesh->generator' = stent (the metrics take the generated "
+             "stent's axis, the z axis through the origin, and its groups); remove it");
+    m.axis = {0.0, 0.0, 1.0};
+    return;
+  }
+  for (const char* n : named)
+    if (!sub.isParameter(n))
+      fail("missing required parameter " + quoted(path + "->" + n) + " (required unless 'Mesh->generator' = stent: "
+           "the metrics of a mesh file name the vessel axis and the groups 'stent', 'lumen', 'artery')");
   const auto p = get_array(sub, ls, "axis point");
   check_dim_length(p, path + "->axis point");
   for (std::size_t c = 0; c < p.size(); ++c) m.axis_point[c] = p[c];
@@ -1648,7 +1663,6 @@ void DeckReader::read_stent_metrics(const ParameterList& sub) {
   m.artery = get_string(sub, ls, "artery");
   for (const std::string* g : {&m.stent, &m.lumen, &m.artery})
     if (g->empty()) fail(quoted(path) + ": 'stent', 'lumen' and 'artery' must name physical groups");
-  m.end_fraction = get_double(sub, ls, "end fraction");
 }
 
 // ------------------------------------------------------------------------------------

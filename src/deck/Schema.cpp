@@ -631,32 +631,40 @@ std::vector<ListSpec> build_schema() {
   }
   s.push_back(list(
       "Output/Stent Metrics", "Output->Stent Metrics",
-      "Stent and artery metrics (docs/scenes/README.md, S4) after every accepted step in <basename>_metrics.csv and at "
-      "the end of each stage in <basename>_stages.csv and the log. Radii are distances of the current node positions "
-      "from the vessel axis (the line through `axis point` along `axis`). With the axis in the model (2D axial section, "
-      "3D) the stent's axial extent gives dogboning and foreshortening; with the axis normal to a 2D model (a "
-      "cross-section) the lumen area is that of the `lumen` curve (star-shaped about the axis point). In an "
+      "Stent metrics after every accepted step in <basename>_metrics.csv and at the end of each stage in "
+      "<basename>_stages.csv and the log. Radii are distances of the current node positions from the vessel axis "
+      "(the line through `axis point` along `axis`). A stent in an artery (S4, docs/scenes/README.md) names its "
+      "groups: lumen and stent radii, artery stresses, and with the axis in the model (2D axial section, 3D) "
+      "dogboning and foreshortening from the stent's axial extent; with the axis normal to a 2D model (a "
+      "cross-section) the lumen area is that of the `lumen` curve (star-shaped about the axis point). A generated "
+      "stent (`Mesh->generator` = stent) names nothing: its groups and axis come from the generator and the "
+      "metrics are those of docs/stent.md (\"Stent metrics\"): outer diameters per ring at the crowns and "
+      "overall, at the links, length, foreshortening, radial and longitudinal recoil, dogboning, the largest "
+      "equivalent plastic strain and where, mass and metal-to-artery ratio, and a diameter plot. In an "
       "axisymmetric run (`Problem->kinematics`) the vessel axis is the axis of revolution: `axis point` (0, z), `axis` "
       "(0, 1, 0); radii are the nodes' r = x and the circumferential stress is the hoop stress sigma_thth "
       "(docs/axisymmetric.md).",
-      {arr("axis point", "A point of the vessel axis [m] (one value per dimension).").req().len(2, 3),
+      {arr("axis point", "A point of the vessel axis [m] (one value per dimension).")
+           .len(2, 3)
+           .dflt_doc("required; not with `Mesh->generator` = stent (the z axis through the origin)"),
        arr("axis", "Direction of the vessel axis (3 values, normalized): in the plane for an axial section, (0, 0, 1) "
                    "for a 2D cross-section.")
-           .req()
-           .len(3, 3),
+           .len(3, 3)
+           .dflt_doc("required; not with `Mesh->generator` = stent"),
        str("stent", "", "Boundary group of the stent surface that faces the lumen: its radius is the stent radius.")
-           .req()
-           .allowed("physical group name"),
+           .allowed("physical group name")
+           .dflt_doc("required; not with `Mesh->generator` = stent"),
        str("lumen", "", "Boundary group of the artery's inner surface (axial section: measured over the stent's "
                         "reference axial span).")
-           .req()
-           .allowed("physical group name"),
+           .allowed("physical group name")
+           .dflt_doc("required; not with `Mesh->generator` = stent"),
        str("artery", "", "Volume group (body) of the artery wall: maximum von Mises and circumferential Cauchy "
                          "stress (circumferential direction: axis x radial at the cell's reference centroid).")
-           .req()
-           .allowed("physical group name"),
-       dbl("end fraction", 0.2, "Dogboning: the stent's ends are its nodes within this fraction of its reference "
-                                "length from either end, its middle those within this fraction around the centre.")
+           .allowed("physical group name")
+           .dflt_doc("required; not with `Mesh->generator` = stent"),
+       dbl("end fraction", 0.2, "Dogboning of a stent in an artery: the stent's ends are its nodes within this "
+                                "fraction of its reference length from either end, its middle those within this "
+                                "fraction around the centre (a generated stent compares its end and centre rings).")
            .gt(0.0)
            .le(0.5)}));
   {

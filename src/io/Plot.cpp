@@ -222,7 +222,8 @@ bool run_gnuplot(const fs::path& script, const fs::path& png) {
 // The gnuplot script of `spec`: the plotted columns inline as the datablock $data (x
 // columns first, then the curves' y columns), then the plot command.
 std::string plot_script(const PlotTable& t, const std::string& png_ref, const std::string& script_name,
-                        const PlotSpec& spec, const std::vector<int>& xi, const std::vector<int>& yi) {
+                        const PlotSpec& spec, const std::vector<int>& xi, const std::vector<int>& yi,
+                        const std::vector<PlotMark>& marks) {
   std::vector<int> cols;  // table columns in datablock order
   auto slot = [&](int c) {
     for (std::size_t k = 0; k < cols.size(); ++k)
@@ -271,6 +272,13 @@ std::string plot_script(const PlotTable& t, const std::string& png_ref, const st
   gp << "set key outside below center maxcols " << key_cols << "\n"
      << "set bmargin " << 4 + key_rows << "\n";
   if (spec.x_from_zero) gp << "set xrange [0:*]\n";
+  for (std::size_t k = 0; k < marks.size(); ++k) {
+    char at[32];
+    std::snprintf(at, sizeof at, "%.10g", marks[k].x);
+    gp << "set arrow from " << at << ", graph 0 to " << at << ", graph 1 nohead dashtype 2 lc rgb 'gray40'\n"
+       << "set label " << k + 1 << " " << gp_string(marks[k].label) << " at " << at
+       << ", graph 0.98 right rotate by 90 offset -0.5, 0 textcolor rgb 'gray40'\n";
+  }
   gp << "plot ";
   for (std::size_t k = 0; k < spec.curves.size(); ++k) {
     if (k) gp << ", \\\n     ";
@@ -287,7 +295,7 @@ std::string plot_script(const PlotTable& t, const std::string& png_ref, const st
 
 }  // namespace
 
-bool plot_png(const PlotTable& table, const std::string& png, const PlotSpec& spec) {
+bool plot_png(const PlotTable& table, const std::string& png, const PlotSpec& spec, const std::vector<PlotMark>& marks) {
   try {
     if (spec.curves.empty()) return warn("no curves to plot for " + png);
     if (table.rows() == 0) return warn("no data to plot for " + png);
@@ -313,7 +321,7 @@ bool plot_png(const PlotTable& table, const std::string& png, const PlotSpec& sp
     const std::string png_ref = png_abs.string();
 #endif
     {
-      const bool ok = write_text_file(script.string(), plot_script(table, png_ref, script.filename().string(), spec, xi, yi));
+      const bool ok = write_text_file(script.string(), plot_script(table, png_ref, script.filename().string(), spec, xi, yi, marks));
       check_write(ok, "writing the plot script", script.string());
     }
     std::error_code ec;

@@ -33,6 +33,12 @@ struct PlotSpec {
   bool x_from_zero = false;  // the x axis starts at 0 (a time axis: the initial state)
 };
 
+// A vertical dashed line at x with its label (a stage boundary).
+struct PlotMark {
+  double x;
+  std::string label;
+};
+
 // Plots `spec` from `table` into `png`, with lines. Writes the gnuplot script next to the
 // png (<png without .png>.gp) with the plotted columns inline (a datablock), so
 // `cd dir; gnuplot x.gp` redoes the plot wherever the directory went; the script is
@@ -49,7 +55,9 @@ struct PlotSpec {
 // installed, or gnuplot fails, times out or produces no PNG; the run can go on without
 // plots. Throws only WriteError, when the script itself cannot be written (a full disk:
 // the run stops).
-bool plot_png(const PlotTable& table, const std::string& png, const PlotSpec& spec);
+// `marks`: vertical dashed lines drawn over the plot.
+bool plot_png(const PlotTable& table, const std::string& png, const PlotSpec& spec,
+              const std::vector<PlotMark>& marks = {});
 
 // plot_png of columns `ycols` of the CSV file `csv` against `xcol`, legends the column
 // names, x label `xcol`.

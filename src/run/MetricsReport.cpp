@@ -7,8 +7,15 @@
 
 namespace stentor {
 
-MetricsReport::MetricsReport(const Model& model)
-    : m_(model), metrics_(model), names_(metrics_.columns()), plastic_(model.assembler->has_history()) {}
+MetricsReport::MetricsReport(const Model& model) : m_(model), plastic_(model.assembler && model.assembler->has_history()) {
+  if (model.cfg.mesh.generator == "stent") {
+    rings_ = std::make_unique<RingMetrics>(model);
+    names_ = rings_->columns();
+  } else {
+    vessel_ = std::make_unique<StentMetrics>(model);
+    names_ = vessel_->columns();
+  }
+}
 
 int MetricsReport::col(const std::string& name) const {
   return static_cast<int>(std::find(names_.begin(), names_.end(), name) - names_.begin());
@@ -21,15 +28,17 @@ void MetricsReport::open(const std::string& stem) {
   steps_csv_ = std::make_unique<CsvWriter>(stem + "_metrics.csv", c);
   std::vector<std::string> s = {"stage", "time"};
   s.insert(s.end(), names_.begin(), names_.end());
-  s.insert(s.end(), {"lumen_gain", "stent_radius_max", "radial_recoil", "stage_contact_pressure_max",
-                     "stage_artery_von_mises_max", "stage_artery_hoop_stress_max", "stage_delta_energy",
-                     "stage_external_work", "stage_dissipation", "stage_contact_work", "stage_friction_dissipation"});
+  if (vessel_)
+    s.insert(s.end(), {"lumen_gain", "stent_radius_max", "radial_recoil", "stage_contact_pressure_max",
+                       "stage_artery_von_mises_max", "stage_artery_hoop_stress_max"});
+  s.insert(s.end(), {"stage_delta_energy", "stage_external_work", "stage_dissipation", "stage_contact_work",
+                     "stage_friction_dissipation"});
   if (plastic_) s.push_back("stage_plastic_dissipation");  // also in stage_dissipation
   stages_csv_ = std::make_unique<CsvWriter>(stem + "_stages.csv", s);
 }
 
 void MetricsReport::step(const RunState& s, const la::Vector& u, double E) {
-  now_ = metrics_.evaluate(u);
+  now_ = vessel_ ? vessel_->evaluate(u) : rings_->evaluate(u, s.t);
   E_ = E;
   if (!started_) {
     first_ = now_;
@@ -39,7 +48,7 @@ void MetricsReport::step(const RunState& s, const la::Vector& u, double E) {
     started_ = true;
   }
   for (std::size_t k = 0; k < now_.size(); ++k) stage_max_[k] = std::max(stage_max_[k], now_[k]);
-  stent_r_max_ = std::max(stent_r_max_, now_[static_cast<std::size_t>(col("stent_radius_mean"))]);
+  if (vessel_) stent_r_max_ = std::max(stent_r_max_, now_[static_cast<std::size_t>(col("stent_radius_mean"))]);
   if (!steps_csv_) return;
   std::vector<double> row = {double(s.step), s.t, double(s.stage + 1)};
   row.insert(row.end(), now_.begin(), now_.end());
@@ -49,34 +58,40 @@ void MetricsReport::step(const RunState& s, const la::Vector& u, double E) {
 void MetricsReport::end_stage(const RunState& s, const std::string& name, std::ostream& log) {
   if (!started_) return;
   const auto at = [&](const std::vector<double>& v, const char* c) { return v[static_cast<std::size_t>(col(c))]; };
-  const double lumen0 = at(first_, "lumen_radius_mean"), lumen = at(now_, "lumen_radius_mean");
-  const double gain = lumen0 > 0.0 ? (lumen - lumen0) / lumen0 : 0.0;
-  const double rs = at(now_, "stent_radius_mean");
-  const double recoil = stent_r_max_ > 0.0 ? (stent_r_max_ - rs) / stent_r_max_ : 0.0;
   const EnergyTotals& e = s.energy;
   const double dE = E_ - stage_E0_, wext = e.external + e.support - stage_e0_.external - stage_e0_.support;
   const double diss = e.dissipation - stage_e0_.dissipation, wc = e.contact - stage_e0_.contact;
   const double fric = e.friction - stage_e0_.friction, plast = e.plastic - stage_e0_.plastic;
-  const double pmax = at(stage_max_, "contact_pressure_max"), vm = at(stage_max_, "artery_von_mises_max");
-  const double hoop = at(stage_max_, "artery_hoop_stress_max");
-  if (stages_csv_) {
-    std::vector<double> row = {double(s.stage + 1), s.t};
-    row.insert(row.end(), now_.begin(), now_.end());
-    row.insert(row.end(), {gain, stent_r_max_, recoil, pmax, vm, hoop, dE, wext, diss, wc, fric});
-    if (plastic_) row.push_back(plast);
-    stages_csv_->row(row);
+  std::vector<double> row = {double(s.stage + 1), s.t};
+  row.insert(row.end(), now_.begin(), now_.end());
+  log << "  metrics at the end of '" << name << "'";
+  if (vessel_) {
+    const double lumen0 = at(first_, "lumen_radius_mean"), lumen = at(now_, "lumen_radius_mean");
+    const double gain = lumen0 > 0.0 ? (lumen - lumen0) / lumen0 : 0.0;
+    const double rs = at(now_, "stent_radius_mean");
+    const double recoil = stent_r_max_ > 0.0 ? (stent_r_max_ - rs) / stent_r_max_ : 0.0;
+    const double pmax = at(stage_max_, "contact_pressure_max"), vm = at(stage_max_, "artery_von_mises_max");
+    const double hoop = at(stage_max_, "artery_hoop_stress_max");
+    row.insert(row.end(), {gain, stent_r_max_, recoil, pmax, vm, hoop});
+    log << std::scientific << std::setprecision(4) << ": lumen radius " << lumen << " (gain " << std::fixed
+        << std::setprecision(2) << 100.0 * gain << "%), stent radius " << std::scientific << std::setprecision(4) << rs
+        << " (max " << stent_r_max_ << ", recoil " << std::fixed << std::setprecision(2) << 100.0 * recoil << "%)";
+    if (vessel_->axial())
+      log << ", dogboning " << 100.0 * at(now_, "dogboning") << "%, foreshortening " << 100.0 * at(now_, "foreshortening") << "%";
+    const UnitLabels u = unit_labels(m_.cfg.problem.units, m_.dim, m_.cfg.problem.axisymmetric());
+    const std::string stress = u.stress.empty() ? "" : " " + u.stress;
+    log << std::scientific << std::setprecision(3) << "\n  stage maxima: contact pressure " << pmax << stress << ", wall von Mises "
+        << vm << stress << ", wall hoop stress " << hoop << stress;
+  } else {
+    log << " (t = " << s.t << "):\n";
+    rings_->table(log);
+    log << "  stage";
   }
-  log << std::scientific << std::setprecision(4) << "  metrics at the end of '" << name << "': lumen radius " << lumen
-      << " (gain " << std::fixed << std::setprecision(2) << 100.0 * gain << "%), stent radius " << std::scientific
-      << std::setprecision(4) << rs << " (max " << stent_r_max_ << ", recoil " << std::fixed << std::setprecision(2)
-      << 100.0 * recoil << "%)";
-  if (metrics_.axial())
-    log << ", dogboning " << 100.0 * at(now_, "dogboning") << "%, foreshortening " << 100.0 * at(now_, "foreshortening") << "%";
-  const UnitLabels u = unit_labels(m_.cfg.problem.units, m_.dim, m_.cfg.problem.axisymmetric());
-  const std::string stress = u.stress.empty() ? "" : " " + u.stress;
-  log << std::scientific << std::setprecision(3) << "\n  stage maxima: contact pressure " << pmax << stress << ", wall von Mises "
-      << vm << stress << ", wall hoop stress " << hoop << stress << "; energy: dE " << dE << ", W_ext " << wext << ", W_contact " << wc
-      << (plastic_ ? ", D_visc + D_plastic " : ", D_visc ") << diss << ", D_fric " << fric;
+  row.insert(row.end(), {dE, wext, diss, wc, fric});
+  if (plastic_) row.push_back(plast);
+  if (stages_csv_) stages_csv_->row(row);
+  log << std::scientific << std::setprecision(3) << (vessel_ ? "; energy: dE " : " energy: dE ") << dE << ", W_ext "
+      << wext << ", W_contact " << wc << (plastic_ ? ", D_visc + D_plastic " : ", D_visc ") << diss << ", D_fric " << fric;
   if (plastic_) log << ", D_plastic " << plast;
   log << "\n"
       << std::defaultfloat;
@@ -91,12 +106,18 @@ void MetricsReport::close() {
 }
 
 std::vector<std::string> MetricsReport::radius_columns() const {
+  if (!vessel_) return {};
   std::vector<std::string> c = {"lumen_radius_mean", "lumen_radius_min", "stent_radius_mean"};
-  if (metrics_.axial()) c.insert(c.end(), {"stent_radius_middle", "stent_radius_ends"});
+  if (vessel_->axial()) c.insert(c.end(), {"stent_radius_middle", "stent_radius_ends"});
   return c;
 }
 
+std::vector<std::string> MetricsReport::diameter_columns() const {
+  return rings_ ? rings_->diameter_columns() : std::vector<std::string>{};
+}
+
 std::vector<std::string> MetricsReport::stress_columns() const {
+  if (!vessel_) return {};
   return {"artery_von_mises_max", "artery_hoop_stress_max", "contact_pressure_max"};
 }
 

@@ -2,6 +2,8 @@
 // in <basename>_metrics.csv, one row per stage in <basename>_stages.csv (the metrics at
 // the stage's end, the lumen gain and radial recoil so far, the stage's largest stresses
 // and contact pressure, and its energy terms), and a paragraph in the log per stage.
+// A stent in an artery: StentMetrics; a generated stent: RingMetrics (with its per-ring
+// table in each stage's paragraph).
 #pragma once
 #include <memory>
 #include <ostream>
@@ -10,6 +12,7 @@
 
 #include "io/Csv.hpp"
 #include "run/RunState.hpp"
+#include "run/RingMetrics.hpp"
 #include "run/StentMetrics.hpp"
 
 namespace stentor {
@@ -27,12 +30,14 @@ class MetricsReport {
   // Columns of <stem>_metrics.csv worth a plot: radii; stresses and pressure.
   std::vector<std::string> radius_columns() const;
   std::vector<std::string> stress_columns() const;
+  std::vector<std::string> diameter_columns() const;  // a generated stent's outer diameters
 
  private:
   int col(const std::string& name) const;
 
   const Model& m_;
-  StentMetrics metrics_;
+  std::unique_ptr<StentMetrics> vessel_;  // a stent in an artery (the deck names the groups)
+  std::unique_ptr<RingMetrics> rings_;    // a generated stent
   std::vector<std::string> names_;
   std::unique_ptr<CsvWriter> steps_csv_, stages_csv_;
   std::vector<double> now_, first_;      // the last row's metrics, the t = 0 ones

@@ -12,6 +12,7 @@
 #include "mesh/MeshComm.hpp"
 #include "mesh/MeshPart.hpp"
 #include "mesh/MeshQuery.hpp"
+#include "run/RingMetrics.hpp"
 #include "run/Supports.hpp"
 #include "solver/SolverParams.hpp"
 
@@ -91,7 +92,12 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
       // Boundary groups read whole on every rank: contact surfaces, the stent metrics' groups.
       std::vector<std::string> whole_groups;
       for (const auto& c : cfg.contact) whole_groups.insert(whole_groups.end(), {c.slave, c.master});
-      if (cfg.output.metrics.enabled) whole_groups.insert(whole_groups.end(), {cfg.output.metrics.stent, cfg.output.metrics.lumen});
+      if (cfg.output.metrics.enabled && cfg.mesh.generator == "stent") {
+        const auto g = RingMetrics::whole_groups(cfg);
+        whole_groups.insert(whole_groups.end(), g.begin(), g.end());
+      } else if (cfg.output.metrics.enabled) {
+        whole_groups.insert(whole_groups.end(), {cfg.output.metrics.stent, cfg.output.metrics.lumen});
+      }
       distribute_mesh(mesh, MPI_COMM_WORLD, whole_groups);
       // The largest part's share of the whole mesh (own cells, ghost layer and boundaries).
       std::size_t cells = 0;

@@ -675,7 +675,8 @@ void Reporter::summary(const RunState& s) {
 void Reporter::plots() {
   const std::string stem = staging_->path() + "/" + cfg_.output.basename;
   write_result_plots(m_, stem, initial_, metrics_ ? metrics_->radius_columns() : std::vector<std::string>{},
-                     metrics_ ? metrics_->stress_columns() : std::vector<std::string>{});
+                     metrics_ ? metrics_->stress_columns() : std::vector<std::string>{},
+                     metrics_ ? metrics_->diameter_columns() : std::vector<std::string>{});
 }
 
 void Reporter::finish(bool failed) {

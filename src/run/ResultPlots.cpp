@@ -178,6 +178,30 @@ void metrics_plots(const std::string& stem, const UnitLabels& u, const std::vect
   if (plot_png(t, stem + "_stresses.png", s)) made.push_back(stem + "_stresses.png");
 }
 
+// A generated stent's outer diameters against time, a dashed line where each stage ends.
+void diameter_plot(const Model& m, const std::string& stem, const UnitLabels& u, const std::vector<std::string>& cols,
+                   std::vector<std::string>& made) {
+  PlotTable t;
+  if (cols.empty() || !read_csv_table(stem + "_metrics.csv", t)) return;
+  PlotSpec d{"Stent outer diameters (mean over the nodes; crowns: the crown sections)", with_unit("time", u.time),
+             with_unit("outer diameter", u.length), "time", {}, true};
+  for (const auto& c : cols) {
+    std::string legend = c.substr(0, c.find(" ["));
+    for (char& ch : legend)
+      if (ch == '_') ch = ' ';
+    d.curves.push_back({c, legend, ""});
+  }
+  std::vector<PlotMark> marks;
+  for (std::size_t k = 0; k + 1 < m.cfg.stages.size(); ++k) marks.push_back({m.cfg.stages[k].end, "end of " + m.cfg.stages[k].name});
+  const int dm = t.find(cols.front()), tc = t.find("time");  // the peak: the largest mean diameter
+  if (dm >= 0 && tc >= 0 && t.rows() > 0) {
+    const auto& D = t.columns[static_cast<std::size_t>(dm)];
+    const auto peak = static_cast<std::size_t>(std::max_element(D.begin(), D.end()) - D.begin());
+    marks.push_back({t.columns[static_cast<std::size_t>(tc)][peak], "peak of the expansion"});
+  }
+  if (plot_png(t, stem + "_diameters.png", d, marks)) made.push_back(stem + "_diameters.png");
+}
+
 }  // namespace
 
 bool deck_at_rest_unloaded(const Model& m) {
@@ -203,7 +227,8 @@ bool deck_at_rest_unloaded(const Model& m) {
 
 std::vector<std::string> write_result_plots(const Model& m, const std::string& stem, const InitialState& init,
                                             const std::vector<std::string>& radius_columns,
-                                            const std::vector<std::string>& stress_columns) {
+                                            const std::vector<std::string>& stress_columns,
+                                            const std::vector<std::string>& diameter_columns) {
   std::vector<std::string> made;
   const auto& systems = unit_systems();  // a Config built in code may hold any string
   const bool known = std::find(systems.begin(), systems.end(), m.cfg.problem.units) != systems.end();
@@ -217,6 +242,7 @@ std::vector<std::string> write_result_plots(const Model& m, const std::string& s
   }
   if (m.any_dynamic) energy_plots(m, stem, u, made);
   metrics_plots(stem, u, radius_columns, stress_columns, made);
+  diameter_plot(m, stem, u, diameter_columns, made);
   return made;
 }
 

@@ -13,7 +13,10 @@
 //                              dissipation, and the balance error
 //                              E - E_0 - (W_ext + W_sup + W_contact - D - D_friction)
 //   <b>_balance.png            dynamics only: that balance per step
-//   <b>_radii.png, _stresses.png   Output->Stent Metrics
+//   <b>_radii.png, _stresses.png   Output->Stent Metrics of a stent in an artery
+//   <b>_diameters.png          Output->Stent Metrics of a generated stent: outer diameters
+//                              (stent, each ring and its crowns, the links) vs time, the
+//                              stages' ends and the peak of the expansion marked
 // Time axes start at t = 0. The history CSV begins with the first step; its plots get the
 // initial state as their first point: probes their displacement at t = 0, reactions and
 // contact forces 0 when the initial state is at rest and unloaded (InitialState), else
@@ -40,10 +43,12 @@ struct InitialState {
 bool deck_at_rest_unloaded(const Model& m);
 
 // Rank 0, after the CSV files are closed. `stem`: <folder>/<basename>; `radius_columns`,
-// `stress_columns`: the Stent Metrics columns worth a plot (empty without metrics).
+// `stress_columns`, `diameter_columns`: the Stent Metrics columns worth a plot (empty
+// without them).
 // Returns the names of the PNG files written (no path).
 std::vector<std::string> write_result_plots(const Model& m, const std::string& stem, const InitialState& init,
                                             const std::vector<std::string>& radius_columns,
-                                            const std::vector<std::string>& stress_columns);
+                                            const std::vector<std::string>& stress_columns,
+                                            const std::vector<std::string>& diameter_columns = {});
 
 }  // namespace stentor

@@ -148,7 +148,7 @@ RunState fresh_state(const Model& model) {
 // (finite energy; the initial acceleration with Newmark/HHT) and initial penetrations.
 void check_before_first_step(Model& model, Reporter& reporter, Timers& timers) {
   const Config& cfg = model.cfg;
-  if (cfg.output.metrics.enabled) StentMetrics groups(model);  // throws InputError
+  if (cfg.output.metrics.enabled && cfg.mesh.generator != "stent") StentMetrics groups(model);  // throws InputError
   model.discretise(timers);
   model.check_numeric_range(check_step(cfg));
   Stepper stepper(model, timers, nullptr, nullptr);
