@@ -305,6 +305,7 @@ class DeckReader {
   void read_problem(const ParameterList& pl);
   void read_mesh(const ParameterList& pl);
   void read_stent(const ParameterList& pl);
+  void read_artery(const ParameterList& pl);
   void check_stent_plastic() const;
   void read_materials(const ParameterList& pl);
   void read_elastic_constants(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
@@ -797,14 +798,19 @@ void DeckReader::read_mesh(const ParameterList& pl) {
   if (m.generator.empty() && pl.isParameter("write mesh"))
     fail("'Mesh->write mesh' applies to 'Mesh->generator', not to a mesh file");
   if (pl.isSublist("Stent") && m.generator != "stent") fail("'Mesh->Stent' needs 'Mesh->generator' = stent");
+  if (pl.isSublist("Artery") && m.generator != "artery") fail("'Mesh->Artery' needs 'Mesh->generator' = artery");
   if (pl.isSublist("Parameters") && !m.generator.empty())
     fail("'Mesh->Parameters' sets the parameters of a .geo 'Mesh->file', not of 'Mesh->generator'");
   m.max_cells = get_double(pl, ls, "max cells");
-  if (m.generator == "stent") {
+  if (!m.generator.empty()) {
     for (const char* p : {"size", "order", "recombine", "dimension", "time limit"})
       if (pl.isParameter(p)) fail(quoted(std::string("Mesh->") + p) + " applies to a mesh file, not to 'Mesh->generator'");
-    if (!pl.isSublist("Stent")) fail("missing required sublist 'Mesh->Stent' ('Mesh->generator' = stent)");
-    read_stent(pl.sublist("Stent"));
+    const std::string sub = m.generator == "stent" ? "Stent" : "Artery";
+    if (!pl.isSublist(sub)) fail("missing required sublist 'Mesh->" + sub + "' ('Mesh->generator' = " + m.generator + ")");
+    if (m.generator == "stent")
+      read_stent(pl.sublist("Stent"));
+    else
+      read_artery(pl.sublist("Artery"));
     m.write_mesh = get_bool(pl, ls, "write mesh");
     m.dimension = 3;
     m.file = cfg_.deck_path;  // messages about the mesh name the deck
@@ -856,6 +862,25 @@ void DeckReader::read_stent(const ParameterList& pl) {
   s.sector = lower(get_string(pl, ls, "sector"));
   s.half_length = get_bool(pl, ls, "half length");
   const std::string why = stent_config_error(s);
+  if (!why.empty()) fail(why);
+}
+
+void DeckReader::read_artery(const ParameterList& pl) {
+  const ListSpec& ls = deck_list_spec("Mesh/Artery");
+  check_list(pl, "Mesh->Artery", {&ls});
+  require(pl, "Mesh->Artery", {&ls});
+  ArteryConfig& a = cfg_.mesh.artery;
+  a.inner_diameter = get_double(pl, ls, "inner diameter");
+  a.length = get_double(pl, ls, "length");
+  for (int l = 0; l < 3; ++l) {
+    a.thickness[l] = get_double(pl, ls, std::string(kArteryLayer[l]) + " thickness");
+    a.elements_layer[l] = get_int(pl, ls, std::string("elements through ") + kArteryLayer[l]);
+  }
+  a.elements_around = get_int(pl, ls, "elements around");
+  a.elements_along = get_int(pl, ls, "elements along");
+  a.sector = lower(get_string(pl, ls, "sector"));
+  a.half_length = get_bool(pl, ls, "half length");
+  const std::string why = artery_config_error(a);
   if (!why.empty()) fail(why);
 }
 
@@ -938,13 +963,14 @@ void DeckReader::read_elastic_constants(const ParameterList& sub, const ListSpec
          "; Ciarlet-Geymonat needs D > 0 (nu > 0, and 'C2' below lambda/4 = " + num(0.25 * l.lambda) + ")");
 }
 
-// Holzapfel-Gasser-Ogden: k1, k2, fibre angle required, frame optional; none of them with other models.
+// Holzapfel-Gasser-Ogden: k1, k2, fibre angle required, frame and kappa optional; none of them with other models.
 void DeckReader::read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) {
-  const char* keys[] = {"k1", "k2", "fibre angle", "axis point", "axis"};
+  const char* keys[] = {"k1", "k2", "fibre angle", "axis point", "axis", "kappa"};
   const bool hgo = m.model == "Holzapfel-Gasser-Ogden";
   for (const char* k : keys) {
+    const std::string key(k);
     if (!hgo && sub.isParameter(k)) fail(quoted(path + "->" + k) + " needs 'model' = Holzapfel-Gasser-Ogden");
-    if (hgo && std::string(k) != "axis point" && std::string(k) != "axis" && !sub.isParameter(k)) {
+    if (hgo && key != "axis point" && key != "axis" && key != "kappa" && !sub.isParameter(k)) {
       const ParamSpec& p = spec(ls, k);
       fail("missing required parameter " + quoted(path + "->" + k) + " (double, " + p.allowed_text() +
            ") for model = Holzapfel-Gasser-Ogden: " + p.doc);
@@ -954,6 +980,7 @@ void DeckReader::read_fibres(const ParameterList& sub, const ListSpec& ls, const
   m.k1 = get_double(sub, ls, "k1");
   m.k2 = get_double(sub, ls, "k2");
   m.fibre_angle = get_double(sub, ls, "fibre angle");
+  if (sub.isParameter("kappa")) m.kappa = get_double(sub, ls, "kappa");
   if (sub.isParameter("axis point")) {
     const auto p = get_array(sub, ls, "axis point");
     check_dim_length(p, path + "->axis point");

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "deck/ArteryConfig.hpp"
 #include "deck/StentConfig.hpp"
 
 namespace stentor {
@@ -59,8 +60,9 @@ struct MeshConfig {
   int dimension = 0;       // "Mesh"->"dimension": 2 or 3; 0 = highest dimension found in the mesh
   double max_cells = 5e6;  // "Mesh"->"max cells": refuse to mesh a .geo when the estimate is above
   double time_limit = 600; // "Mesh"->"time limit" [s]: gmsh's process (reading + meshing) is stopped after it
-  std::string generator;   // "Mesh"->"generator": "" (read `file`) or "stent" (generated from `stent`)
+  std::string generator;   // "Mesh"->"generator": "" (read `file`), "stent" (from `stent`) or "artery" (from `artery`)
   StentConfig stent;       // "Mesh"->"Stent" (with generator "stent")
+  ArteryConfig artery;     // "Mesh"->"Artery" (with generator "artery")
   bool write_mesh = false; // "Mesh"->"write mesh": the generated mesh as <basename>_mesh.msh in the output folder
   // "Mesh"->"Parameters": (ONELAB name, value) for the .geo's DefineNumber parameters, in deck order.
   std::vector<std::pair<std::string, double>> parameters;
@@ -75,7 +77,8 @@ struct MaterialConfig {
   double mu = 0, lambda = 0;              // small-strain Lame constants [Pa] of the law (every model)
   // Holzapfel-Gasser-Ogden (material/HolzapfelGasserOgden.hpp): "k1" [Pa], "k2" [-], "fibre angle" beta
   // [deg] to the circumferential direction of the frame through "axis point" along "axis" (unit).
-  double k1 = 0, k2 = 0, fibre_angle = 0;
+  // "kappa": the fibre dispersion of Gasser et al. 2006, in [0, 1/3] (0: aligned fibres).
+  double k1 = 0, k2 = 0, fibre_angle = 0, kappa = 0;
   std::array<double, 3> axis_point{0, 0, 0}, axis{0, 0, 1};
   double density = 0;                     // "density" [kg/m^3], >= 0
   double viscosity = 0;                   // "viscosity" eta (Curnier), >= 0; unused in statics

@@ -123,8 +123,9 @@ std::vector<ListSpec> build_schema() {
            .allowed("existing `.msh` or `.geo` file"),
        str("generator", "none",
            "A mesh generated at run time instead of read from `file`: `stent`, the parametric stent of the `Stent` "
-           "sublist (docs/stent.md); `none`: read `file`.")
-           .one_of({"none", "stent"}),
+           "sublist (docs/stent.md); `artery`, the layered artery of the `Artery` sublist (docs/artery.md); `none`: "
+           "read `file`.")
+           .one_of({"none", "stent", "artery"}),
        boolean("write mesh", false,
                "With `generator`: write the generated mesh into the output folder as `<basename>_mesh.msh` (gmsh "
                "ASCII 2.2 with the physical groups, for gmsh or ParaView)."),
@@ -135,7 +136,7 @@ std::vector<ListSpec> build_schema() {
            .one_of({"0", "2", "3"}),
        dbl("max cells", 5e6,
            "Meshing a `.geo` is refused when the estimated number of cells (bounding box measure / size^dim, "
-           "times the cells per size^dim) is above this, a generated stent when its cell count is; raise it to mesh "
+           "times the cells per size^dim) is above this, a generated stent or artery when its cell count is; raise it to mesh "
            "finer on purpose.")
            .gt(0.0),
        dbl("time limit", 600.0,
@@ -143,7 +144,7 @@ std::vector<ListSpec> build_schema() {
            "them it is stopped and the deck refused (a loop in the `.geo`, a mesh far too fine); raise it for a "
            "slow mesh on purpose.")
            .gt(0.0)});
-    l.sublists = {"Stent", "Parameters"};
+    l.sublists = {"Stent", "Artery", "Parameters"};
     s.push_back(l);
   }
   {
@@ -207,6 +208,31 @@ std::vector<ListSpec> build_schema() {
                "Only the proximal half, z <= total length / 2, cut on the symmetry plane `symmetry_z` (an even "
                "number of rings with `links` = `peak-to-peak`).")}));
 
+  s.push_back(list(
+      "Mesh/Artery", "Mesh->Artery",
+      "The parametric artery of `generator` = `artery` (docs/artery.md): a straight tube along z (0 <= z <= "
+      "`length`, axis the z axis) of three concentric layers, structured hex8 cells. Lengths in the deck's length "
+      "unit. Volume groups `intima`, `media`, `adventitia`; facet groups `lumen`, `outer`, `end_proximal`, "
+      "`end_distal`, `symmetry_x`, `symmetry_y`, `symmetry_z` (reductions).",
+      {dbl("inner diameter", 0.0, "Diameter of the lumen [length].").req().gt(0.0),
+       dbl("length", 0.0, "Axial length of the tube [length].").req().gt(0.0),
+       dbl("intima thickness", 0.0, "Radial thickness of the intima, the innermost layer [length].").req().gt(0.0),
+       dbl("media thickness", 0.0, "Radial thickness of the media, the middle layer [length].").req().gt(0.0),
+       dbl("adventitia thickness", 0.0, "Radial thickness of the adventitia, the outer layer [length].").req().gt(0.0),
+       integer("elements through intima", 1, "Hex8 cells through the intima's thickness.").ge(1).le(100),
+       integer("elements through media", 2, "Hex8 cells through the media's thickness.").ge(1).le(100),
+       integer("elements through adventitia", 1, "Hex8 cells through the adventitia's thickness.").ge(1).le(100),
+       integer("elements around", 32,
+               "Hex8 cells around the whole circumference (divisible by 4 for `sector` = quarter, by 2 for half).")
+           .ge(4)
+           .le(100000),
+       integer("elements along", 8, "Hex8 cells along the whole `length` (even with `half length`).").ge(1).le(100000),
+       str("sector", "full",
+           "`full`: the whole circumference; `half`: 0 <= theta <= 180 deg (y >= 0), cut on `symmetry_y`; "
+           "`quarter`: 0 <= theta <= 90 deg, cut on `symmetry_x` (x = 0) and `symmetry_y` (y = 0).")
+           .one_of({"full", "half", "quarter"}),
+       boolean("half length", false, "Only 0 <= z <= `length` / 2, cut on the symmetry plane `symmetry_z`.")}));
+
   {
     auto l = list("Materials", "Materials", "Material definitions, referred to by `Bodies-><body>->material`.");
     l.named_sublists = "material";
@@ -223,7 +249,8 @@ std::vector<ListSpec> build_schema() {
       "or mu + lambda. Mooney-Rivlin: W = C1 (I1 - 3) + C2 (I2 - 3) - 2 (C1 + 2 C2) ln J + lam/2 (ln J)^2 "
       "with C1 = mu/2 - C2, lam = lambda - 4 C2 from E + nu or mu + lambda and `C2` (default 0). "
       "Holzapfel-Gasser-Ogden (arteries): the neo-Hookean matrix from E + nu or mu + lambda plus two fibre families, "
-      "sum k1/(2 k2) [exp(k2 (I4 - 1)^2) - 1] over I4 = a0.C a0 > 1 (tension only; unmodified invariants), a0 at "
+      "sum k1/(2 k2) [exp(k2 (I4* - 1)^2) - 1] over I4* = kappa I1 + (1 - 3 kappa) a0.C a0 > 1 (tension only; "
+      "unmodified invariants; `kappa` the fibre dispersion, 0 by default), a0 at "
       "+-`fibre angle` to the circumferential direction of the cylindrical frame of `axis point` and `axis`. "
       "Plane strain in 2D. "
       "`Ciarlet-Geymonat plasticity` and `neo-Hookean plasticity` add multiplicative von Mises plasticity "
@@ -256,6 +283,11 @@ std::vector<ListSpec> build_schema() {
            .ge(0.0)
            .le(90.0)
            .dflt_doc("none"),
+       dbl("kappa", 0.0,
+           "Fibre dispersion kappa [-] of `Holzapfel-Gasser-Ogden` (Gasser, Ogden & Holzapfel 2006): the fibre "
+           "invariant is I4* = kappa I1 + (1 - 3 kappa) I4; 0 aligned fibres, 1/3 isotropic (docs/artery.md).")
+           .ge(0.0)
+           .le(1.0 / 3.0),
        arr("axis point",
            "A point of the vessel axis of the fibre frame [m] of `Holzapfel-Gasser-Ogden` (one value per dimension; "
            "the radial direction at X is that of X minus its projection on the axis).")

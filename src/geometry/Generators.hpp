@@ -6,7 +6,7 @@
 
 namespace stentor {
 
-// cfg.generator: "stent" (geometry/StentGenerator.hpp). Throws InputError on bad
+// cfg.generator: "stent" (geometry/StentGenerator.hpp) or "artery" (geometry/ArteryGenerator.hpp). Throws InputError on bad
 // parameters, std::logic_error for an unknown generator.
 Mesh generate_mesh(const MeshConfig& cfg);
 

@@ -1,10 +1,16 @@
 // Holzapfel–Gasser–Ogden law for arterial layers with two fibre families (Holzapfel,
-// Gasser & Ogden, J. Elasticity 61, 2000; no dispersion, kappa = 0 in the 2006 model),
-// compressible, with the anisotropic term in the *unmodified* invariants:
+// Gasser & Ogden, J. Elasticity 61, 2000) and the fibre dispersion kappa of Gasser,
+// Ogden & Holzapfel (J. R. Soc. Interface 3, 2006), compressible, with the anisotropic
+// term in the *unmodified* invariants:
 //
 //   W(C) = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2                (neo-Hookean matrix)
-//        + sum_{f = 4, 6} k1/(2 k2) [exp(k2 (I_f - 1)^2) - 1]  if I_f > 1 (else 0),
-//   I4 = a0·C a0,  I6 = g0·C g0   (a0, g0 unit fibre directions in the reference).
+//        + sum_{f = 4, 6} k1/(2 k2) [exp(k2 (I_f* - 1)^2) - 1]  if I_f* > 1 (else 0),
+//   I4 = a0·C a0,  I6 = g0·C g0   (a0, g0 unit fibre directions in the reference),
+//   I_f* = kappa I1 + (1 - 3 kappa) I_f = H_f : C,   H_f = kappa 1 + (1 - 3 kappa) a0⊗a0,
+// kappa in [0, 1/3]: 0 ideally aligned fibres (the 2000 law, evaluated bit for bit as
+// before: H = A exactly), 1/3 isotropic dispersion (I* = I1/3, the fibres act as an
+// isotropic exponential term). H_f is the structure tensor of a rotationally symmetric
+// fibre distribution about a0 with kappa = (1/4) int rho(theta) sin^3 theta dtheta.
 //
 // Why not the isochoric-volumetric split with the "modified" invariants Ibar4 = J^-2/3 I4
 // of the 2000/2006 papers: with a compressible penalty the split anisotropic term gives
@@ -14,13 +20,17 @@
 // compressible response; this is their recommended form. Nearly incompressible (lambda
 // >> mu) both forms agree to O(mu/lambda).
 //
-// Fibres bear load only in tension (I_f > 1), as in the 2000 paper: at I_f = 1 the
-// energy and the stress are continuous (psi'(1) = 0) and the tangent jumps by 4 k1 A⊗A.
+// A fibre family bears load only when its generalized invariant is in tension, I_f* > 1
+// (the usual switch of the 2006 paper applied to I*, not to I_f: with dispersion some
+// fibres of a family are stretched even when its mean direction is not; the switch is
+// the family's, not the single fibre's). At I_f* = 1 the energy and the stress are
+// continuous (psi'(1) = 0) and the tangent jumps by 4 k1 H⊗H.
 //
-// Derivatives, psi(I) = k1/(2 k2)(exp(k2 (I-1)^2) - 1), A = a0⊗a0 (dI4/dC = A):
+// Derivatives, psi(I) = k1/(2 k2)(exp(k2 (I-1)^2) - 1); I_f* is linear in C with
+// dI_f*/dC = H_f (dI1/dC = 1, dI4/dC = A = a0⊗a0):
 //   psi'(I)  = k1 (I - 1) exp(k2 (I - 1)^2),
 //   psi''(I) = k1 (1 + 2 k2 (I - 1)^2) exp(k2 (I - 1)^2),
-//   S  = S_NH + sum_f 2 psi'(I_f) A_f,      CC = CC_NH + sum_f 4 psi''(I_f) A_f⊗A_f   (I_f > 1).
+//   S  = S_NH + sum_f 2 psi'(I_f*) H_f,     CC = CC_NH + sum_f 4 psi''(I_f*) H_f⊗H_f   (I_f* > 1).
 // Units: mu, lambda, k1 [Pa]; k2 [-].
 //
 // The directions come from a local cylindrical frame (FibreFrame): at a point X, with the
@@ -39,12 +49,26 @@ struct HolzapfelGasserOgden {
   NeoHookean matrix;
   double k1, k2;
   double a0[3], g0[3];
+  double kappa = 0.0;  // dispersion, [0, 1/3]
 
+  // I_f = a·C a (the classical fibre invariant, no dispersion).
   KOKKOS_INLINE_FUNCTION static double invariant(const Mat3& C, const double* a) {
     double s = 0.0;
     for (int i = 0; i < 3; ++i)
       for (int j = 0; j < 3; ++j) s += a[i] * C(i, j) * a[j];
     return s;
+  }
+
+  // I_f* = kappa I1 + (1 - 3 kappa) I_f (= I_f for kappa = 0, bit for bit).
+  KOKKOS_INLINE_FUNCTION double generalized_invariant(const Mat3& C, const double* a) const {
+    if (kappa == 0.0) return invariant(C, a);
+    return kappa * (C(0, 0) + C(1, 1) + C(2, 2)) + (1.0 - 3.0 * kappa) * invariant(C, a);
+  }
+
+  // H_f = kappa 1 + (1 - 3 kappa) a⊗a.
+  KOKKOS_INLINE_FUNCTION void structure(const double* a, Mat3& H) const {
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) H(i, j) = (1.0 - 3.0 * kappa) * a[i] * a[j] + (i == j ? kappa : 0.0);
   }
 
   KOKKOS_INLINE_FUNCTION double fibre_energy(double I) const {
@@ -53,7 +77,7 @@ struct HolzapfelGasserOgden {
   }
 
   KOKKOS_INLINE_FUNCTION double energy(const Mat3& C) const {
-    return matrix.energy(C) + fibre_energy(invariant(C, a0)) + fibre_energy(invariant(C, g0));
+    return matrix.energy(C) + fibre_energy(generalized_invariant(C, a0)) + fibre_energy(generalized_invariant(C, g0));
   }
 
   KOKKOS_INLINE_FUNCTION Mat3 stress(const Mat3& C) const {
@@ -75,26 +99,39 @@ struct HolzapfelGasserOgden {
   }
 
   // True when neither fibre switches between tension and compression on the segment
-  // C0 -> C1 (I_f is linear along it, so the end points decide): the energy is then
+  // C0 -> C1 (I_f* is linear along it, so the end points decide): the energy is then
   // smooth there (DiscreteGradient.hpp uses Simpson's rule for g only then).
   KOKKOS_INLINE_FUNCTION bool smooth_between(const Mat3& C0, const Mat3& C1) const {
-    return ((invariant(C0, a0) > 1.0) == (invariant(C1, a0) > 1.0)) && ((invariant(C0, g0) > 1.0) == (invariant(C1, g0) > 1.0));
+    return ((generalized_invariant(C0, a0) > 1.0) == (generalized_invariant(C1, a0) > 1.0)) &&
+           ((generalized_invariant(C0, g0) > 1.0) == (generalized_invariant(C1, g0) > 1.0));
   }
 
  private:
   KOKKOS_INLINE_FUNCTION void add_fibre(const Mat3& C, const double* a, Mat3& S, Ten4* CC) const {
-    const double x = invariant(C, a) - 1.0;
+    const double x = generalized_invariant(C, a) - 1.0;
     if (!(x > 0.0)) return;
     const double e = std::exp(k2 * x * x);
     const double s = 2.0 * k1 * x * e;                         // 2 psi'
     const double t = 4.0 * k1 * (1.0 + 2.0 * k2 * x * x) * e;  // 4 psi''
+    if (kappa == 0.0) {  // the 2000 law, in its original order of operations
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) S(i, j) += s * a[i] * a[j];
+      if (CC)
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            for (int k = 0; k < 3; ++k)
+              for (int l = 0; l < 3; ++l) (*CC)(i, j, k, l) += t * a[i] * a[j] * a[k] * a[l];
+      return;
+    }
+    Mat3 H;
+    structure(a, H);
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) S(i, j) += s * a[i] * a[j];
+      for (int j = 0; j < 3; ++j) S(i, j) += s * H(i, j);
     if (CC)
       for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
           for (int k = 0; k < 3; ++k)
-            for (int l = 0; l < 3; ++l) (*CC)(i, j, k, l) += t * a[i] * a[j] * a[k] * a[l];
+            for (int l = 0; l < 3; ++l) (*CC)(i, j, k, l) += t * H(i, j) * H(k, l);
   }
 };
 

@@ -39,8 +39,8 @@ constexpr double kPi = 3.14159265358979323846;
 // Adventitia-like parameters (Holzapfel et al. 2000, Table 1: c = 2 mu = 2.7 kPa,
 // k1 = 5.1 kPa, k2 = 15.4, beta = 62.5 deg), nearly incompressible lambda = 500 mu,
 // in kPa; fibre directions from a frame at a point off the axis.
-HolzapfelGasserOgden adventitia(const double* X, double beta_deg = 62.5) {
-  HolzapfelGasserOgden m{NeoHookean{1.35, 675.0}, 5.1, 15.4, {}, {}};
+HolzapfelGasserOgden adventitia(const double* X, double beta_deg = 62.5, double kappa = 0.0) {
+  HolzapfelGasserOgden m{NeoHookean{1.35, 675.0}, 5.1, 15.4, {}, {}, kappa};
   const FibreFrame f{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, beta_deg * kPi / 180.0};
   f.directions(X, m.a0, m.g0);
   return m;
@@ -84,12 +84,13 @@ TEST(HolzapfelGasserOgden, StressAndTangentMatchFiniteDifferences) {
   const double X[3] = {0.8, 0.6, 0.0};
   double worst_s = 0.0, worst_t = 0.0;
   int active = 0;
+  for (double kappa : {0.0, 0.1, 0.226, 1.0 / 3.0})
   for (double beta : {0.0, 40.0, 62.5})
     for (int n = 0; n < 20; ++n) {
-      const HolzapfelGasserOgden m = adventitia(X, beta);
+      const HolzapfelGasserOgden m = adventitia(X, beta, kappa);
       const Mat3 F = random_F(rng, n % 4 == 3);
       const Mat3 C = stentor::tmul(F, F);
-      const double I4 = m.invariant(C, m.a0), I6 = m.invariant(C, m.g0);
+      const double I4 = m.generalized_invariant(C, m.a0), I6 = m.generalized_invariant(C, m.g0);
       // Skip points within the FD step of the kink at I_f = 1 (tangent jump there).
       if (std::fabs(I4 - 1.0) < 1e-4 || std::fabs(I6 - 1.0) < 1e-4) continue;
       active += (I4 > 1.0) + (I6 > 1.0);
@@ -108,8 +109,9 @@ TEST(HolzapfelGasserOgden, StressAndTangentMatchFiniteDifferences) {
       worst_s = std::fmax(worst_s, max_abs(S - Sfd) / (max_abs(S) + 1.0));
       EXPECT_LE(max_abs(S - stentor::transpose(S)), 1e-14 * max_abs(S));
     }
-  std::printf("[hgo] FD (%d active fibres): stress %.1e, tangent %.1e (max relative)\n", active, worst_s, worst_t);
-  EXPECT_GT(active, 20);
+  std::printf("[hgo] FD, kappa in {0, 0.1, 0.226, 1/3} (%d active fibres): stress %.1e, tangent %.1e (max relative)\n",
+              active, worst_s, worst_t);
+  EXPECT_GT(active, 80);
   EXPECT_LE(worst_s, 1e-7);
   EXPECT_LE(worst_t, 1e-6);
 }
@@ -145,15 +147,89 @@ TEST(HolzapfelGasserOgden, UniaxialAlongTheFibresAndCompression) {
   EXPECT_LE(worst, 1e-13);
 }
 
+// Dispersion, closed form: fibres along e1, C = diag(a, b, b): I* = kappa (a + 2 b) +
+// (1 - 3 kappa) a, dI*/dC = diag(1 - 2 kappa, kappa, kappa), so
+//   S_11 = S_11^NH + 2 * 2 psi'(I*) (1 - 2 kappa),  S_22 = S_22^NH + 2 * 2 psi'(I*) kappa
+// (both families identical); kappa = 0 is the 2000 law bit for bit; kappa = 1/3 does not
+// depend on the fibre direction; with dispersion the family switches on with I* > 1, so
+// a compressed mean direction can still carry stress when the lateral stretch is large.
+TEST(HolzapfelGasserOgden, DispersionClosedFormsAndLimits) {
+  const double X[3] = {0.0, 1.0, 0.0};
+  double worst = 0.0;
+  for (double kappa : {0.05, 0.226, 1.0 / 3.0})
+    for (double a : {1.05, 1.2, 0.8})
+      for (double b : {0.9, 1.0, 1.25}) {
+        const HolzapfelGasserOgden m = adventitia(X, 0.0, kappa);
+        const Mat3 C = diag(a, b, b);
+        const double I = kappa * (a + 2.0 * b) + (1.0 - 3.0 * kappa) * a, x = I - 1.0;
+        const double dpsi = x > 0.0 ? m.k1 * x * std::exp(m.k2 * x * x) : 0.0;
+        const Mat3 Snh = m.matrix.stress(C), S = m.stress(C);
+        const double S11 = Snh(0, 0) + 4.0 * dpsi * (1.0 - 2.0 * kappa), S22 = Snh(1, 1) + 4.0 * dpsi * kappa;
+        worst = std::fmax(worst, std::fabs(S(0, 0) - S11) / (std::fabs(S11) + 1.0));
+        worst = std::fmax(worst, std::fabs(S(1, 1) - S22) / (std::fabs(S22) + 1.0));
+        worst = std::fmax(worst, std::fabs(S(2, 2) - S22) / (std::fabs(S22) + 1.0));
+        if (a < 1.0 && b > 1.2 && kappa > 0.2) EXPECT_GT(S(0, 0) - Snh(0, 0), 0.0);  // compressed mean direction, loaded
+      }
+  std::printf("[hgo] dispersion closed form (uniaxial-type C): max relative error %.1e\n", worst);
+  EXPECT_LE(worst, 1e-13);
+
+  // kappa = 0: the same numbers as the law without the dispersion term (bit for bit).
+  std::mt19937 rng(33);
+  const double Y[3] = {0.8, 0.6, 0.1};
+  const HolzapfelGasserOgden k0 = adventitia(Y, 62.5, 0.0);
+  HolzapfelGasserOgden ref = k0;
+  for (int n = 0; n < 20; ++n) {
+    const Mat3 F = random_F(rng, n % 2 == 1), C = stentor::tmul(F, F);
+    Mat3 S, Sr = ref.matrix.stress(C);
+    Ten4 D, Dr;
+    k0.stress_and_tangent(C, S, D);
+    ref.matrix.stress_and_tangent(C, Sr, Dr);
+    for (const double* a : {ref.a0, ref.g0}) {
+      const double x = HolzapfelGasserOgden::invariant(C, a) - 1.0;
+      if (!(x > 0.0)) continue;
+      const double e = std::exp(ref.k2 * x * x), s = 2.0 * ref.k1 * x * e, t = 4.0 * ref.k1 * (1.0 + 2.0 * ref.k2 * x * x) * e;
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+          Sr(i, j) += s * a[i] * a[j];
+          for (int k = 0; k < 3; ++k)
+            for (int l = 0; l < 3; ++l) Dr(i, j, k, l) += t * a[i] * a[j] * a[k] * a[l];
+        }
+    }
+    EXPECT_EQ(max_abs(S - Sr), 0.0);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k)
+          for (int l = 0; l < 3; ++l) EXPECT_EQ(D(i, j, k, l), Dr(i, j, k, l));
+    double W = ref.matrix.energy(C);
+    for (const double* a : {ref.a0, ref.g0}) {
+      const double x = HolzapfelGasserOgden::invariant(C, a) - 1.0;
+      W += x > 0.0 ? ref.k1 / (2.0 * ref.k2) * std::expm1(ref.k2 * x * x) : 0.0;
+    }
+    EXPECT_EQ(k0.energy(C), W);
+  }
+
+  // kappa = 1/3: isotropic, the fibre direction does not matter.
+  const HolzapfelGasserOgden i1 = adventitia(Y, 0.0, 1.0 / 3.0), i2 = adventitia(Y, 62.5, 1.0 / 3.0);
+  for (int n = 0; n < 10; ++n) {
+    const Mat3 F = random_F(rng, false), C = stentor::tmul(F, F);
+    EXPECT_LE(max_abs(i1.stress(C) - i2.stress(C)), 1e-12 * max_abs(i1.stress(C)));
+  }
+}
+
 // ElasticLaw::at places the fibres at a point; the Gonzalez discrete gradient keeps the
 // energy identity for the anisotropic law, including segments on which a fibre switches
 // on (smooth_between false: the direct g at small |dC| too), and its tangent is exact.
-TEST(HolzapfelGasserOgden, GonzalezEnergyIdentityAndDispatch) {
+class HgoGonzalez : public ::testing::TestWithParam<double> {};
+
+TEST_P(HgoGonzalez, EnergyIdentityAndDispatch) {
+  const double kappa = GetParam();
   const FibreFrame f{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, 62.5 * kPi / 180.0};
-  const ElasticLaw base = ElasticLaw::holzapfel_gasser_ogden(HolzapfelGasserOgden{NeoHookean{1.35, 675.0}, 5.1, 15.4, {}, {}}, f);
+  const ElasticLaw base =
+      ElasticLaw::holzapfel_gasser_ogden(HolzapfelGasserOgden{NeoHookean{1.35, 675.0}, 5.1, 15.4, {}, {}, kappa}, f);
   const double X[3] = {0.8, 0.6, 0.1};
   const ElasticLaw law = base.at(X);
-  const HolzapfelGasserOgden ref = adventitia(X);
+  const HolzapfelGasserOgden ref = adventitia(X, 62.5, kappa);
+  EXPECT_EQ(law.hgo.kappa, kappa);
   for (int i = 0; i < 3; ++i) {
     EXPECT_EQ(law.hgo.a0[i], ref.a0[i]);
     EXPECT_EQ(law.hgo.g0[i], ref.g0[i]);
@@ -193,13 +269,14 @@ TEST(HolzapfelGasserOgden, GonzalezEnergyIdentityAndDispatch) {
   double worst_cross = 0.0;
   for (int n = 0; n < 20; ++n) {
     const double eps = (n % 2 ? 1.0 : -1.0) * 1e-4 * (1 + n);
-    // C0 with I4 = 1 + eps exactly along a0, C1 = C0 + dC with I4 on the other side.
+    // C0 with I4* = 1 + eps along a0 (H : a0⊗a0 = 1 - 2 kappa), C1 = C0 + dC with I4* on the other side.
+    const double ha = 1.0 - 2.0 * kappa;
     Mat3 C0 = Mat3::identity();
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) C0(i, j) += eps * law.hgo.a0[i] * law.hgo.a0[j];
+      for (int j = 0; j < 3; ++j) C0(i, j) += eps / ha * law.hgo.a0[i] * law.hgo.a0[j];
     Mat3 dC;
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) dC(i, j) = -2.0 * eps * law.hgo.a0[i] * law.hgo.a0[j] + 1e-4 * (i == j);
+      for (int j = 0; j < 3; ++j) dC(i, j) = -2.0 * eps / ha * law.hgo.a0[i] * law.hgo.a0[j] + 1e-4 * (i == j);
     const Mat3 C1 = C0 + dC;
     ASSERT_FALSE(law.smooth_between(C0, C1));
     const Mat3 Sig = stentor::gonzalez_stress(law, C0, C1);
@@ -207,11 +284,13 @@ TEST(HolzapfelGasserOgden, GonzalezEnergyIdentityAndDispatch) {
     const double scale = std::fabs(W0) + std::fabs(W1) + 0.5 * std::fabs(stentor::ddot(law.stress(0.5 * (C0 + C1)), dC));
     worst_cross = std::fmax(worst_cross, std::fabs(0.5 * stentor::ddot(Sig, dC) - (W1 - W0)) / scale);
   }
-  std::printf("[hgo] Gonzalez energy identity: random pairs max relative %.1e (%d segments switch a fibre), "
+  std::printf("[hgo] kappa %.3f Gonzalez energy identity: random pairs max relative %.1e (%d segments switch a fibre), "
               "small switching segments %.1e; tangent vs FD %.1e\n",
-              worst, crossing, worst_cross, worst_t);
+              kappa, worst, crossing, worst_cross, worst_t);
   EXPECT_GT(crossing, 5);
   EXPECT_LE(worst, 1e-12);
   EXPECT_LE(worst_cross, 1e-10);
   EXPECT_LE(worst_t, 1e-5);
 }
+
+INSTANTIATE_TEST_SUITE_P(Dispersion, HgoGonzalez, ::testing::Values(0.0, 0.1, 0.226));

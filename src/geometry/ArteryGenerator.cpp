@@ -1,0 +1,167 @@
+#include "geometry/ArteryGenerator.hpp"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <vector>
+
+#include "deck/Config.hpp"
+
+namespace stentor {
+namespace {
+
+const double kPi = 3.14159265358979323846;
+
+std::string num(double v) {
+  std::ostringstream os;
+  os.precision(6);
+  os << v;
+  return os.str();
+}
+
+// The structured grid: nt nodes around (periodic for the full tube), nz along, nr through.
+struct Grid {
+  int cells_t, cells_z, cells_r, nt, nz, nr;
+  bool periodic;
+  GId node(int i, int j, int k) const {
+    if (periodic) i %= cells_t;
+    return (static_cast<GId>(j) * nt + i) * nr + k;
+  }
+};
+
+// (cos, sin) of theta = 2 pi i / N, exact on the axes.
+void unit_circle(int i, int N, double& c, double& s) {
+  const int q = 4 * i;
+  if (q == 0 || q == 4 * N) { c = 1.0; s = 0.0; return; }
+  if (q == N) { c = 0.0; s = 1.0; return; }
+  if (q == 2 * N) { c = -1.0; s = 0.0; return; }
+  if (q == 3 * N) { c = 0.0; s = -1.0; return; }
+  const double t = 2.0 * kPi * i / N;
+  c = std::cos(t);
+  s = std::sin(t);
+}
+
+std::vector<double> radii(const ArteryConfig& a) {
+  std::vector<double> r{a.inner_radius()};
+  double r0 = a.inner_radius();
+  for (int l = 0; l < 3; ++l) {
+    const double r1 = a.layer_outer_radius(l);
+    for (int k = 1; k <= a.elements_layer[l]; ++k) r.push_back(k == a.elements_layer[l] ? r1 : r0 + (r1 - r0) * k / a.elements_layer[l]);
+    r0 = r1;
+  }
+  return r;
+}
+
+std::vector<double> nodes(const ArteryConfig& a, const Grid& g) {
+  const std::vector<double> r = radii(a);
+  std::vector<double> x(3 * static_cast<std::size_t>(g.nt) * g.nz * g.nr);
+  for (int j = 0; j < g.nz; ++j)
+    for (int i = 0; i < g.nt; ++i) {
+      double c, s;
+      unit_circle(i, a.elements_around, c, s);
+      const double z = j == g.cells_z ? a.modelled_length() : a.modelled_length() * j / g.cells_z;
+      for (int k = 0; k < g.nr; ++k) {
+        const GId n = g.node(i, j, k);
+        x[3 * n] = r[k] * c;
+        x[3 * n + 1] = r[k] * s;
+        x[3 * n + 2] = z;
+      }
+    }
+  return x;
+}
+
+// Facet nodes of cell (i, j, k), face f of the hex's local faces (zeta-, zeta+, eta-, eta+, xi-, xi+),
+// ordered so that the normal points out of the cell.
+const int kFace[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 4, 7, 3}, {1, 2, 6, 5}};
+
+void hex(const Grid& g, int i, int j, int k, GId* h) {
+  const GId v[8] = {g.node(i, j, k),         g.node(i + 1, j, k),         g.node(i + 1, j + 1, k),
+                    g.node(i, j + 1, k),     g.node(i, j, k + 1),         g.node(i + 1, j, k + 1),
+                    g.node(i + 1, j + 1, k + 1), g.node(i, j + 1, k + 1)};
+  for (int n = 0; n < 8; ++n) h[n] = v[n];
+}
+
+CellBlock quads(const std::string& name, std::vector<GId> conn) {
+  CellBlock b;
+  b.name = name;
+  b.type = CellType::Quad4;
+  b.nodes_per_cell = 4;
+  b.conn = std::move(conn);
+  return b;
+}
+
+void boundaries(const ArteryConfig& a, const Grid& g, Mesh& m) {
+  std::map<std::string, std::vector<GId>> f;
+  auto add = [&](const char* name, int i, int j, int k, int face) {
+    GId h[8];
+    hex(g, i, j, k, h);
+    for (int v = 0; v < 4; ++v) f[name].push_back(h[kFace[face][v]]);
+  };
+  for (int j = 0; j < g.cells_z; ++j)
+    for (int i = 0; i < g.cells_t; ++i) {
+      add("lumen", i, j, 0, 0);
+      add("outer", i, j, g.cells_r - 1, 1);
+    }
+  for (int i = 0; i < g.cells_t; ++i)
+    for (int k = 0; k < g.cells_r; ++k) {
+      add("end_proximal", i, 0, k, 2);
+      add(a.half_length ? "symmetry_z" : "end_distal", i, g.cells_z - 1, k, 3);
+    }
+  if (!g.periodic)
+    for (int j = 0; j < g.cells_z; ++j)
+      for (int k = 0; k < g.cells_r; ++k) {
+        add("symmetry_y", 0, j, k, 4);  // theta = 0
+        add(a.sector == "quarter" ? "symmetry_x" : "symmetry_y", g.cells_t - 1, j, k, 5);  // theta = pi/2 or pi
+      }
+  int tag = 4;
+  GId next_id = 0;
+  for (const char* name : {"lumen", "outer", "end_proximal", "end_distal", "symmetry_x", "symmetry_y", "symmetry_z"}) {
+    auto it = f.find(name);
+    if (it == f.end()) continue;
+    CellBlock b = quads(name, std::move(it->second));
+    b.physical_tag = tag++;
+    for (std::size_t c = 0; c < b.num_cells(); ++c) b.cell_id.push_back(next_id++);
+    m.boundaries.push_back(std::move(b));
+  }
+}
+
+}  // namespace
+
+Mesh generate_artery(const ArteryConfig& a, double max_cells, const std::string& source) {
+  const std::string why = artery_config_error(a);
+  if (!why.empty()) throw InputError(source + ": " + why);
+  if (a.cells() > max_cells)
+    throw InputError(source + ": the artery would have " + num(a.cells()) + " cells, more than 'Mesh->max cells' = " +
+                     num(max_cells) + "; use fewer 'Mesh->Artery->elements around', 'elements along' or elements "
+                     "through the layers, or raise 'Mesh->max cells' to mesh this fine on purpose");
+  const bool periodic = a.sector == "full";
+  const int ct = a.cells_around(), cz = a.cells_along(), cr = a.cells_through();
+  const Grid g{ct, cz, cr, periodic ? ct : ct + 1, cz + 1, cr + 1, periodic};
+  Mesh m;
+  m.dim = 3;
+  m.source = source;
+  m.x = nodes(a, g);
+  GId next_cell = 0;
+  int k0 = 0;
+  for (int l = 0; l < 3; ++l) {
+    CellBlock b;
+    b.name = kArteryLayer[l];
+    b.physical_tag = l + 1;
+    b.type = CellType::Hex8;
+    b.nodes_per_cell = 8;
+    for (int j = 0; j < cz; ++j)
+      for (int i = 0; i < ct; ++i)
+        for (int k = k0; k < k0 + a.elements_layer[l]; ++k) {
+          GId h[8];
+          hex(g, i, j, k, h);
+          b.conn.insert(b.conn.end(), h, h + 8);
+          b.cell_id.push_back(next_cell++);
+        }
+    k0 += a.elements_layer[l];
+    m.volumes.push_back(std::move(b));
+  }
+  boundaries(a, g, m);
+  return m;
+}
+
+}  // namespace stentor
