@@ -2,18 +2,13 @@
 
 #include <sstream>
 
+#include "stentor/format.hpp"
+
 namespace stentor {
 
 const char* const kArteryLayer[3] = {"intima", "media", "adventitia"};
 
 namespace {
-
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
 
 std::string par(const std::string& name) { return "'Mesh->Artery->" + name + "'"; }
 
@@ -26,12 +21,12 @@ double ArteryConfig::layer_outer_radius(int l) const {
 }
 
 std::string artery_config_error(const ArteryConfig& a) {
-  if (!(a.inner_diameter > 0.0)) return par("inner diameter") + " must be > 0, got " + num(a.inner_diameter);
-  if (!(a.length > 0.0)) return par("length") + " must be > 0, got " + num(a.length);
+  if (!(a.inner_diameter > 0.0)) return par("inner diameter") + " must be > 0, got " + format_number(a.inner_diameter);
+  if (!(a.length > 0.0)) return par("length") + " must be > 0, got " + format_number(a.length);
   for (int l = 0; l < 3; ++l) {
     if (!(a.thickness[l] > 0.0))
-      return par(std::string(kArteryLayer[l]) + " thickness") + " must be > 0 (every layer closes around the lumen), got " +
-             num(a.thickness[l]);
+      return par(std::string(kArteryLayer[l]) + " thickness") +
+             " must be > 0 (every layer closes around the lumen), got " + format_number(a.thickness[l]);
     if (a.elements_layer[l] < 1)
       return par(std::string("elements through ") + kArteryLayer[l]) + " must be >= 1, got " +
              std::to_string(a.elements_layer[l]);

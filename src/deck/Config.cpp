@@ -26,6 +26,7 @@
 #include "deck/OutputFields.hpp"
 #include "deck/Schema.hpp"
 #include "material/ElasticConstants.hpp"
+#include "stentor/format.hpp"
 
 namespace stentor {
 
@@ -118,12 +119,7 @@ std::string trim(const std::string& s) {
   const auto e = s.find_last_not_of(" \t\r\n");
   return s.substr(b, e - b + 1);
 }
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(15);
-  os << v;
-  return os.str();
-}
+std::string num(double v) { return format_number(v, 15); }
 std::string join(const std::vector<std::string>& v, const std::string& sep = ", ") {
   std::string out;
   for (std::size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];

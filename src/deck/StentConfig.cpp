@@ -4,17 +4,10 @@
 #include <set>
 #include <sstream>
 
+#include "stentor/format.hpp"
+
 namespace stentor {
 namespace {
-
-const double kPi = 3.14159265358979323846;
-
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
 
 std::string par(const char* name) { return std::string("'Mesh->Stent->") + name + "'"; }
 
@@ -43,27 +36,32 @@ bool links_quarter_symmetric(const StentConfig& s) {
 
 std::string geometry_error(const StentConfig& s) {
   if (!(s.thickness < s.outer_radius()))
-    return par("thickness") + " = " + num(s.thickness) + " must be below the outer radius " + num(s.outer_radius()) +
-           " ('outer diameter' / 2)";
+    return par("thickness") + " = " + format_number(s.thickness) + " must be below the outer radius " +
+           format_number(s.outer_radius()) + " ('outer diameter' / 2)";
   if (!(s.ring_length > s.strut_width))
-    return par("ring length") + " = " + num(s.ring_length) + " must exceed 'strut width' = " + num(s.strut_width) +
+    return par("ring length") + " = " + format_number(s.ring_length) +
+           " must exceed 'strut width' = " + format_number(s.strut_width) +
            " (the crowns' amplitude is (ring length - strut width) / 2)";
   const double lambda = s.pitch();
   if (!(s.strut_width < 0.5 * lambda))
-    return par("strut width") + " = " + num(s.strut_width) + " must be below half the crown pitch, pi (D - t) / crowns / 2 = " +
-           num(0.5 * lambda) + ": neighbouring struts would overlap (fewer crowns or a narrower strut)";
+    return par("strut width") + " = " + format_number(s.strut_width) +
+           " must be below half the crown pitch, pi (D - t) / crowns / 2 = " + format_number(0.5 * lambda) +
+           ": neighbouring struts would overlap (fewer crowns or a narrower strut)";
   if (!(s.crown_radius() > 0.5 * s.strut_width))
-    return par("ring length") + " = " + num(s.ring_length) + ": the crowns' centreline radius lambda^2 / (4 pi^2 a) = " +
-           num(s.crown_radius()) + " (crown pitch lambda = " + num(lambda) + ", amplitude a = " + num(s.amplitude()) +
-           ") must exceed half the strut width, " + num(0.5 * s.strut_width) +
+    return par("ring length") + " = " + format_number(s.ring_length) +
+           ": the crowns' centreline radius lambda^2 / (4 pi^2 a) = " + format_number(s.crown_radius()) +
+           " (crown pitch lambda = " + format_number(lambda) + ", amplitude a = " + format_number(s.amplitude()) +
+           ") must exceed half the strut width, " + format_number(0.5 * s.strut_width) +
            ": the crown would fold onto itself (a shorter ring, fewer crowns or a narrower strut)";
   return "";
 }
 
 std::string link_error(const StentConfig& s) {
   if (s.rings > 1 && !(s.gap > 0.0))
-    return par("gap") + " must be > 0 with more than one ring (the axial distance between neighbouring rings, the "
-                        "links' length), got " + num(s.gap);
+    return par("gap") +
+           " must be > 0 with more than one ring (the axial distance between neighbouring rings, the "
+           "links' length), got " +
+           format_number(s.gap);
   if (s.links_per_ring == 0 || s.rings == 1) return "";
   if (s.links_per_ring > s.crowns || s.crowns % s.links_per_ring)
     return par("links per ring") + " = " + std::to_string(s.links_per_ring) + " must divide 'crowns' = " +
@@ -78,7 +76,7 @@ std::string link_error(const StentConfig& s) {
   // concave side (peak-to-valley) it must clear the crown's two legs.
   const double room = s.links == "peak-to-valley" ? 0.5 * lambda - s.strut_width : 0.5 * lambda;
   if (!(wl < room))
-    return par("link width") + " = " + num(wl) + " must be below " + num(room) +
+    return par("link width") + " = " + format_number(wl) + " must be below " + format_number(room) +
            (s.links == "peak-to-valley" ? " (half the crown pitch less the strut width: the link lands inside a crown)"
                                         : " (half the crown pitch)");
   return "";

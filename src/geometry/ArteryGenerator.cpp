@@ -6,18 +6,10 @@
 #include <vector>
 
 #include "deck/Config.hpp"
+#include "stentor/format.hpp"
 
 namespace stentor {
 namespace {
-
-const double kPi = 3.14159265358979323846;
-
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
 
 // The structured grid: nt nodes around (periodic for the full tube), nz along, nr through.
 struct Grid {
@@ -131,8 +123,9 @@ Mesh generate_artery(const ArteryConfig& a, double max_cells, const std::string&
   const std::string why = artery_config_error(a);
   if (!why.empty()) throw InputError(source + ": " + why);
   if (a.cells() > max_cells)
-    throw InputError(source + ": the artery would have " + num(a.cells()) + " cells, more than 'Mesh->max cells' = " +
-                     num(max_cells) + "; use fewer 'Mesh->Artery->elements around', 'elements along' or elements "
+    throw InputError(source + ": the artery would have " + format_number(a.cells()) +
+                     " cells, more than 'Mesh->max cells' = " + format_number(max_cells) +
+                     "; use fewer 'Mesh->Artery->elements around', 'elements along' or elements "
                      "through the layers, or raise 'Mesh->max cells' to mesh this fine on purpose");
   const bool periodic = a.sector == "full";
   const int ct = a.cells_around(), cz = a.cells_along(), cr = a.cells_through();

@@ -9,18 +9,10 @@
 
 #include "deck/Config.hpp"
 #include "mesh/MeshCheck.hpp"
+#include "stentor/format.hpp"
 
 namespace stentor {
 namespace {
-
-const double kPi = 3.14159265358979323846;
-
-std::string num(double v) {
-  std::ostringstream os;
-  os.precision(6);
-  os << v;
-  return os.str();
-}
 
 // One ring's centreline z = zc + sgn a cos(k u) in the unrolled plane.
 struct Curve {
@@ -103,7 +95,7 @@ RingPlan plan_ring(const Plan& p, int k) {
     const double ua = hh * hp, ub = ua + hp;
     const double da = off[hh], db = off[(hh + 1) % n_half];
     if (da + db >= hp)
-      throw InputError("'Mesh->Stent->link width' = " + num(s.link_w()) +
+      throw InputError("'Mesh->Stent->link width' = " + format_number(s.link_w()) +
                        ": two links' edges meet on one strut between neighbouring crowns (a narrower link)");
     // Pieces [ua, ua + da], [.., ub - db], [ub - db, ub], with the link pieces' counts fixed.
     std::vector<std::pair<double, int>> pieces;  // (end, cells)
@@ -347,8 +339,9 @@ Mesh generate_stent(const StentConfig& s, double max_cells, const std::string& s
   Plan p = make_plan(s);
   const double estimate = full_cell_count(s, p) * reduction_fraction(s);
   if (estimate > max_cells)
-    throw InputError(source + ": the stent would have about " + num(estimate) + " cells, more than 'Mesh->max cells' = " +
-                     num(max_cells) + "; use a larger 'Mesh->Stent->element length' or fewer elements through the "
+    throw InputError(source + ": the stent would have about " + format_number(estimate) +
+                     " cells, more than 'Mesh->max cells' = " + format_number(max_cells) +
+                     "; use a larger 'Mesh->Stent->element length' or fewer elements through the "
                      "width or thickness, or raise 'Mesh->max cells' to mesh this fine on purpose");
   for (int k = 0; k < s.rings; ++k) p.rings.push_back(plan_ring(p, k));
   const Raw raw = Builder(p).build();
@@ -374,8 +367,10 @@ Mesh generate_stent(const StentConfig& s, double max_cells, const std::string& s
   classify_faces(s, raw, kept, m);
   const std::size_t bad = count_inverted_cells(m);
   if (bad)
-    throw InputError(source + ": " + std::to_string(bad) + " cells of the stent came out inverted: the links ('link "
-                     "width' = " + num(s.link_w()) + ", 'Mesh->Stent->links' = " + s.links +
+    throw InputError(source + ": " + std::to_string(bad) +
+                     " cells of the stent came out inverted: the links ('link "
+                     "width' = " +
+                     format_number(s.link_w()) + ", 'Mesh->Stent->links' = " + s.links +
                      ") do not fit the crowns they join; use a narrower 'Mesh->Stent->link width'");
   return m;
 }

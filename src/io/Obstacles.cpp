@@ -4,12 +4,13 @@
 #include <stdexcept>
 #include <utility>
 
+#include "stentor/format.hpp"
+
 namespace stentor {
 
 namespace {
 
 using V3 = std::array<double, 3>;
-constexpr double kPi = 3.14159265358979323846;
 constexpr int kAround = 64;  // segments of a full turn
 
 V3 add(const V3& a, const V3& b, double s = 1.0) { return {a[0] + s * b[0], a[1] + s * b[1], a[2] + s * b[2]}; }

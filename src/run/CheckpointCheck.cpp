@@ -9,6 +9,7 @@
 #include "contact/MasterSurface.hpp"
 #include "contact/NodeLaw.hpp"
 #include "run/Model.hpp"
+#include "stentor/format.hpp"
 
 namespace stentor {
 
@@ -51,12 +52,7 @@ std::vector<Rule> scalar_rules(const Model& m) {
   };
 }
 
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(10);
-  s << v;
-  return s.str();
-}
+std::string num(double v) { return format_number(v, 10); }
 
 std::string check_scalars(const Model& m, const CheckpointData& d, const std::string& path) {
   for (const Rule& r : scalar_rules(m)) {

@@ -8,12 +8,11 @@
 
 #include "io/Units.hpp"
 #include "mesh/MeshQuery.hpp"
+#include "stentor/format.hpp"
 
 namespace stentor {
 
 namespace {
-
-const double kPi = 3.14159265358979323846;
 
 // The model's rings: a half length keeps the first half of them.
 int model_rings(const StentConfig& s) { return s.half_length ? s.rings / 2 : s.rings; }
