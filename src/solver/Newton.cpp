@@ -57,12 +57,15 @@ class Forcing {
   double rn_prev_ = 0.0, eta_prev_ = 0.0;
 };
 
+constexpr double kCreep = 0.125;  // a step damped to this or less counts as creeping
+
 struct Trial {
   bool accepted = false;
   bool admissible_seen = false;
   bool full_unsettled = false;  // the full step changed the active set
   bool has_tangent = false;     // the last evaluate() (at the accepted point) assembled the tangent
   bool settled = true;          // sys.settled() right after the accepted point's evaluate()
+  bool relaxed = false;         // accepted without the decrease test because Newton was creeping
   double alpha = 1.0;
   double rn = 0.0;
 };
@@ -74,10 +77,18 @@ struct Trial {
 // between the trials. After `line_search_watchdog` such damped iterations in a row
 // (`damped_unsettled`), a full step that changes the set is taken unconditionally
 // (non-monotone watchdog); if it leads nowhere, the iteration limit cuts the step back.
+// The same holds after `line_search_watchdog` iterations in a row damped to alpha <= 1/8
+// (`damped_creeping`), set change or not, when `relax` allows it: the residual along a
+// Newton direction can carry a second-order term far above the first-order decrease (a
+// floating body's large rotation predicted linearly: |r(alpha)| ~ |(1 - alpha) r0 +
+// alpha^2 q| with |q| ~ 20 |r0| on the free struts of S4), so backtracking keeps
+// alpha ~ 1/32 and Newton creeps for the rest of the step, where the full step lands in
+// the quadratic basin. That step is `relaxed`: newton_solve keeps the point before it and
+// returns there if it leads nowhere (Watch).
 // The full step is evaluated with the tangent; halved trials are residual-only where the
 // system allows it.
-Trial line_search(NewtonSystem& sys, const la::Vector& u, const la::Vector& du, double rn, int damped_unsettled,
-                  const NewtonConfig& cfg, la::Vector& u_trial, la::Vector& r_trial) {
+Trial line_search(NewtonSystem& sys, const la::Vector& u, const la::Vector& du, double rn, int damped_unsettled, int damped_creeping,
+                  bool relax, const NewtonConfig& cfg, la::Vector& u_trial, la::Vector& r_trial) {
   Trial t;
   const int max_halvings = cfg.line_search ? cfg.line_search_max : 0;
   const bool cheap_trials = !sys.residual_needs_tangent();
@@ -90,10 +101,13 @@ Trial line_search(NewtonSystem& sys, const la::Vector& u, const la::Vector& du, 
       t.rn = r_trial.norm2();
       t.settled = sys.settled();
       if (ls == 0) t.full_unsettled = !t.settled;
-      const bool force = ls == 0 && t.full_unsettled && cfg.line_search_watchdog > 0 &&
-                         damped_unsettled >= cfg.line_search_watchdog;
-      if (std::isfinite(t.rn) && (force || !cfg.line_search || t.rn <= (1.0 - 1e-4 * t.alpha) * rn)) {
+      const bool decrease = t.rn <= (1.0 - 1e-4 * t.alpha) * rn;
+      const bool watchdog = ls == 0 && cfg.line_search_watchdog > 0;
+      const bool unsettled_force = watchdog && t.full_unsettled && damped_unsettled >= cfg.line_search_watchdog;
+      const bool creep_force = watchdog && relax && damped_creeping >= cfg.line_search_watchdog;
+      if (std::isfinite(t.rn) && (unsettled_force || creep_force || !cfg.line_search || decrease)) {
         t.accepted = true;
+        t.relaxed = creep_force && !unsettled_force && !decrease && cfg.line_search;
         t.has_tangent = with_tangent;
         return t;
       }
@@ -112,6 +126,28 @@ double limit_increment(la::Vector& du, double limit) {
   du.scale(limit / largest);
   return limit / largest;
 }
+
+// Chamberlain's watchdog for a relaxed step (line_search): the point before it is kept;
+// unless |r| falls below the kept point's within kWatchIterations iterations (or a trial
+// fails on the way), Newton returns there and takes the damped step of the line search,
+// and the relaxation is spent for the rest of the solve. So a relaxed step can cost
+// iterations but never lose the monotone path.
+constexpr int kWatchIterations = 3;
+
+struct Watch {
+  explicit Watch(const la::RCP<const la::Map>& map) : u(map), du(map) {}
+  bool armed = false, spent = false;
+  int left = 0;
+  double rn = 0.0;
+  la::Vector u, du;
+  void keep(const la::Vector& u0, const la::Vector& du0, double rn0) {
+    u.update(1.0, u0, 0.0);
+    du.update(1.0, du0, 0.0);
+    rn = rn0;
+    left = kWatchIterations;
+    armed = true;
+  }
+};
 
 void log_iteration(std::ostream& log, int it, double rn, double step, double alpha, const LinearSolver::Result& lr, double eta,
                    double scaled) {
@@ -140,126 +176,220 @@ bool linear_solve(LinearSolver& lin, const la::RCP<la::CrsMatrix>& K, const la::
   }
 }
 
-NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, const NewtonConfig& cfg, std::ostream* log,
-                          double first_ratio_hint) {
-  NewtonResult res;
-  la::Vector r(u.getMap()), du(u.getMap()), u_trial(u.getMap()), r_trial(u.getMap());
-  if (!sys.evaluate(u, r, true)) {
-    res.failure = "inverted elements at the start of the step";
-    res.inadmissible = true;
-    return res;
-  }
-  double rn = r.norm2();
-  res.residual0 = rn;
-  res.residual = rn;
-  const double ref = std::max(rn, sys.force_scale());
-  const double target = std::max(cfg.residual_tolerance * ref, cfg.absolute_tolerance);
-  // A non-finite residual or force scale makes the target inf (or NaN): never converged.
-  if (!std::isfinite(rn) || !std::isfinite(ref)) {
+namespace {
+
+// One iteration's update: the accepted trial and what the log prints about it.
+struct Update {
+  Trial t;
+  LinearSolver::Result lr;
+  double eta = 0.0, du_full = 0.0, scaled = 1.0;  // forcing term, |du| before damping, step-length factor
+};
+
+// The state of one newton_solve: the iterate and its residual, the line-search watchdogs'
+// counters, and the point kept before a relaxed step (Watch).
+class Solve {
+ public:
+  Solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, const NewtonConfig& cfg, std::ostream* log, double hint)
+      : sys_(sys), u_(u), lin_(lin), cfg_(cfg), log_(log), hint_(hint), r_(u.getMap()), du_(u.getMap()),
+        u_trial_(u.getMap()), r_trial_(u.getMap()), watch_(u.getMap()) {}
+
+  NewtonResult run() {
+    if (!start()) return res_;
+    Forcing forcing(cfg_, lin_.tolerance(), hint_);
+    for (int it = 1; it <= cfg_.max_iterations; ++it) {
+      Update up;
+      const bool back = watch_.armed && watch_.left == 0;
+      if (!(back ? back_to_kept_point(up) : newton_step(up, forcing))) return res_;
+      count_damping(up.t);
+      if (!up.t.accepted && watch_.armed) {  // a trial failed after a relaxed step: go back
+        watch_.left = 0;
+        continue;
+      }
+      if (!up.t.accepted && !full_step_anyway(up.t)) return res_;
+      const int state = accept(it, up);
+      if (state < 0) return res_;
+      if (state > 0) continue;
+      // A residual-only trial was accepted: the next iteration needs the tangent there (the
+      // same state, so the same residual).
+      if (!up.t.has_tangent && !sys_.evaluate(u_, r_, true)) {
+        fail("the accepted line-search point became inadmissible", true);
+        return res_;
+      }
+    }
     std::ostringstream os;
-    os << "the residual (" << rn << ") or the load scale (" << sys.force_scale()
-       << ") is not finite at the start of the step (loads or state too large?)";
-    res.failure = os.str();
-    return res;
+    os << "no convergence in " << cfg_.max_iterations << " iterations (|r| " << std::scientific << std::setprecision(3) << rn_
+       << ", target " << target_ << ")";
+    res_.failure = os.str();
+    return res_;
   }
-  if (rn <= target && sys.settled()) {  // nothing is held before the first solve
-    res.converged = true;
-    return res;
+
+ private:
+  // Records why the solve failed; false, for the callers' returns.
+  bool fail(const std::string& why, bool inadmissible) {
+    res_.failure = why;
+    res_.inadmissible = inadmissible;
+    return false;
   }
-  Forcing forcing(cfg, lin.tolerance(), first_ratio_hint);
-  int damped_unsettled = 0;  // consecutive iterations whose full step changed the active set and was damped
-  bool settled = sys.settled();  // at the point whose tangent the next solve uses
-  for (int it = 1; it <= cfg.max_iterations; ++it) {
-    LinearSolver::Result lr;
-    const double eta = forcing.next(rn, target);
+
+  // The residual at the first guess and the target; false when nothing is left to do
+  // (converged already, or a failure recorded in res_).
+  bool start() {
+    if (!sys_.evaluate(u_, r_, true)) return fail("inverted elements at the start of the step", true);
+    rn_ = r_.norm2();
+    res_.residual0 = rn_;
+    res_.residual = rn_;
+    ref_ = std::max(rn_, sys_.force_scale());
+    target_ = std::max(cfg_.residual_tolerance * ref_, cfg_.absolute_tolerance);
+    // A non-finite residual or force scale makes the target inf (or NaN): never converged.
+    if (!std::isfinite(rn_) || !std::isfinite(ref_)) {
+      std::ostringstream os;
+      os << "the residual (" << rn_ << ") or the load scale (" << sys_.force_scale()
+         << ") is not finite at the start of the step (loads or state too large?)";
+      res_.failure = os.str();
+      return false;
+    }
+    settled_ = sys_.settled();
+    if (rn_ <= target_ && settled_) {  // nothing is held before the first solve
+      res_.converged = true;
+      return false;
+    }
+    return true;
+  }
+
+  // Newton's correction from the tangent at u and its line search; false: failed.
+  bool newton_step(Update& up, Forcing& forcing) {
+    up.eta = forcing.next(rn_, target_);
     // A tangent whose discrete part changed (contact rows of nodes that entered, left or
     // changed stick/slip) gets a preconditioner built for it: one kept from the old rows
     // loses more than a build is worth there (docs/performance.md, "Rebuilding a stale
     // preconditioner").
-    if (!settled) lin.tangent_changed();
-    r.scale(-1.0);
-    if (!linear_solve(lin, sys.matrix(), r, du, eta, lr, res.failure)) return res;
-    r.scale(-1.0);
-    res.linear_iterations += lr.iterations;
-    if (!std::isfinite(du.norm2())) {
-      res.failure = "linear solve produced a non-finite increment";
-      return res;
-    }
-    const double du_full = du.norm2();  // Newton's correction, before damping
-    const double scaled = limit_increment(du, cfg.max_increment);
-    sys.linearised_step(du);
-    Trial t = line_search(sys, u, du, rn, damped_unsettled, cfg, u_trial, r_trial);
-    if (t.accepted && t.alpha < 1.0 && t.full_unsettled) ++damped_unsettled;
-    else damped_unsettled = 0;
-    if (!t.accepted) {
-      if (!t.admissible_seen) {
-        res.failure = "every line-search trial inverted elements";
-        res.inadmissible = true;
-        return res;
+    if (!settled_) lin_.tangent_changed();
+    r_.scale(-1.0);
+    if (!linear_solve(lin_, sys_.matrix(), r_, du_, up.eta, up.lr, res_.failure)) return false;
+    r_.scale(-1.0);
+    res_.linear_iterations += up.lr.iterations;
+    if (!std::isfinite(du_.norm2())) return fail("linear solve produced a non-finite increment", false);
+    up.du_full = du_.norm2();  // Newton's correction, before damping
+    up.scaled = limit_increment(du_, cfg_.max_increment);
+    sys_.linearised_step(du_);
+    const bool relax = !watch_.armed && !watch_.spent;
+    up.t = line_search(sys_, u_, du_, rn_, damped_unsettled_, damped_creeping_, relax, cfg_, u_trial_, r_trial_);
+    return true;
+  }
+
+  // The relaxed step led nowhere: back to the point before it (its tangent and contact
+  // state again), and the damped step along the same direction.
+  bool back_to_kept_point(Update& up) {
+    watch_.armed = false;
+    watch_.spent = true;
+    u_.update(1.0, watch_.u, 0.0);
+    du_.update(1.0, watch_.du, 0.0);
+    if (!sys_.evaluate(u_, r_, true)) return fail("the point before a relaxed Newton step became inadmissible", true);
+    rn_ = watch_.rn;
+    up.du_full = du_.norm2();
+    if (log_)
+      *log_ << "    watchdog: the relaxed step led nowhere; back to |r| " << std::scientific << std::setprecision(3) << rn_
+            << std::defaultfloat << "\n";
+    sys_.linearised_step(du_);
+    up.t = line_search(sys_, u_, du_, rn_, 0, 0, false, cfg_, u_trial_, r_trial_);
+    return true;
+  }
+
+  void count_damping(const Trial& t) {
+    damped_creeping_ = t.accepted && t.alpha <= kCreep ? damped_creeping_ + 1 : 0;
+    damped_unsettled_ = t.accepted && t.alpha < 1.0 && t.full_unsettled ? damped_unsettled_ + 1 : 0;
+  }
+
+  // No decrease along du: take the full step anyway if it is admissible (the residual can
+  // rise before Newton's quadratic phase), else fail.
+  bool full_step_anyway(Trial& t) {
+    if (!t.admissible_seen) return fail("every line-search trial inverted elements", true);
+    t.alpha = 1.0;
+    u_trial_.update(1.0, u_, t.alpha, du_, 0.0);
+    sys_.step_length(1.0);
+    const bool admissible = sys_.evaluate(u_trial_, r_trial_, true);
+    if (!admissible || !std::isfinite(t.rn = r_trial_.norm2())) return fail("line search found no admissible decrease", !admissible);
+    t.has_tangent = true;
+    t.settled = sys_.settled();
+    return true;
+  }
+
+  // Moves to the accepted trial and tests convergence: -1 return res_ (converged or
+  // failed), 1 next iteration at once, 0 go on.
+  int accept(int it, const Update& up) {
+    const Trial& t = up.t;
+    if (t.relaxed) watch_.keep(u_, du_, rn_);
+    u_.update(1.0, u_trial_, 0.0);
+    r_.update(1.0, r_trial_, 0.0);
+    settled_ = t.settled;
+    const double step = t.alpha * up.scaled * up.du_full;  // |alpha du| of the (limited) update
+    const double un = u_.norm2();
+    if (it == 1 && rn_ > 0.0) res_.first_ratio = t.rn / rn_;
+    rn_ = t.rn;
+    res_.iterations = it;
+    res_.residual = rn_;
+    if (log_) log_iteration(*log_, it, rn_, step, t.alpha, up.lr, up.eta, up.scaled);
+    if (!std::isfinite(rn_)) {
+      if (!watch_.armed) {
+        fail("residual is not finite", false);
+        return -1;
       }
-      // No decrease along du: take the full step anyway if it is admissible (the residual
-      // can rise before Newton's quadratic phase), else fail.
-      t.alpha = 1.0;
-      u_trial.update(1.0, u, t.alpha, du, 0.0);
-      sys.step_length(1.0);
-      const bool admissible = sys.evaluate(u_trial, r_trial, true);
-      if (!admissible || !std::isfinite(t.rn = r_trial.norm2())) {
-        res.failure = "line search found no admissible decrease";
-        res.inadmissible = !admissible;
-        return res;
-      }
-      t.has_tangent = true;
-      t.settled = sys.settled();
-    }
-    u.update(1.0, u_trial, 0.0);
-    r.update(1.0, r_trial, 0.0);
-    settled = t.settled;
-    const double step = t.alpha * scaled * du_full;  // |alpha du| of the (limited) update
-    const double un = u.norm2();
-    if (it == 1 && rn > 0.0) res.first_ratio = t.rn / rn;
-    rn = t.rn;
-    res.iterations = it;
-    res.residual = rn;
-    if (log) log_iteration(*log, it, rn, step, t.alpha, lr, eta, scaled);
-    if (!std::isfinite(rn)) {
-      res.failure = "residual is not finite";
-      return res;
+      watch_.left = 0;
+      return 1;
     }
     // The correction below the round-off of the coordinates: machine precision reached.
     // (An increment test too: off with `increment tolerance` = 0, as the other one.)
-    const bool roundoff =
-        cfg.increment_tolerance > 0.0 && du_full <= 8.0 * std::numeric_limits<double>::epsilon() * (sys.coordinate_scale() + un);
-    const bool small = rn <= target || roundoff ||
-                       (step <= cfg.increment_tolerance * std::max(un, 1e-300) && rn <= std::sqrt(cfg.residual_tolerance) * ref);
-    if (small && t.settled) {
-      const int held = sys.verify_held(res.failure);
-      if (held != 1) {
-        res.converged = held == 0;
-        return res;
-      }
-      if (log) *log << "    held contact nodes revised: Newton goes on\n";
-      if (!sys.evaluate(u, r, true)) {
-        res.failure = "the converged point became inadmissible";
-        res.inadmissible = true;
-        return res;
-      }
-      rn = r.norm2();
-      settled = false;
-      continue;
+    const bool roundoff = cfg_.increment_tolerance > 0.0 &&
+                          up.du_full <= 8.0 * std::numeric_limits<double>::epsilon() * (sys_.coordinate_scale() + un);
+    const bool small = rn_ <= target_ || roundoff ||
+                       (step <= cfg_.increment_tolerance * std::max(un, 1e-300) && rn_ <= std::sqrt(cfg_.residual_tolerance) * ref_);
+    if (small && t.settled) return verify_held();
+    if (watch_.armed && !t.relaxed) {
+      if (rn_ < (1.0 - 1e-4) * watch_.rn) watch_.armed = false;  // the relaxed step paid off
+      else --watch_.left;
     }
-    // A residual-only trial was accepted: the next iteration needs the tangent there (the
-    // same state, so the same residual).
-    if (!t.has_tangent && !sys.evaluate(u, r, true)) {
-      res.failure = "the accepted line-search point became inadmissible";
-      res.inadmissible = true;
-      return res;
-    }
+    return 0;
   }
-  std::ostringstream os;
-  os << "no convergence in " << cfg.max_iterations << " iterations (|r| " << std::scientific << std::setprecision(3) << rn << ", target "
-     << target << ")";
-  res.failure = os.str();
-  return res;
+
+  // Converged with the sets settled: the conditions the iteration held fixed are checked
+  // (NewtonSystem::verify_held); revised holds make Newton go on from here.
+  int verify_held() {
+    const int held = sys_.verify_held(res_.failure);
+    if (held != 1) {
+      res_.converged = held == 0;
+      return -1;
+    }
+    if (log_) *log_ << "    held contact nodes revised: Newton goes on\n";
+    if (!sys_.evaluate(u_, r_, true)) {
+      fail("the converged point became inadmissible", true);
+      return -1;
+    }
+    rn_ = r_.norm2();
+    settled_ = false;
+    watch_.armed = false;  // the revised holds change the residual: no comparison across them
+    return 1;
+  }
+
+  NewtonSystem& sys_;
+  la::Vector& u_;
+  LinearSolver& lin_;
+  const NewtonConfig& cfg_;
+  std::ostream* log_;
+  double hint_;
+  NewtonResult res_;
+  la::Vector r_, du_, u_trial_, r_trial_;
+  Watch watch_;
+  double rn_ = 0.0, ref_ = 0.0, target_ = 0.0;
+  bool settled_ = true;        // at the point whose tangent the next solve uses
+  int damped_unsettled_ = 0;   // consecutive iterations whose full step changed the active set and was damped
+  int damped_creeping_ = 0;    // consecutive iterations damped to alpha <= kCreep
+};
+
+}  // namespace
+
+NewtonResult newton_solve(NewtonSystem& sys, la::Vector& u, LinearSolver& lin, const NewtonConfig& cfg, std::ostream* log,
+                          double first_ratio_hint) {
+  return Solve(sys, u, lin, cfg, log, first_ratio_hint).run();
 }
 
 }  // namespace stentor
