@@ -530,7 +530,10 @@ std::vector<ListSpec> build_schema() {
       "the round-off of the coordinates, 8 eps (norm(X) + norm(u)) (machine precision reached; off, like the increment "
       "test, with `increment tolerance` = 0). The force scale "
       "and the exact rule: docs/deck.md, \"Newton convergence\".",
-      {integer("max iterations", 25, "Iterations per step before a cutback.").ge(1),
+      {integer("max iterations", 25,
+               "Iterations per step before a cutback, counted from the last revision of contact nodes held after "
+               "cycling (a revision starts Newton over from a converged point; at most 4 per step).")
+           .ge(1),
        dbl("relative residual tolerance", 1e-10,
            "rtol: the residual test norm(r) <= max(rtol x ref, atol), ref = max(norm(r_0), force scale); "
            "sqrt(rtol) x ref bounds the residual of the increment test. The dynamic default keeps the energy "

@@ -57,6 +57,13 @@ class Forcing {
   double rn_prev_ = 0.0, eta_prev_ = 0.0;
 };
 
+constexpr int kMaxRevisions = 4;  // revisions of held contact nodes in one solve
+
+std::string ordinal(int n) {
+  static const char* names[] = {"zeroth", "first", "second", "third", "fourth"};
+  return n >= 0 && n <= 4 ? names[n] : std::to_string(n) + "th";
+}
+
 constexpr double kCreep = 0.125;  // a step damped to this or less counts as creeping
 
 struct Trial {
@@ -107,7 +114,7 @@ Trial line_search(NewtonSystem& sys, const la::Vector& u, const la::Vector& du, 
       const bool creep_force = watchdog && relax && damped_creeping >= cfg.line_search_watchdog;
       if (std::isfinite(t.rn) && (unsettled_force || creep_force || !cfg.line_search || decrease)) {
         t.accepted = true;
-        t.relaxed = creep_force && !unsettled_force && !decrease && cfg.line_search;
+        t.relaxed = relax && (creep_force || unsettled_force) && !decrease && cfg.line_search;
         t.has_tangent = with_tangent;
         return t;
       }
@@ -196,7 +203,9 @@ class Solve {
   NewtonResult run() {
     if (!start()) return res_;
     Forcing forcing(cfg_, lin_.tolerance(), hint_);
-    for (int it = 1; it <= cfg_.max_iterations; ++it) {
+    // `max iterations` counts from the last revision of held contact nodes (verify_held):
+    // a revision starts Newton over from a converged point with a few nodes' states changed.
+    for (int it = 1; it - round_start_ <= cfg_.max_iterations; ++it) {
       Update up;
       const bool back = watch_.armed && watch_.left == 0;
       if (!(back ? back_to_kept_point(up) : newton_step(up, forcing))) return res_;
@@ -217,8 +226,9 @@ class Solve {
       }
     }
     std::ostringstream os;
-    os << "no convergence in " << cfg_.max_iterations << " iterations (|r| " << std::scientific << std::setprecision(3) << rn_
-       << ", target " << target_ << ")";
+    os << "no convergence in " << cfg_.max_iterations << " iterations";
+    if (round_start_ > 0) os << " after the " << ordinal(rounds_) << " revision of held contact nodes (" << res_.iterations << " in all)";
+    os << " (|r| " << std::scientific << std::setprecision(3) << rn_ << ", target " << target_ << ")";
     res_.failure = os.str();
     return res_;
   }
@@ -359,6 +369,11 @@ class Solve {
       res_.converged = held == 0;
       return -1;
     }
+    if (++rounds_ > kMaxRevisions) {
+      fail("held contact nodes still fail their conditions after " + std::to_string(kMaxRevisions) + " revisions", false);
+      return -1;
+    }
+    round_start_ = res_.iterations;
     if (log_) *log_ << "    held contact nodes revised: Newton goes on\n";
     if (!sys_.evaluate(u_, r_, true)) {
       fail("the converged point became inadmissible", true);
@@ -383,6 +398,8 @@ class Solve {
   bool settled_ = true;        // at the point whose tangent the next solve uses
   int damped_unsettled_ = 0;   // consecutive iterations whose full step changed the active set and was damped
   int damped_creeping_ = 0;    // consecutive iterations damped to alpha <= kCreep
+  int rounds_ = 0;             // revisions of held contact nodes so far
+  int round_start_ = 0;        // the iteration of the last revision
 };
 
 }  // namespace

@@ -268,6 +268,37 @@ StiffRun solve_stiff(double theta, double wrong, int watchdog) {
   return out;
 }
 
+// r_i = u_i^3 + u_i - b with b = 2 + (the revisions so far): verify_held() reports revised
+// holds `revisions` times (each one moves b, as a revised contact node moves the
+// equilibrium), then passes. Diagonal, so any number of ranks.
+class RevisedHoldsSystem : public NewtonSystem {
+ public:
+  RevisedHoldsSystem(const la::RCP<const la::Map>& map, int revisions) : revisions_(revisions), A_(tridiagonal(map)) {}
+  bool evaluate(const la::Vector& u, la::Vector& r, bool tangent) override {
+    const auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
+    auto rh = r.getLocalViewHost(Tpetra::Access::OverwriteAll);
+    for (size_t i = 0; i < u.getLocalLength(); ++i) rh(i, 0) = uh(i, 0) * uh(i, 0) * uh(i, 0) + uh(i, 0) - (2.0 + done_);
+    if (tangent) {
+      const auto map = A_->getRowMap();
+      A_->resumeFill();
+      for (size_t i = 0; i < u.getLocalLength(); ++i) {
+        const la::GO g = map->getGlobalElement(static_cast<la::LO>(i));
+        const la::GO n = static_cast<la::GO>(map->getGlobalNumElements());
+        for (la::GO c = std::max<la::GO>(0, g - 1); c <= std::min<la::GO>(n - 1, g + 1); ++c)
+          A_->replaceGlobalValues(g, Teuchos::tuple<la::GO>(c), Teuchos::tuple<double>(c == g ? 3 * uh(i, 0) * uh(i, 0) + 1 : 0.0));
+      }
+      A_->fillComplete();
+    }
+    return true;
+  }
+  la::RCP<la::CrsMatrix> matrix() override { return A_; }
+  int verify_held(std::string&) override { return done_ < revisions_ ? (++done_, 1) : 0; }
+
+ private:
+  int revisions_, done_ = 0;
+  la::RCP<la::CrsMatrix> A_;
+};
+
 }  // namespace
 
 // Newton->max increment: without it plain Newton diverges on atan (and fails); with a limit
@@ -854,4 +885,39 @@ TEST(Newton, WatchdogReturnsWhenTheRelaxedStepLeadsNowhere) {
   EXPECT_NEAR(watched.b, 2.25, 1e-11);
   std::printf("[newton] relaxed step that leads nowhere: back after it, %d iterations (strictly monotone %d)\n",
               watched.res.iterations, monotone.res.iterations);
+}
+
+// Revised holds start Newton over from a converged point: `max iterations` counts from the
+// last revision, so a step that converged, had its held contact nodes revised and converges
+// again is not cut back for the iterations of the rounds before (S4: 9 -> 5 cut-backs, each
+// of the 4 saved had converged 2-3 times). After 4 revisions the solve fails and says so.
+TEST(Newton, RevisedHoldsGetTheirOwnIterationBudget) {
+  auto map = Teuchos::rcp(new la::Map(8, 0, comm()));
+  LinearSolverConfig lc;
+  lc.preconditioner = "none";
+  lc.tolerance = 1e-13;
+  LinearSolver lin(lc, comm());
+  NewtonConfig nc;
+  nc.residual_tolerance = 1e-12;
+  nc.max_iterations = 8;
+  {
+    RevisedHoldsSystem sys(map, 3);
+    la::Vector u(map);
+    std::ostringstream log;
+    const NewtonResult res = newton_solve(sys, u, lin, nc, &log);
+    ASSERT_TRUE(res.converged) << res.failure;
+    EXPECT_GT(res.iterations, nc.max_iterations);  // more than one budget in all
+    std::size_t rounds = 0;
+    for (auto k = log.str().find("held contact nodes revised"); k != std::string::npos; k = log.str().find("held contact nodes revised", k + 1)) ++rounds;
+    EXPECT_EQ(rounds, 3u);
+    const auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (size_t i = 0; i < u.getLocalLength(); ++i) EXPECT_NEAR(uh(i, 0) * uh(i, 0) * uh(i, 0) + uh(i, 0), 5.0, 1e-11);
+    std::printf("[newton] 3 revisions of held nodes: converged in %d iterations with max iterations %d\n", res.iterations,
+                nc.max_iterations);
+  }
+  RevisedHoldsSystem sys(map, 5);
+  la::Vector u(map);
+  const NewtonResult res = newton_solve(sys, u, lin, nc, nullptr);
+  EXPECT_FALSE(res.converged);
+  EXPECT_EQ(res.failure, "held contact nodes still fail their conditions after 4 revisions");
 }
