@@ -61,6 +61,11 @@ class Assembler {
     const la::Vector* extra = nullptr;       // owned, all rows
   };
 
+  // After an assemble() that found inadmissible cells: the k cells of smallest det F (over
+  // the stiffness quadrature points, all ranks) at its state, each as "cell <id> of
+  // '<block>' (det F <value>, reference centre x, y[, z])", the smallest first; collective.
+  std::string smallest_det_f(int k) const;
+
   // Residual on owned rows (Dirichlet rows zeroed after reactions are read) and, if
   // with_tangent, the tangent in matrix().
   Stats assemble(const la::Vector& u, const StepInput& in, la::Vector& r, bool with_tangent);

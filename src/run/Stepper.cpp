@@ -9,6 +9,10 @@
 
 namespace stentor {
 
+namespace {
+constexpr int kWorstCells = 5;  // cells of smallest det F named when a step fails on inverted cells
+}  // namespace
+
 bool StepSystem::evaluate(const la::Vector& u, la::Vector& r, bool tangent) {
   Timers::Scope s{timers_, "assembly"};
   last = a_.assemble(u, input, r, tangent);
@@ -194,9 +198,10 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
   }
   nr.iterations += lifted.iterations;
   nr.linear_iterations += lifted.linear_iterations;
-  // Where: the last inadmissible evaluation's first failed cell.
+  // Where: the last inadmissible evaluation's first failed cell, and the cells of smallest
+  // det F there (Newton's last evaluation is the inadmissible one when it fails on it).
   if (!nr.converged && nr.inadmissible && !system_.first_failed.empty())
-    nr.failure += "; where: " + system_.first_failed;
+    nr.failure += "; where: " + system_.first_failed + "; smallest det F: " + m_.assembler->smallest_det_f(kWorstCells);
   s.newton_iterations += nr.iterations;
   s.linear_iterations += nr.linear_iterations;
   return nr;
