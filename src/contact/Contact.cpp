@@ -84,6 +84,7 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
   model_size_ = mesh.bounding_box().diagonal();
   gap_tol_ = 1e-12 * model_size_;
   mixed_analysis_ = cfg.any_dynamic() && cfg.any_static();
+  dynamic_ = cfg.dynamic_in(0);
 
   // Master surfaces first: their nodes may not be slaves of any pair.
   // Node sets below are sorted lists of the surfaces' nodes, not flags per mesh node: a
@@ -446,6 +447,7 @@ void Contact::set_active_pairs(const std::vector<bool>& active) {
 }
 
 void Contact::set_analysis(bool dynamic) {
+  dynamic_ = dynamic;
   for (auto& p : pairs_)
     if (p.cfg.formulation == "auto") p.persistence = dynamic;
 }
@@ -1215,6 +1217,11 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
     ps.slip = static_cast<long>(glob[kPer * i + 2]);
     ps.force = {glob[kPer * i + 3], glob[kPer * i + 4], glob[kPer * i + 5]};
     ps.normal_force = glob[kPer * i + 6];
+    Pair& p = pairs_[i];
+    const double w = dynamic_ ? p.last_dt : 0.0;
+    ps.normal_force_mean = (w * p.last_normal_force + dt_ * ps.normal_force) / (w + dt_);
+    p.last_normal_force = ps.normal_force;
+    p.last_dt = dynamic_ ? dt_ : 0.0;
     ps.min_gap = mglob[i];
     s.pairs.push_back(ps);
   }
@@ -1304,6 +1311,7 @@ std::vector<std::string> Contact::history_columns() const {
     c.push_back(b + "slip");
     for (int k = 0; k < dim_; ++k) c.push_back(b + "force_" + kAxes[k]);
     c.push_back(b + "normal_force");
+    c.push_back(b + "two_step_mean_normal_force");
     c.push_back(b + "min_gap");
   }
   return c;
@@ -1317,6 +1325,7 @@ std::vector<double> Contact::history_values(const StepStats& s) const {
     v.push_back(static_cast<double>(ps.slip));
     for (int k = 0; k < dim_; ++k) v.push_back(ps.force[static_cast<std::size_t>(k)]);
     v.push_back(ps.normal_force);
+    v.push_back(ps.normal_force_mean);
     v.push_back(ps.min_gap);
   }
   return v;

@@ -101,6 +101,12 @@ class Contact {
     long active = 0, stick = 0, slip = 0;
     std::array<double, 3> force{};  // total contact force on the slave body (sum over active nodes)
     double normal_force = 0.0;      // sum of the active nodes' normal forces n . f (compression > 0): radial for a cylinder
+    // The impulse-weighted mean of normal_force over this step and the one before it,
+    // (dt_{n-1} F_{n-1/2} + dt_n F_{n+1/2}) / (dt_{n-1} + dt_n): the midpoint rule's
+    // multipliers are impulses per step, and in sustained persistent contact they carry a
+    // mode that alternates from step to step, which this mean removes (docs/contact.md,
+    // "Sustained contact"). In a static step (and the first step after one): normal_force.
+    double normal_force_mean = 0.0;
     double min_gap = 0.0;
   };
   struct StepStats {
@@ -153,6 +159,15 @@ class Contact {
   long restore_step_history(std::size_t pair, const NodalFields& sorted);
   double last_step() const { return dt_last_; }
   void set_last_step(double dt) { dt_last_ = dt; }
+  // The last accepted step's normal force of a pair and the step's length in the two-step
+  // mean (0 after a static step): what the next step's PairStats::normal_force_mean needs.
+  std::array<double, 2> normal_force_history(std::size_t pair) const {
+    return {pairs_[pair].last_normal_force, pairs_[pair].last_dt};
+  }
+  void restore_normal_force_history(std::size_t pair, double force, double dt) {
+    pairs_[pair].last_normal_force = force;
+    pairs_[pair].last_dt = dt;
+  }
 
   std::vector<std::string> history_columns() const;
   std::vector<double> history_values(const StepStats& s) const;
@@ -215,6 +230,7 @@ class Contact {
     long excluded = 0;                      // slave nodes with every component prescribed (left out), global
     long partial = 0;                       // slave nodes with some prescribed components (kept), global
     bool active = true;                     // set_active_pairs()
+    double last_normal_force = 0.0, last_dt = 0.0;  // normal_force_history()
   };
   void setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, const Assembler& assembler, const std::vector<GId>& master_set,
                     std::map<GId, int>& slave_of);
@@ -279,6 +295,7 @@ class Contact {
   // evaluation; positions at the start of the step; Dirichlet flags of those dofs.
   bool has_master_ = false;
   bool mixed_analysis_ = false;  // static and dynamic stages: `auto` pairs switch (set_analysis)
+  bool dynamic_ = true;          // the stage's analysis (set_analysis): the two-step mean is for dynamic steps
   std::vector<GId> master_nodes_;          // sorted
   std::vector<double> master_X_;           // reference coordinates, 3 per master node
   std::vector<double> master_area_;        // tributary reference area per master node

@@ -116,7 +116,14 @@ void put_scalars(const Model& m, const Stepper& st, const RunState& s, Checkpoin
              {"energy_contact", e.contact}, {"energy_friction", e.friction}, {"energy_plastic", e.plastic},
              {"energy_max_balance", e.max_balance}, {"force_scale_sum", sc.first}, {"energy_stabilization", e.stabilization}};
   if (m.integrator) d.reals["mechanical_energy_n"] = m.integrator->energy_n();
-  if (m.contact) d.reals["contact_dt_last"] = m.contact->last_step();
+  if (m.contact) {
+    d.reals["contact_dt_last"] = m.contact->last_step();
+    for (std::size_t p = 0; p < m.contact->num_pairs(); ++p) {
+      const auto h = m.contact->normal_force_history(p);
+      d.reals["contact_" + m.contact->pair_name(p) + "_normal_force_n"] = h[0];
+      d.reals["contact_" + m.contact->pair_name(p) + "_normal_force_dt"] = h[1];
+    }
+  }
 }
 
 // The state to checkpoint: the scalars on every rank, each table's rows spread over the
@@ -505,6 +512,13 @@ void restore(const Restart& r, Model& m, Stepper& stepper, RunState& s) {
         missing += m.contact->restore_step_history(p, Contact::NodalFields{t.ids, t.values});
       }
       m.contact->set_last_step(d.real("contact_dt_last"));
+      // The two-step mean of the contact force (a checkpoint written before it had none: the
+      // first step after the restart then reports its own force).
+      for (std::size_t p = 0; p < m.contact->num_pairs(); ++p) {
+        const std::string key = "contact_" + m.contact->pair_name(p) + "_normal_force_";
+        if (d.reals.count(key + "n") && d.reals.count(key + "dt"))
+          m.contact->restore_normal_force_history(p, d.real(key + "n"), d.real(key + "dt"));
+      }
     }
     missing += restore_gauss_points(m, d);
   } catch (const std::runtime_error& e) {  // the same data on every rank: every rank throws

@@ -87,9 +87,13 @@ void history_plots(const Model& m, const PlotTable& h, const std::string& stem, 
   // The normal force of each pair (the sum of its nodes' normal forces: the radial force
   // against a cylinder or a balloon), not the vector sum, in which opposite walls cancel.
   PlotSpec contact{"Normal contact force of each pair (compression > 0)", with_unit("time", u.time), with_unit("normal force", u.force), "time", {}, true};
+  // In dynamics also its mean over two steps, without the step-to-step alternation of the
+  // midpoint rule's multipliers in sustained contact (docs/contact.md, "Sustained contact").
   for (const auto& c : m.cfg.contact) {
     const std::string col = "contact_" + c.name + "_normal_force";
     if (h.find(col) >= 0) contact.curves.push_back({col, c.name, ""});
+    const std::string mean = "contact_" + c.name + "_two_step_mean_normal_force";
+    if (m.cfg.any_dynamic() && h.find(mean) >= 0) contact.curves.push_back({mean, c.name + ", two-step mean", ""});
   }
   if (m.contact && !contact.curves.empty() && plot_png(h, stem + "_contact.png", contact)) made.push_back(stem + "_contact.png");
 }

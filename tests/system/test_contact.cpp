@@ -79,6 +79,8 @@ TEST(Contact, StaticBlockOnPlane) {
     EXPECT_NEAR(r.history["contact_floor_force_x"][i], -r.history["reaction_press_x"][i], 1e-9 * std::abs(reac));
     // Frictionless on the plane y = 0 (normal +y): the normal force is the force's y part.
     EXPECT_NEAR(r.history["contact_floor_normal_force"][i], fy, 1e-12 * std::abs(fy));
+    // A static step has no impulse to average: the two-step mean is the step's force.
+    EXPECT_EQ(r.history["contact_floor_two_step_mean_normal_force"][i], r.history["contact_floor_normal_force"][i]);
     EXPECT_GE(r.history["contact_floor_min_gap"][i], -1e-10);
     EXPECT_EQ(r.history["contact_floor_active"][i], 9.0);  // every bottom node (h = 1/8)
   }
@@ -115,6 +117,12 @@ TEST(Contact, ImpactPersistenceConservesEnergy) {
   EXPECT_GT(active_steps, 3);
   EXPECT_LT(py0, 0.0);
   EXPECT_GT(py1, 0.5 * std::abs(py0));  // bounced
+  // The history's two-step mean: the impulse of the last two steps over their duration.
+  const Series& h = r.history;
+  for (std::size_t i = 1; i < h.rows(); ++i) {
+    const double dt0 = h["dt"][i - 1], dt1 = h["dt"][i], F0 = h["contact_floor_normal_force"][i - 1], F1 = h["contact_floor_normal_force"][i];
+    EXPECT_NEAR(h["contact_floor_two_step_mean_normal_force"][i], (dt0 * F0 + dt1 * F1) / (dt0 + dt1), 1e-12 * (std::abs(F0) + std::abs(F1) + 1.0));
+  }
 }
 
 // The first step's leapfrog test sees the initial velocity (Contact::initialize with v_0):
