@@ -918,7 +918,7 @@ void DeckReader::read_elastic_constants(const ParameterList& sub, const ListSpec
   const bool cg = m.ciarlet_geymonat();
   if (!given)
     fail(quoted(path) + " needs one set of elastic constants: " +
-         (cg ? "C1 + D (+ C2), E + nu, or mu + lambda [Pa]" : "E + nu or mu + lambda [Pa]"));
+         (cg ? "C1 + D (+ C2), E + nu, or mu + lambda [stress]" : "E + nu or mu + lambda [stress]"));
   if (!cg && given == &sets[0])
     fail(quoted(path + "->" + (sub.isParameter("C1") ? "C1" : "D")) + " is a Ciarlet-Geymonat parameter; 'model' = " +
          m.model + " takes E + nu or mu + lambda");

@@ -264,16 +264,16 @@ std::vector<ListSpec> build_schema() {
       {str("model", "Ciarlet-Geymonat", "Constitutive law (docs/deck.md, Materials).")
            .one_of({"Ciarlet-Geymonat", "Ciarlet-Geymonat plasticity", "neo-Hookean", "neo-Hookean plasticity",
                     "neo-Hookean damage", "Mooney-Rivlin", "Holzapfel-Gasser-Ogden"}),
-       dbl("C1", 0.0, "First invariant coefficient [Pa] (with `D`; not with E/nu or mu/lambda).").gt(0.0)
+       dbl("C1", 0.0, "First invariant coefficient [stress] (with `D`; not with E/nu or mu/lambda).").gt(0.0)
            .dflt_doc("from E/nu or mu/lambda"),
-       dbl("C2", 0.0, "Second invariant coefficient [Pa]; with E/nu or mu/lambda it sets the split of mu.").ge(0.0),
-       dbl("D", 0.0, "Volumetric coefficient [Pa] (with `C1`).").gt(0.0).dflt_doc("from E/nu or mu/lambda"),
-       dbl("E", 0.0, "Young's modulus [Pa] (with `nu`): mu = E/(2(1+nu)), lambda = E nu/((1+nu)(1-2nu)).")
+       dbl("C2", 0.0, "Second invariant coefficient [stress]; with E/nu or mu/lambda it sets the split of mu.").ge(0.0),
+       dbl("D", 0.0, "Volumetric coefficient [stress] (with `C1`).").gt(0.0).dflt_doc("from E/nu or mu/lambda"),
+       dbl("E", 0.0, "Young's modulus [stress] (with `nu`): mu = E/(2(1+nu)), lambda = E nu/((1+nu)(1-2nu)).")
            .gt(0.0).dflt_doc("none"),
        dbl("nu", 0.0, "Poisson ratio [-] (with `E`).").ge(0.0).lt(0.5).dflt_doc("none"),
-       dbl("mu", 0.0, "Small-strain shear modulus (Lame mu) [Pa] (with `lambda`).").gt(0.0).dflt_doc("none"),
-       dbl("lambda", 0.0, "Small-strain Lame lambda [Pa] (with `mu`).").ge(0.0).dflt_doc("none"),
-       dbl("k1", 0.0, "Fibre stiffness k1 [Pa] of `Holzapfel-Gasser-Ogden` (required there, not allowed with other models).")
+       dbl("mu", 0.0, "Small-strain shear modulus (Lame mu) [stress] (with `lambda`).").gt(0.0).dflt_doc("none"),
+       dbl("lambda", 0.0, "Small-strain Lame lambda [stress] (with `mu`).").ge(0.0).dflt_doc("none"),
+       dbl("k1", 0.0, "Fibre stiffness k1 [stress] of `Holzapfel-Gasser-Ogden` (required there, not allowed with other models).")
            .gt(0.0)
            .dflt_doc("none"),
        dbl("k2", 0.0, "Fibre exponent k2 [-] of `Holzapfel-Gasser-Ogden` (required there).").gt(0.0).dflt_doc("none"),
@@ -289,7 +289,7 @@ std::vector<ListSpec> build_schema() {
            .ge(0.0)
            .le(1.0 / 3.0),
        arr("axis point",
-           "A point of the vessel axis of the fibre frame [m] of `Holzapfel-Gasser-Ogden` (one value per dimension; "
+           "A point of the vessel axis of the fibre frame [length] of `Holzapfel-Gasser-Ogden` (one value per dimension; "
            "the radial direction at X is that of X minus its projection on the axis).")
            .len(2, 3)
            .dflt_doc("origin"),
@@ -297,8 +297,8 @@ std::vector<ListSpec> build_schema() {
                    "for a 2D cross-section of a vessel, in the plane for an axial section.")
            .len(3, 3)
            .dflt_doc("(0, 0, 1)"),
-       dbl("density", 0.0, "Mass density [kg/m^3] (dynamics).").ge(0.0),
-       dbl("viscosity", 0.0, "Viscosity eta [Pa s] (Curnier); unused in statics.").ge(0.0),
+       dbl("density", 0.0, "Mass density [density] (dynamics).").ge(0.0),
+       dbl("viscosity", 0.0, "Viscosity eta [stress x time] (Curnier); unused in statics.").ge(0.0),
        dbl("yield stress", 0.0,
            "Initial yield stress Y [Pa, the unit of the moduli] of `Ciarlet-Geymonat plasticity` and "
            "`neo-Hookean plasticity` (required there, not allowed with other models nor with `hardening law` = "
@@ -380,23 +380,23 @@ std::vector<ListSpec> build_schema() {
                         "dynamic analysis, is refused).")
                         .one_of({"full", "f-bar"}),
                     arr("initial velocity",
-                        "This body's uniform initial velocity [m/s] (dynamic analysis), one value per dimension; it "
+                        "This body's uniform initial velocity [velocity] (dynamic analysis), one value per dimension; it "
                         "replaces `Initial Conditions` velocity and angular velocity on the body's nodes (a node "
                         "shared with another body takes the value of the body listed last).")
                         .len(2, 3)
                         .dflt_doc("`Initial Conditions`"),
                     arr("initial angular velocity",
-                        "This body's initial rigid rotation rate [rad/s] about `rotation center` (dynamic analysis): 1 "
+                        "This body's initial rigid rotation rate [1 / time] about `rotation center` (dynamic analysis): 1 "
                         "value (about z) in 2D, 3 in 3D. With it the body's v0 = `initial velocity` (0 if not given) + "
                         "angular velocity x (X - rotation center), replacing `Initial Conditions` velocity and angular "
                         "velocity on its nodes.")
                         .len(1, 3)
                         .dflt_doc("`Initial Conditions`"),
-                    arr("rotation center", "Centre of the body's initial rotation [m], one value per dimension.")
+                    arr("rotation center", "Centre of the body's initial rotation [length], one value per dimension.")
                         .len(2, 3)
                         .dflt_doc("required with `initial angular velocity`"),
                     arr("initial displacement",
-                        "This body's uniform initial displacement [m] (dynamic analysis), one value per dimension; it "
+                        "This body's uniform initial displacement [length] (dynamic analysis), one value per dimension; it "
                         "replaces `Initial Conditions` displacement on the body's nodes (shared nodes: the body listed "
                         "last). Prescribed dofs keep their prescribed values.")
                         .len(2, 3)
@@ -418,7 +418,7 @@ std::vector<ListSpec> build_schema() {
            .one_of({"Dirichlet", "traction", "pressure", "body force"}),
        str("ramp", "linear", "Time function: `linear` (t / end time), `constant` (1), `table`.")
            .one_of({"linear", "constant", "table"}),
-       arr("ramp times", "`table` ramp: strictly increasing times [s].")
+       arr("ramp times", "`table` ramp: strictly increasing times [time].")
            .len(2, 0)
            .dflt_doc("required for `table`"),
        arr("ramp factors", "`table` ramp: factors at `ramp times` (same length); constant beyond the ends.")
@@ -429,34 +429,34 @@ std::vector<ListSpec> build_schema() {
                    {str("boundary", "", "Mesh physical group of the constrained boundary.").req().allowed("physical group name"),
                     str("components", "all", "Constrained displacement components.")
                         .allowed("`x`, `y`, `z` separated by spaces or commas, or `all`"),
-                    arr("values", "Displacement [m] of each listed component, in the order listed.")
+                    arr("values", "Displacement [length] of each listed component, in the order listed.")
                         .len(1, 3)
                         .dflt_doc("zeros")
                         .allowed("one per listed component (for `all`: one per dimension)")}));
   s.push_back(list("Boundary Conditions/*/traction", "Boundary Conditions-><load> (type = traction)",
                    "Dead load: a fixed traction per unit reference area.",
                    {str("boundary", "", "Mesh physical group of the loaded boundary.").req().allowed("physical group name"),
-                    arr("traction", "Traction vector [Pa], one value per dimension.").req().len(2, 3)}));
+                    arr("traction", "Traction vector [stress], one value per dimension.").req().len(2, 3)}));
   s.push_back(list("Boundary Conditions/*/pressure", "Boundary Conditions-><load> (type = pressure)",
                    "Follower pressure: acts against the current outward normal.",
                    {str("boundary", "", "Mesh physical group of the loaded boundary.").req().allowed("physical group name"),
-                    dbl("pressure", 0.0, "Pressure [Pa]; positive pushes into the body.").req()}));
+                    dbl("pressure", 0.0, "Pressure [stress]; positive pushes into the body.").req()}));
   s.push_back(list("Boundary Conditions/*/body force", "Boundary Conditions-><load> (type = body force)",
                    "Force per unit reference volume.",
                    {str("body", "", "A body: its `Bodies` sublist name or its physical group.").dflt_doc("all bodies"),
-                    arr("force", "Force density [N/m^3], one value per dimension.").req().len(2, 3)}));
+                    arr("force", "Force density [force / volume], one value per dimension.").req().len(2, 3)}));
 
   s.push_back(list(
       "Initial Conditions", "Initial Conditions",
       "Initial state of every body (dynamic analysis): u0 = displacement (uniform), "
       "v0 = velocity + angular velocity x (X - center). Constrained dofs keep their prescribed values.",
-      {arr("displacement", "Uniform initial displacement [m], one value per dimension.").len(2, 3).dflt_doc("zeros"),
-       arr("velocity", "Uniform initial velocity [m/s], one value per dimension.").len(2, 3).dflt_doc("zeros"),
+      {arr("displacement", "Uniform initial displacement [length], one value per dimension.").len(2, 3).dflt_doc("zeros"),
+       arr("velocity", "Uniform initial velocity [velocity], one value per dimension.").len(2, 3).dflt_doc("zeros"),
        arr("angular velocity",
-           "Rigid rotation rate [rad/s]: 1 value (about z) in 2D, 3 values in 3D.")
+           "Rigid rotation rate [1 / time]: 1 value (about z) in 2D, 3 values in 3D.")
            .len(1, 3)
            .dflt_doc("zeros"),
-       arr("center", "Centre of the rigid rotation [m].").len(2, 3).dflt_doc("origin")}));
+       arr("center", "Centre of the rigid rotation [length].").len(2, 3).dflt_doc("origin")}));
 
   s.push_back(list(
       "Time Integration", "Time Integration",
@@ -474,7 +474,7 @@ std::vector<ListSpec> build_schema() {
       "the step; after each accepted step the step grows by `growth` again, up to the deck's step (end time / "
       "steps). The run stops with exit status 3 when a step would need more than `max cutbacks` halvings in a "
       "row, a step smaller than `min dt`, or more than `max steps` steps. Rejected steps write no output.",
-      {dbl("end time", 1.0, "Final time [s].").gt(0.0),
+      {dbl("end time", 1.0, "Final time [time].").gt(0.0),
        integer("steps", 1, "Number of steps (initial step = end time / steps, which must be at least 1e-300 and "
                "1e-12 x end time).").ge(1),
        integer("max cutbacks", 6, "Halvings of a failed step in a row before giving up.").ge(0),
@@ -500,7 +500,7 @@ std::vector<ListSpec> build_schema() {
                "Contact scenes: docs/contact.md, \"Step size\".")
            .ge(0)
            .le(1000),
-       dbl("min dt", 0.0, "Smallest step [s]: a cut-back below it ends the run (exit 3). 0: 1e-6 x (end time / steps).")
+       dbl("min dt", 0.0, "Smallest step [time]: a cut-back below it ends the run (exit 3). 0: 1e-6 x (end time / steps).")
            .ge(0.0)
            .dflt_doc("`0` (1e-6 x end time / steps)"),
        integer("max steps", 0, "Cap on the number of steps tried, accepted and rejected (exit 3 when reached). "
@@ -542,7 +542,7 @@ std::vector<ListSpec> build_schema() {
            .lt(1.0)
            .dflt_doc("1e-12 in a dynamic analysis or stage, 1e-10 in a static one"),
        dbl("absolute residual tolerance", 0.0,
-           "atol [force unit]: a floor of the residual test's target (an absolute residual, not relative); 0: "
+           "atol [force]: a floor of the residual test's target (an absolute residual, not relative); 0: "
            "none, the test is relative to ref only (a fixed floor in force units stopped Newton after one "
            "iteration on small loads).")
            .ge(0.0),
@@ -578,7 +578,7 @@ std::vector<ListSpec> build_schema() {
            .gt(0.0)
            .lt(1.0),
        dbl("max increment", 0.0,
-           "Step-length control [length unit]: an update du whose largest component exceeds this value is "
+           "Step-length control [length]: an update du whose largest component exceeds this value is "
            "scaled down to it before the line search (0: no limit). For bodies that only their inertia "
            "restrains in some direction (a frictionless stent strut squeezed between balloon and wall). S4 "
            "(inputs/s4_stent_artery.xml) uses 0.01, a tenth of the strut radius: mu = 0 went from 46 to 35 "
@@ -649,12 +649,12 @@ std::vector<ListSpec> build_schema() {
                        "name, or one the deck cannot have (velocity in statics, contact fields without `Contact`), "
                        "is an error.")
                        .allowed("field names, `default`, `all`"),
-                   arr("times", "Times [s] at which fields are also written, strictly increasing, in (0, end time]. "
+                   arr("times", "Times [time] at which fields are also written, strictly increasing, in (0, end time]. "
                                 "A step that would pass one is shortened to end on it (the steps after it keep "
                                 "their size). Fields are always written at t = 0, at the end of the run and of "
                                 "every stage."),
                    dbl("interval", 0.0,
-                       "Time [s] between field outputs: fields are also written at every multiple of it up to the end "
+                       "Time [time] between field outputs: fields are also written at every multiple of it up to the end "
                        "time, merged with `times` (a step that would pass one is shortened to end on it), so the "
                        "output times are regular whatever the cut-backs. 0: off (`every` counts accepted steps). At "
                        "most 100,000 outputs.")
@@ -683,7 +683,7 @@ std::vector<ListSpec> build_schema() {
       "axisymmetric run (`Problem->kinematics`) the vessel axis is the axis of revolution: `axis point` (0, z), `axis` "
       "(0, 1, 0); radii are the nodes' r = x and the circumferential stress is the hoop stress sigma_thth "
       "(docs/axisymmetric.md).",
-      {arr("axis point", "A point of the vessel axis [m] (one value per dimension).")
+      {arr("axis point", "A point of the vessel axis [length] (one value per dimension).")
            .len(2, 3)
            .dflt_doc("required; not with `Mesh->generator` = stent (the z axis through the origin)"),
        arr("axis", "Direction of the vessel axis (3 values, normalized): in the plane for an axial section, (0, 0, 1) "
@@ -713,7 +713,7 @@ std::vector<ListSpec> build_schema() {
     s.push_back(l);
   }
   s.push_back(list("Output/Probes/*", "Output->Probes-><probe>", "One probe; the sublist name names its output column. The nearest node is probed.",
-                   {arr("point", "Reference coordinates [m] (2 or 3 values).").req().len(2, 3)}));
+                   {arr("point", "Reference coordinates [length] (2 or 3 values).").req().len(2, 3)}));
   {
     auto l = list("Contact", "Contact",
                   "Frictional contact of slave nodes against rigid analytic obstacles or the boundary of another "
@@ -741,28 +741,28 @@ std::vector<ListSpec> build_schema() {
            "master surface. The slave nodes' contact forces act on it, distributed by the facet shape functions.")
            .allowed("physical group name")
            .dflt_doc("one of `obstacle`, `master` is required"),
-       arr("point", "A point of the plane; the centre of a circle/sphere; a point of the cylinder axis; the capsule segment's start [m].")
+       arr("point", "A point of the plane; the centre of a circle/sphere; a point of the cylinder axis; the capsule segment's start [length].")
            .len(2, 3)
            .dflt_doc("required for `obstacle`"),
        arr("normal", "Plane: normal pointing to the body's side (normalized).").len(2, 3).dflt_doc("required for `plane`"),
        arr("axis", "Cylinder, capsule: axis direction (normalized); 3 values for a cylinder, one per dimension for a capsule.")
            .len(2, 3)
            .dflt_doc("required for `cylinder`, `capsule`"),
-       dbl("length", 0.0, "Capsule: length of the axis segment [m] (0: a circle or sphere).").ge(0.0).dflt_doc("required for `capsule`"),
-       dbl("radius", 1.0, "Radius of circle, cylinder, sphere, capsule [m].").gt(0.0).dflt_doc("required for curved obstacles"),
+       dbl("length", 0.0, "Capsule: length of the axis segment [length] (0: a circle or sphere).").ge(0.0).dflt_doc("required for `capsule`"),
+       dbl("radius", 1.0, "Radius of circle, cylinder, sphere, capsule [length].").gt(0.0).dflt_doc("required for curved obstacles"),
        str("side", "outside",
            "`outside`: the body is outside the obstacle (a rod, a balloon); `inside`: the body is inside (a tube wall).")
            .one_of({"outside", "inside"}),
-       arr("translation", "Rigid translation of the obstacle [m], one value per dimension, times the translation ramp.")
+       arr("translation", "Rigid translation of the obstacle [length], one value per dimension, times the translation ramp.")
            .len(2, 3)
            .dflt_doc("zeros"),
        str("translation ramp", "linear", "Time function of the translation: `linear`, `constant`, `table`.")
            .one_of({"linear", "constant", "table"}),
-       arr("translation ramp times", "`table`: strictly increasing times [s].").len(2, 0).dflt_doc("required for `table`"),
+       arr("translation ramp times", "`table`: strictly increasing times [time].").len(2, 0).dflt_doc("required for `table`"),
        arr("translation ramp factors", "`table`: factors at the times.").len(2, 0).dflt_doc("required for `table`"),
-       dbl("radius change", 0.0, "Radius increment [m] (balloon inflation) times the radius ramp; curved obstacles only."),
+       dbl("radius change", 0.0, "Radius increment [length] (balloon inflation) times the radius ramp; curved obstacles only."),
        str("radius ramp", "linear", "Time function of the radius change.").one_of({"linear", "constant", "table"}),
-       arr("radius ramp times", "`table`: strictly increasing times [s].").len(2, 0).dflt_doc("required for `table`"),
+       arr("radius ramp times", "`table`: strictly increasing times [time].").len(2, 0).dflt_doc("required for `table`"),
        arr("radius ramp factors", "`table`: factors at the times.").len(2, 0).dflt_doc("required for `table`"),
        dbl("friction", 0.0, "Coulomb friction coefficient mu (0: frictionless).").ge(0.0),
        str("formulation", "auto",
@@ -780,12 +780,12 @@ std::vector<ListSpec> build_schema() {
            .one_of({"node-to-segment", "mortar"}),
        dbl("c normal", 0.0,
            "Active-set parameter c_nu (> 0) of the normal complementarity function, per unit area of the slave "
-           "surface: [Pa s/m] with persistence (it multiplies the normal velocity), [Pa/m] with gap; each node uses "
+           "surface: [stress x time / length] with persistence (it multiplies the normal velocity), [stress / length] with gap; each node uses "
            "c_nu times its tributary area, so the multipliers compare as pressures and one value means the same on "
            "every mesh (the talk's 1e4). 0: automatic (the node's tangent diagonal, times dt for persistence).")
            .ge(0.0),
        dbl("c tangent", 0.0,
-           "Active-set parameter c_tau [Pa s/m] of the friction complementarity function, per unit area like `c normal`; "
+           "Active-set parameter c_tau [stress x time / length] of the friction complementarity function, per unit area like `c normal`; "
            "0: automatic (the node's tangent diagonal times dt).")
            .ge(0.0),
        str("set update", "linearised",
@@ -822,11 +822,11 @@ std::vector<ListSpec> build_schema() {
         "at rest from the static state; contact pairs with `formulation` = auto use persistence in dynamic stages "
         "and the gap condition in static ones. The energy CSV holds the dynamic stages, with a row at the start of "
         "each dynamic stage that follows a static one.",
-        {dbl("duration", 1.0, "Length of the stage [s].").gt(0.0).dflt_doc("one of `duration`, `end time` is required"),
-         dbl("end time", 1.0, "End of the stage on the procedure's clock [s].").gt(0.0)
+        {dbl("duration", 1.0, "Length of the stage [time].").gt(0.0).dflt_doc("one of `duration`, `end time` is required"),
+         dbl("end time", 1.0, "End of the stage on the procedure's clock [time].").gt(0.0)
              .dflt_doc("one of `duration`, `end time` is required"),
          integer("steps", 1, "Number of steps of the stage (initial step = duration / steps).").ge(1),
-         dbl("step", 1.0, "Step size instead of `steps` [s]: steps = duration / step, rounded up.").gt(0.0)
+         dbl("step", 1.0, "Step size instead of `steps` [time]: steps = duration / step, rounded up.").gt(0.0)
              .dflt_doc("duration / `steps`"),
          str("analysis", "static", "`static` or `dynamic` (see `Problem->analysis`).")
              .one_of({"static", "dynamic"})
@@ -857,15 +857,15 @@ std::vector<ListSpec> build_schema() {
       "Stages/*/Ramps/*", "Stages-><stage>->Ramps-><load or pair>",
       "A load takes `ramp` (+ times, factors); a rigid obstacle `translation ramp` and `radius ramp` (+ times, "
       "factors). Factors multiply the load's values, the obstacle's `translation` and `radius change`; times are "
-      "stage-local [s].",
+      "stage-local [time].",
       {str("ramp", "linear", "Load: `linear` (stage-local t / duration), `constant`, `table`.").one_of({"linear", "constant", "table"}),
-       arr("ramp times", "`table`: strictly increasing stage-local times [s].").len(2, 0).dflt_doc("required for `table`"),
+       arr("ramp times", "`table`: strictly increasing stage-local times [time].").len(2, 0).dflt_doc("required for `table`"),
        arr("ramp factors", "`table`: factors at the times.").len(2, 0).dflt_doc("required for `table`"),
        str("translation ramp", "linear", "Obstacle translation: `linear`, `constant`, `table`.").one_of({"linear", "constant", "table"}),
-       arr("translation ramp times", "`table`: strictly increasing stage-local times [s].").len(2, 0).dflt_doc("required for `table`"),
+       arr("translation ramp times", "`table`: strictly increasing stage-local times [time].").len(2, 0).dflt_doc("required for `table`"),
        arr("translation ramp factors", "`table`: factors at the times.").len(2, 0).dflt_doc("required for `table`"),
        str("radius ramp", "linear", "Obstacle radius change: `linear`, `constant`, `table`.").one_of({"linear", "constant", "table"}),
-       arr("radius ramp times", "`table`: strictly increasing stage-local times [s].").len(2, 0).dflt_doc("required for `table`"),
+       arr("radius ramp times", "`table`: strictly increasing stage-local times [time].").len(2, 0).dflt_doc("required for `table`"),
        arr("radius ramp factors", "`table`: factors at the times.").len(2, 0).dflt_doc("required for `table`")}));
   return s;
 }
