@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # docs/tutorial.md runs as written: its ```bash tutorial blocks, in order, in one bash
 # (set -e: a failing command fails the test) in a fresh folder laid out like a clone
-# (build/stentor, a copy of inputs/ and tests/cli/decks/); then the files and log lines
+# (build/stentor, a copy of inputs/, tests/cli/decks/ and tools/); then the files and log lines
 # the text promises exist. The build block (```bash, no "tutorial") is what CI itself runs.
 # usage: tutorial.sh STENTOR WORKDIR SOURCE_DIR
 set -u
@@ -9,7 +9,8 @@ set -u
 stentor=$1 work=$2 src=$3
 rm -rf "$work" && mkdir -p "$work/build" "$work/tests/cli" && cd "$work" || fail "cannot make $work"
 ln -s "$stentor" build/stentor
-cp -r "$src/inputs" inputs && cp -r "$src/tests/cli/decks" tests/cli/decks || fail "cannot copy inputs/ and tests/cli/decks/"
+cp -r "$src/inputs" inputs && cp -r "$src/tests/cli/decks" tests/cli/decks && cp -r "$src/tools" tools ||
+  fail "cannot copy inputs/, tests/cli/decks/ and tools/"
 awk '/^```bash tutorial$/ { on = 1; n++; print "echo \"=== tutorial block " n "\""; next }
      on && /^```$/ { on = 0; next }
      on { print }' "$src/docs/tutorial.md" > tutorial_commands.sh
@@ -33,7 +34,8 @@ for f in results/artery_ring/artery_ring.xdmf results/artery_ring/artery_ring.h5
          results/par_s4/par_s4_energy.png results/par_s4/par_s4_metrics.csv results/par_s4/par_s4_stages.csv \
          results/par_s4/par_s4_radii.png results/par_s4/par_s4_stresses.png results/par_s4/par_s4_contact.png \
          results/s4_mu0/par_s4_stages.csv results/axi_cylinder/axi_cylinder_history.csv \
-         mywork/results/continued/artery_ring_history.csv results/axi_np2/axi_cylinder_history.csv; do
+         mywork/results/continued/artery_ring_history.csv results/axi_np2/axi_cylinder_history.csv \
+         results/artery_ring_vtu/artery_ring_0.vtu results/artery_ring_vtu/artery_ring.pvd; do
   [ -s "$f" ] || fail "the tutorial promises $f"
 done
 # The log lines and messages the text quotes.
