@@ -89,6 +89,12 @@ class Contact {
   static constexpr int kFreezeAfter = 3;
   static constexpr double kKktTolerance = 1e-3;
   int verify_held(std::string& why);
+  // After a failed attempt at a step: the k slave nodes whose set changed most often in the
+  // attempt's linear solves (pairs that decide their sets from them), as "node <gid> of
+  // 'Contact-><pair>' (reference position x, y[, z]; entered or left contact N times,
+  // stick/slip M times[, held])",
+  // the most changed first; "" when none changed. Collective.
+  std::string most_changed_nodes(int k) const;
   // Which pairs enforce contact (one flag per Config::contact entry; all by default): the
   // slave nodes of an inactive pair are free. "Stages" switch pairs per stage.
   void set_active_pairs(const std::vector<bool>& active);

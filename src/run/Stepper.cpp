@@ -10,7 +10,8 @@
 namespace stentor {
 
 namespace {
-constexpr int kWorstCells = 5;  // cells of smallest det F named when a step fails on inverted cells
+constexpr int kWorstCells = 5;         // cells of smallest det F named when a step fails on inverted cells
+constexpr int kWorstContactNodes = 3;  // contact nodes named when a step fails after their state changed
 }  // namespace
 
 bool StepSystem::evaluate(const la::Vector& u, la::Vector& r, bool tangent) {
@@ -202,6 +203,11 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
   // det F there (Newton's last evaluation is the inadmissible one when it fails on it).
   if (!nr.converged && nr.inadmissible && !system_.first_failed.empty())
     nr.failure += "; where: " + system_.first_failed + "; smallest det F: " + m_.assembler->smallest_det_f(kWorstCells);
+  // The contact nodes whose state changed most often in the attempt (none: nothing added).
+  if (!nr.converged && m_.contact) {
+    const std::string changed = m_.contact->most_changed_nodes(kWorstContactNodes);
+    if (!changed.empty()) nr.failure += "; contact nodes that changed state most: " + changed;
+  }
   s.newton_iterations += nr.iterations;
   s.linear_iterations += nr.linear_iterations;
   return nr;
