@@ -1,5 +1,6 @@
 #include "deck/ArteryConfig.hpp"
 
+#include <cmath>
 #include <sstream>
 
 #include "stentor/format.hpp"
@@ -20,6 +21,42 @@ double ArteryConfig::layer_outer_radius(int l) const {
   return r;
 }
 
+double ArteryConfig::plaque_thickness(double theta, double z) const {
+  if (!has_plaque()) return 0.0;
+  const double dz = z - plaque_z();
+  if (std::abs(dz) > 0.5 * plaque_length) return 0.0;
+  const double s = 0.5 * (1.0 + std::cos(2.0 * kPi * dz / plaque_length));
+  const double e = plaque_shape == "eccentric" ? 0.5 * (1.0 + std::cos(theta)) : 1.0;
+  return plaque_peak() * s * e;
+}
+
+namespace {
+
+std::string plaque_error(const ArteryConfig& a) {
+  if (!(a.plaque_stenosis >= 0.0 && a.plaque_stenosis < 1.0))
+    return par("plaque stenosis") + " must be in [0, 1) (the fraction of the lumen's diameter the plaque takes), got " +
+           format_number(a.plaque_stenosis);
+  if (!a.has_plaque()) return "";
+  const double wall = a.outer_radius() - a.inner_radius();
+  if (a.plaque_peak() > wall)
+    return par("plaque stenosis") + " = " + format_number(a.plaque_stenosis) + " makes the plaque " + format_number(a.plaque_peak()) +
+           " thick, more than the wall (" + format_number(wall) + ")";
+  if (!(a.plaque_length > 0.0)) return par("plaque length") + " must be > 0 with a plaque, got " + format_number(a.plaque_length);
+  const double zc = a.plaque_z();
+  if (zc - 0.5 * a.plaque_length < 0.0 || zc + 0.5 * a.plaque_length > a.length)
+    return "the plaque (" + par("plaque centre") + " = " + format_number(zc) + ", " + par("plaque length") + " = " +
+           format_number(a.plaque_length) + ") must lie within 0 <= z <= " + par("length") + " = " + format_number(a.length);
+  if (a.half_length && std::abs(zc - 0.5 * a.length) > 1e-12 * a.length)
+    return par("plaque centre") + " must be the middle of the tube (" + format_number(0.5 * a.length) +
+           ") with 'half length' = true (the middle plane is a symmetry plane)";
+  if (a.plaque_shape == "eccentric" && a.sector == "quarter")
+    return par("plaque shape") + " = eccentric is not symmetric about x = 0: use 'sector' = half or full";
+  if (a.elements_plaque < 1) return par("elements through plaque") + " must be >= 1, got " + std::to_string(a.elements_plaque);
+  return "";
+}
+
+}  // namespace
+
 std::string artery_config_error(const ArteryConfig& a) {
   if (!(a.inner_diameter > 0.0)) return par("inner diameter") + " must be > 0, got " + format_number(a.inner_diameter);
   if (!(a.length > 0.0)) return par("length") + " must be > 0, got " + format_number(a.length);
@@ -39,7 +76,7 @@ std::string artery_config_error(const ArteryConfig& a) {
     return par("elements around") + " = " + std::to_string(a.elements_around) + " must be >= 4" +
            (div > 1 ? " and divisible by " + std::to_string(div) + " ('sector' = " + a.sector + ": the cut planes are node planes)"
                     : "");
-  return "";
+  return plaque_error(a);
 }
 
 }  // namespace stentor

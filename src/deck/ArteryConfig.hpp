@@ -15,6 +15,20 @@ struct ArteryConfig {
   int elements_along = 8;             // "elements along": cells along the whole length
   std::string sector = "full";        // "sector": "full" | "half" (y >= 0) | "quarter" (x, y >= 0)
   bool half_length = false;           // "half length": 0 <= z <= length / 2
+  // The plaque ("plaque stenosis" > 0): the lumen narrowed by the thickness
+  //   h(theta, z) = h_max s(z) e(theta),
+  //   s(z) = (1 + cos(2 pi (z - zc) / Lp)) / 2 for |z - zc| <= Lp / 2, else 0,
+  //   e = 1 (concentric) or (1 + cos theta) / 2 (eccentric: the plaque on the +x side),
+  //   h_max = S Ri (concentric) or 2 S Ri (eccentric),
+  // so that the lumen's diameter through the plaque's peak, along x, is (1 - S) times the
+  // healthy one (the clinicians' diameter stenosis S). The innermost layer then spans
+  // Ri - h .. Ri + t_intima with `elements through plaque` more cells, and its cells whose
+  // centroid lies inside the healthy lumen (r < Ri) form the volume group `plaque`.
+  double plaque_stenosis = 0.0;             // "plaque stenosis": S (0: no plaque)
+  double plaque_length = 0.0;               // "plaque length": Lp
+  double plaque_centre = -1.0;              // "plaque centre": zc (< 0: the middle of `length`)
+  std::string plaque_shape = "concentric";  // "plaque shape": "concentric" | "eccentric"
+  int elements_plaque = 2;                  // "elements through plaque"
 
   double inner_radius() const { return 0.5 * inner_diameter; }
   // Radius of the outer surface of layer l (0 intima, 1 media, 2 adventitia).
@@ -23,7 +37,12 @@ struct ArteryConfig {
   // Fraction of the circumference that is meshed (1, 1/2, 1/4).
   double sector_fraction() const { return sector == "quarter" ? 0.25 : sector == "half" ? 0.5 : 1.0; }
   int cells_around() const { return static_cast<int>(elements_around * sector_fraction() + 0.5); }
-  int cells_through() const { return elements_layer[0] + elements_layer[1] + elements_layer[2]; }
+  bool has_plaque() const { return plaque_stenosis > 0.0; }
+  double plaque_z() const { return plaque_centre < 0.0 ? 0.5 * length : plaque_centre; }
+  double plaque_peak() const { return (plaque_shape == "eccentric" ? 2.0 : 1.0) * plaque_stenosis * inner_radius(); }
+  double plaque_thickness(double theta, double z) const;  // h(theta, z) above; 0 without a plaque
+  int cells_inner_layer() const { return elements_layer[0] + (has_plaque() ? elements_plaque : 0); }
+  int cells_through() const { return cells_inner_layer() + elements_layer[1] + elements_layer[2]; }
   int cells_along() const { return half_length ? elements_along / 2 : elements_along; }
   double modelled_length() const { return half_length ? 0.5 * length : length; }
   double cells() const { return static_cast<double>(cells_around()) * cells_through() * cells_along(); }

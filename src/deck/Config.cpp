@@ -876,6 +876,11 @@ void DeckReader::read_artery(const ParameterList& pl) {
   a.elements_along = get_int(pl, ls, "elements along");
   a.sector = lower(get_string(pl, ls, "sector"));
   a.half_length = get_bool(pl, ls, "half length");
+  a.plaque_stenosis = get_double(pl, ls, "plaque stenosis");
+  a.plaque_length = get_double(pl, ls, "plaque length");
+  a.plaque_centre = get_double(pl, ls, "plaque centre");
+  a.plaque_shape = lower(get_string(pl, ls, "plaque shape"));
+  a.elements_plaque = get_int(pl, ls, "elements through plaque");
   const std::string why = artery_config_error(a);
   if (!why.empty()) fail(why);
 }

@@ -212,7 +212,7 @@ std::vector<ListSpec> build_schema() {
       "Mesh/Artery", "Mesh->Artery",
       "The parametric artery of `generator` = `artery` (docs/artery.md): a straight tube along z (0 <= z <= "
       "`length`, axis the z axis) of three concentric layers, structured hex8 cells. Lengths in the deck's length "
-      "unit. Volume groups `intima`, `media`, `adventitia`; facet groups `lumen`, `outer`, `end_proximal`, "
+      "unit. Volume groups `intima`, `media`, `adventitia` (and `plaque`); facet groups `lumen`, `outer`, `end_proximal`, "
       "`end_distal`, `symmetry_x`, `symmetry_y`, `symmetry_z` (reductions).",
       {dbl("inner diameter", 0.0, "Diameter of the lumen [length].").req().gt(0.0),
        dbl("length", 0.0, "Axial length of the tube [length].").req().gt(0.0),
@@ -231,7 +231,26 @@ std::vector<ListSpec> build_schema() {
            "`full`: the whole circumference; `half`: 0 <= theta <= 180 deg (y >= 0), cut on `symmetry_y`; "
            "`quarter`: 0 <= theta <= 90 deg, cut on `symmetry_x` (x = 0) and `symmetry_y` (y = 0).")
            .one_of({"full", "half", "quarter"}),
-       boolean("half length", false, "Only 0 <= z <= `length` / 2, cut on the symmetry plane `symmetry_z`.")}));
+       boolean("half length", false, "Only 0 <= z <= `length` / 2, cut on the symmetry plane `symmetry_z`."),
+       dbl("plaque stenosis", 0.0,
+           "Diameter stenosis S of a plaque (0: none): the lumen's diameter through the plaque's peak, along x, is "
+           "(1 - S) times the healthy one. The lumen is narrowed by h = h_max s(z) e(theta), a raised-cosine profile "
+           "s along z over `plaque length` and e = 1 (concentric) or (1 + cos theta)/2 (eccentric, on the +x side), "
+           "h_max = S Ri or 2 S Ri; the innermost layer's cells inside the healthy lumen form the volume group "
+           "`plaque` (docs/artery.md). h_max may not exceed the wall's thickness.")
+           .ge(0.0)
+           .lt(1.0),
+       dbl("plaque length", 0.0, "Axial length of the plaque's profile [length] (required with a plaque).").ge(0.0),
+       dbl("plaque centre", -1.0, "z of the plaque's peak [length]; the middle of `length` by default.")
+           .dflt_doc("`length` / 2"),
+       str("plaque shape", "concentric",
+           "`concentric` or `eccentric` (the plaque on the +x side; not with `sector` = quarter).")
+           .one_of({"concentric", "eccentric"}),
+       integer("elements through plaque", 2,
+               "Hex8 cells added through the innermost layer when there is a plaque (it then spans Ri - h .. Ri + "
+               "intima thickness).")
+           .ge(1)
+           .le(100)}));
 
   {
     auto l = list("Materials", "Materials", "Material definitions, referred to by `Bodies-><body>->material`.");

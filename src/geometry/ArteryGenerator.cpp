@@ -33,25 +33,33 @@ void unit_circle(int i, int N, double& c, double& s) {
   s = std::sin(t);
 }
 
-std::vector<double> radii(const ArteryConfig& a) {
-  std::vector<double> r{a.inner_radius()};
-  double r0 = a.inner_radius();
+// The node radii through the wall of a column whose lumen is narrowed by the plaque
+// thickness h: the innermost layer from Ri - h (cells_inner_layer() cells), the others
+// between their interfaces.
+std::vector<double> radii(const ArteryConfig& a, double h) {
+  std::vector<double> r{a.inner_radius() - h};
+  double r0 = r[0];
   for (int l = 0; l < 3; ++l) {
     const double r1 = a.layer_outer_radius(l);
-    for (int k = 1; k <= a.elements_layer[l]; ++k) r.push_back(k == a.elements_layer[l] ? r1 : r0 + (r1 - r0) * k / a.elements_layer[l]);
+    const int n = l == 0 ? a.cells_inner_layer() : a.elements_layer[l];
+    for (int k = 1; k <= n; ++k) r.push_back(k == n ? r1 : r0 + (r1 - r0) * k / n);
     r0 = r1;
   }
   return r;
 }
 
+double z_of(const ArteryConfig& a, const Grid& g, int j) {
+  return j == g.cells_z ? a.modelled_length() : a.modelled_length() * j / g.cells_z;
+}
+
 std::vector<double> nodes(const ArteryConfig& a, const Grid& g) {
-  const std::vector<double> r = radii(a);
   std::vector<double> x(3 * static_cast<std::size_t>(g.nt) * g.nz * g.nr);
   for (int j = 0; j < g.nz; ++j)
     for (int i = 0; i < g.nt; ++i) {
       double c, s;
       unit_circle(i, a.elements_around, c, s);
-      const double z = j == g.cells_z ? a.modelled_length() : a.modelled_length() * j / g.cells_z;
+      const double z = z_of(a, g, j);
+      const std::vector<double> r = radii(a, a.plaque_thickness(2.0 * kPi * i / a.elements_around, z));
       for (int k = 0; k < g.nr; ++k) {
         const GId n = g.node(i, j, k);
         x[3 * n] = r[k] * c;
@@ -71,6 +79,22 @@ void hex(const Grid& g, int i, int j, int k, GId* h) {
                     g.node(i, j + 1, k),     g.node(i, j, k + 1),         g.node(i + 1, j, k + 1),
                     g.node(i + 1, j + 1, k + 1), g.node(i, j + 1, k + 1)};
   for (int n = 0; n < 8; ++n) h[n] = v[n];
+}
+
+CellBlock hex_block(const std::string& name, int tag) {
+  CellBlock b;
+  b.name = name;
+  b.physical_tag = tag;
+  b.type = CellType::Hex8;
+  b.nodes_per_cell = 8;
+  return b;
+}
+
+// Mean distance of a hex's 8 nodes from the z axis.
+double centroid_radius(const std::vector<double>& x, const GId* h) {
+  double r = 0.0;
+  for (int n = 0; n < 8; ++n) r += std::hypot(x[3 * h[n]], x[3 * h[n] + 1]) / 8.0;
+  return r;
 }
 
 CellBlock quads(const std::string& name, std::vector<GId> conn) {
@@ -136,22 +160,29 @@ Mesh generate_artery(const ArteryConfig& a, double max_cells, const std::string&
   m.x = nodes(a, g);
   GId next_cell = 0;
   int k0 = 0;
+  CellBlock plaque = hex_block("plaque", 4);
   for (int l = 0; l < 3; ++l) {
-    CellBlock b;
-    b.name = kArteryLayer[l];
-    b.physical_tag = l + 1;
-    b.type = CellType::Hex8;
-    b.nodes_per_cell = 8;
+    CellBlock b = hex_block(kArteryLayer[l], l + 1);
+    const int n = l == 0 ? a.cells_inner_layer() : a.elements_layer[l];
     for (int j = 0; j < cz; ++j)
       for (int i = 0; i < ct; ++i)
-        for (int k = k0; k < k0 + a.elements_layer[l]; ++k) {
+        for (int k = k0; k < k0 + n; ++k) {
           GId h[8];
           hex(g, i, j, k, h);
-          b.conn.insert(b.conn.end(), h, h + 8);
-          b.cell_id.push_back(next_cell++);
+          // Cells of the innermost layer inside the healthy lumen (centroid r < Ri) are plaque.
+          CellBlock& into = l == 0 && a.has_plaque() && centroid_radius(m.x, h) < a.inner_radius() ? plaque : b;
+          into.conn.insert(into.conn.end(), h, h + 8);
+          into.cell_id.push_back(next_cell++);
         }
-    k0 += a.elements_layer[l];
+    k0 += n;
     m.volumes.push_back(std::move(b));
+  }
+  if (a.has_plaque()) {
+    if (plaque.conn.empty())
+      throw InputError(source + ": the plaque ('Mesh->Artery->plaque stenosis' = " + format_number(a.plaque_stenosis) +
+                       ") is thinner than the cells that would hold it: raise 'Mesh->Artery->elements through plaque' or "
+                       "'elements along'");
+    m.volumes.push_back(std::move(plaque));
   }
   boundaries(a, g, m);
   return m;

@@ -107,3 +107,28 @@ TEST_F(ArteryDeck, BadInputNamesTheParameter) {
   const std::string k = error(deck(artery(), R"XML(<Parameter name="kappa" type="double" value="0.4"/>)XML"));
   EXPECT_NE(k.find("kappa"), std::string::npos) << k;
 }
+
+// The plaque's parameters reach the configuration (defaults: none, concentric, centred, 2
+// cells); bad ones are refused naming the parameter.
+TEST_F(ArteryDeck, PlaqueParameters) {
+  EXPECT_FALSE(read_deck(write(deck(artery()))).mesh.artery.has_plaque());
+  std::string x = artery();
+  x.replace(x.find("</ParameterList>"), 0, R"XML(  <Parameter name="plaque stenosis" type="double" value="0.2"/>
+      <Parameter name="plaque length" type="double" value="1.5"/>
+      <Parameter name="plaque shape" type="string" value="Concentric"/>
+      <Parameter name="elements through plaque" type="int" value="3"/>
+    )XML");
+  const ArteryConfig a = read_deck(write(deck(x))).mesh.artery;
+  EXPECT_EQ(a.plaque_stenosis, 0.2);
+  EXPECT_EQ(a.plaque_length, 1.5);
+  EXPECT_EQ(a.plaque_shape, "concentric");
+  EXPECT_EQ(a.elements_plaque, 3);
+  EXPECT_EQ(a.plaque_z(), 2.5);
+  EXPECT_EQ(a.cells_through(), 2 + 3 + 3 + 4);
+  std::string bad = x;
+  bad.replace(bad.find("value=\"1.5\""), 11, "value=\"9.0\"");
+  EXPECT_NE(error(deck(bad)).find("'Mesh->Artery->plaque length' = 9) must lie within"), std::string::npos) << error(deck(bad));
+  bad = x;
+  bad.replace(bad.find("value=\"0.2\""), 11, "value=\"1.2\"");
+  EXPECT_NE(error(deck(bad)).find("'Mesh->Artery->plaque stenosis'"), std::string::npos) << error(deck(bad));
+}

@@ -200,3 +200,130 @@ TEST(ArteryGenerator, BadInputNamesTheParameter) {
   EXPECT_NE(message(a).find("'Mesh->Artery->elements along' = 3"), std::string::npos) << message(a);
   EXPECT_NE(message(base(), 100.0).find("more than 'Mesh->max cells' = 100"), std::string::npos) << message(base(), 100.0);
 }
+
+namespace {
+
+// base() with a plaque of diameter stenosis S over the middle 2 mm, nodes on its peak z = 2
+// and on theta = 0, pi.
+ArteryConfig stenosed(double S, const std::string& shape, int around, int along) {
+  ArteryConfig a = base();
+  a.plaque_stenosis = S;
+  a.plaque_length = 2.0;
+  a.plaque_shape = shape;
+  a.elements_around = around;
+  a.elements_along = along;
+  return a;
+}
+
+double total_volume(const Mesh& m) {
+  double v = 0.0;
+  for (const auto& b : m.volumes)
+    for (std::size_t c = 0; c < b.num_cells(); ++c) v += hex_volume(m, &b.conn[8 * c]);
+  return v;
+}
+
+// The healthy wall's volume plus the plaque's, for the concentric profile on the circle:
+// 2 pi int (Ri h - h^2 / 2) dz with h = h_max s(z), int s = Lp / 2, int s^2 = 3 Lp / 8.
+double circle_volume(const ArteryConfig& a) {
+  const double Ri = a.inner_radius(), Ro = a.outer_radius(), h = a.plaque_peak(), L = a.plaque_length;
+  return kPi * (Ro * Ro - Ri * Ri) * a.length + 2.0 * kPi * (Ri * h * L / 2.0 - h * h * 3.0 * L / 16.0);
+}
+
+}  // namespace
+
+// A concentric plaque of 50 % diameter stenosis: every lumen node at r = Ri - h(theta, z)
+// (1e-12), the lumen's diameter at the peak 1.5 mm = (1 - S) 3 mm, the plaque cells inside
+// the healthy lumen and only within the plaque's length, no inverted cell, and the whole
+// volume converging at second order to the healthy wall's plus the plaque's closed form.
+TEST(ArteryGenerator, ConcentricPlaqueNarrowsTheLumen) {
+  const ArteryConfig a = stenosed(0.5, "concentric", 24, 16);
+  const Mesh m = generate_artery(a, 1e6, "test");
+  EXPECT_EQ(count_inverted_cells(m), 0u);
+  EXPECT_NO_THROW(check_mesh(m));
+  ASSERT_NE(block(m.volumes, "plaque"), nullptr);
+  const CellBlock* lumen = block(m.boundaries, "lumen");
+  double worst = 0.0, d_min = 1e9;
+  for (GId n : lumen->conn) {
+    const double* X = m.coord(n);
+    const double r = std::hypot(X[0], X[1]), th = std::atan2(X[1], X[0]);
+    worst = std::max(worst, std::abs(r - (a.inner_radius() - a.plaque_thickness(th, X[2]))));
+    if (std::abs(X[2] - 2.0) < 1e-12) d_min = std::min(d_min, 2.0 * r);
+  }
+  EXPECT_LT(worst, 1e-12);
+  EXPECT_NEAR(d_min, 1.5, 1e-12);
+  const CellBlock* p = block(m.volumes, "plaque");
+  for (std::size_t c = 0; c < p->num_cells(); ++c) {
+    double r = 0.0, z = 0.0;
+    for (int k = 0; k < 8; ++k) r += std::hypot(m.coord(p->conn[8 * c + k])[0], m.coord(p->conn[8 * c + k])[1]) / 8, z += m.coord(p->conn[8 * c + k])[2] / 8;
+    EXPECT_LT(r, a.inner_radius());
+    EXPECT_LT(std::abs(z - 2.0), 1.0);
+  }
+  // Second order in the cell size (around and along halved together).
+  const double e1 = std::abs(total_volume(m) / circle_volume(a) - 1.0);
+  const ArteryConfig f = stenosed(0.5, "concentric", 48, 32);
+  const double e2 = std::abs(total_volume(generate_artery(f, 1e6, "test")) / circle_volume(f) - 1.0);
+  EXPECT_LT(e1, 2e-2);
+  EXPECT_GT(e1 / e2, 3.5);
+  std::printf("[artery] concentric 50 %% plaque: %zu plaque cells, volume error %.2e -> %.2e (ratio %.2f)\n", p->num_cells(), e1, e2,
+              e1 / e2);
+}
+
+// An eccentric plaque is a crescent on the +x side: every lumen node at r = Ri - h (1e-12),
+// the node at theta = pi keeps r = Ri, the diameter along x through the peak is
+// (1 - S) 2 Ri, most plaque cells lie at x > 0; the half sector (y >= 0) holds half of the
+// full tube's plaque cells.
+TEST(ArteryGenerator, EccentricPlaqueOnOneSide) {
+  const ArteryConfig a = stenosed(0.25, "eccentric", 24, 16);
+  const Mesh m = generate_artery(a, 1e6, "test");
+  EXPECT_EQ(count_inverted_cells(m), 0u);
+  double r0 = 0.0, rpi = 0.0;
+  for (GId n : block(m.boundaries, "lumen")->conn) {
+    const double* X = m.coord(n);
+    if (std::abs(X[2] - 2.0) > 1e-12 || std::abs(X[1]) > 1e-12) continue;
+    (X[0] > 0 ? r0 : rpi) = std::abs(X[0]);
+  }
+  EXPECT_NEAR(rpi, a.inner_radius(), 1e-12);
+  EXPECT_NEAR(r0 + rpi, 0.75 * 3.0, 1e-12);
+  double worst = 0.0;
+  for (GId n : block(m.boundaries, "lumen")->conn) {
+    const double* X = m.coord(n);
+    worst = std::max(worst, std::abs(std::hypot(X[0], X[1]) - (a.inner_radius() - a.plaque_thickness(std::atan2(X[1], X[0]), X[2]))));
+  }
+  EXPECT_LT(worst, 1e-12);
+  const CellBlock* p = block(m.volumes, "plaque");
+  ASSERT_NE(p, nullptr);
+  std::size_t plus = 0;
+  for (std::size_t c = 0; c < p->num_cells(); ++c) {
+    double x = 0.0;
+    for (int k = 0; k < 8; ++k) x += m.coord(p->conn[8 * c + k])[0] / 8;
+    plus += x > 0.0;
+  }
+  EXPECT_GT(plus, 2 * (p->num_cells() - plus));  // a crescent, thickest on +x (measured 124 against 44)
+  ArteryConfig h = a;
+  h.sector = "half";
+  const Mesh mh = generate_artery(h, 1e6, "test");
+  EXPECT_EQ(2 * block(mh.volumes, "plaque")->num_cells(), p->num_cells());
+}
+
+TEST(ArteryGenerator, PlaqueBadInput) {
+  auto why = [](ArteryConfig a) { return artery_config_error(a); };
+  ArteryConfig a = stenosed(1.0, "concentric", 24, 16);
+  EXPECT_NE(why(a).find("'Mesh->Artery->plaque stenosis' must be in [0, 1)"), std::string::npos) << why(a);
+  a = stenosed(0.7, "concentric", 24, 16);  // h_max = 1.05 mm > the 0.82 mm wall
+  EXPECT_NE(why(a).find("makes the plaque 1.05 thick, more than the wall (0.82)"), std::string::npos) << why(a);
+  a = stenosed(0.3, "concentric", 24, 16);
+  a.plaque_centre = 3.5;
+  EXPECT_NE(why(a).find("must lie within 0 <= z <= 'Mesh->Artery->length' = 4"), std::string::npos) << why(a);
+  a = stenosed(0.3, "concentric", 24, 16);
+  a.plaque_length = 0.0;
+  EXPECT_NE(why(a).find("'Mesh->Artery->plaque length' must be > 0"), std::string::npos) << why(a);
+  a = stenosed(0.2, "eccentric", 24, 16);
+  a.sector = "quarter";
+  EXPECT_NE(why(a).find("'Mesh->Artery->plaque shape' = eccentric is not symmetric about x = 0"), std::string::npos) << why(a);
+  a = stenosed(0.3, "concentric", 24, 16);
+  a.half_length = true;
+  a.plaque_centre = 1.5;
+  EXPECT_NE(why(a).find("'Mesh->Artery->plaque centre' must be the middle of the tube (2)"), std::string::npos) << why(a);
+  a.plaque_centre = -1.0;
+  EXPECT_EQ(why(a), "");
+}
