@@ -2,16 +2,16 @@
 // failed attempt at a step, for the failure message (a pass over the slave nodes and one
 // gather, run only then).
 #include <algorithm>
+#include <array>
 #include <sstream>
 
-#include <Teuchos_CommHelpers.hpp>
-
 #include "contact/Contact.hpp"
+#include "parallel/GatherBest.hpp"
 
 namespace stentor {
 
 namespace {
-// gid, pair, normal flips, tangent flips, held, reference position (3): doubles for one gather.
+// gid, pair, normal flips, tangent flips, held, reference position (3): gather_best's rows.
 constexpr int kNodeRecord = 8;
 
 std::string times(double n) {
@@ -35,24 +35,10 @@ std::string Contact::most_changed_nodes(int k) const {
     if (fa != fb) return fa > fb;
     return a[1] != b[1] ? a[1] < b[1] : a[0] < b[0];
   };
-  std::sort(mine.begin(), mine.end(), before);
-  mine.resize(std::min(kk, mine.size()));
-  std::vector<double> send(kk * kNodeRecord, -1.0);
-  for (std::size_t i = 0; i < mine.size(); ++i) std::copy(mine[i].begin(), mine[i].end(), send.begin() + static_cast<long>(i * kNodeRecord));
-  const auto& comm = *dist_.comm();
-  std::vector<double> all(send.size() * static_cast<std::size_t>(comm.getSize()));
-  Teuchos::gatherAll(comm, static_cast<int>(send.size()), send.data(), static_cast<int>(all.size()), all.data());
-  std::vector<std::array<double, kNodeRecord>> recs;
-  for (std::size_t i = 0; i + kNodeRecord <= all.size(); i += kNodeRecord) {
-    if (all[i] < 0.0) continue;
-    std::array<double, kNodeRecord> r;
-    std::copy(all.begin() + static_cast<long>(i), all.begin() + static_cast<long>(i + kNodeRecord), r.begin());
-    recs.push_back(r);
-  }
-  std::sort(recs.begin(), recs.end(), before);
+  const auto recs = gather_best(*dist_.comm(), std::move(mine), kk, before);
   std::ostringstream os;
   os.precision(4);
-  for (std::size_t i = 0; i < std::min(kk, recs.size()); ++i) {
+  for (std::size_t i = 0; i < recs.size(); ++i) {
     const auto& r = recs[i];
     if (i > 0) os << ", ";
     os << "node " << static_cast<long long>(r[0]) << " of 'Contact->" << pairs_[static_cast<std::size_t>(r[1])].cfg.name

@@ -72,7 +72,7 @@ struct Trial {
   bool full_unsettled = false;  // the full step changed the active set
   bool has_tangent = false;     // the last evaluate() (at the accepted point) assembled the tangent
   bool settled = true;          // sys.settled() right after the accepted point's evaluate()
-  bool relaxed = false;         // accepted without the decrease test because Newton was creeping
+  bool relaxed = false;         // a forced step (creeping or set change) whose starting point Watch keeps
   double alpha = 1.0;
   double rn = 0.0;
 };

@@ -38,6 +38,15 @@ const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "newton";
 
 la::RCP<const la::Comm> comm() { return Tpetra::getDefaultComm(); }
 
+// GMRES without a preconditioner, to 1e-13: the small algebraic systems below need no
+// more, and their iterates then do not depend on a preconditioner.
+LinearSolverConfig unpreconditioned() {
+  LinearSolverConfig lc;
+  lc.preconditioner = "none";
+  lc.tolerance = 1e-13;
+  return lc;
+}
+
 // Tridiagonal matrix on `map` (its graph fixed once), values set by set_values.
 la::RCP<la::CrsMatrix> tridiagonal(const la::RCP<const la::Map>& map) {
   auto A = Teuchos::rcp(new la::CrsMatrix(map, 3));
@@ -123,10 +132,7 @@ struct CubicRun {
 CubicRun solve_cubic(bool needs_tangent) {
   auto map = Teuchos::rcp(new la::Map(40, 0, comm()));
   CubicSystem sys(map, needs_tangent);
-  LinearSolverConfig lc;
-  lc.preconditioner = "none";
-  lc.tolerance = 1e-13;
-  LinearSolver lin(lc, comm());
+  LinearSolver lin(unpreconditioned(), comm());
   NewtonConfig nc;
   nc.residual_tolerance = 1e-12;
   la::Vector u(map);
@@ -306,10 +312,7 @@ class RevisedHoldsSystem : public NewtonSystem {
 // limited steps towards the root, then quadratically.
 TEST(Newton, MaxIncrementTamesAnOvershootingNewton) {
   auto map = Teuchos::rcp(new la::Map(12, 0, comm()));
-  LinearSolverConfig lc;
-  lc.preconditioner = "none";
-  lc.tolerance = 1e-13;
-  LinearSolver lin(lc, comm());
+  LinearSolver lin(unpreconditioned(), comm());
   NewtonConfig nc;
   nc.line_search = false;
   nc.max_iterations = 30;
@@ -893,10 +896,7 @@ TEST(Newton, WatchdogReturnsWhenTheRelaxedStepLeadsNowhere) {
 // of the 4 saved had converged 2-3 times). After 4 revisions the solve fails and says so.
 TEST(Newton, RevisedHoldsGetTheirOwnIterationBudget) {
   auto map = Teuchos::rcp(new la::Map(8, 0, comm()));
-  LinearSolverConfig lc;
-  lc.preconditioner = "none";
-  lc.tolerance = 1e-13;
-  LinearSolver lin(lc, comm());
+  LinearSolver lin(unpreconditioned(), comm());
   NewtonConfig nc;
   nc.residual_tolerance = 1e-12;
   nc.max_iterations = 8;
