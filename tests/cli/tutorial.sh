@@ -35,7 +35,9 @@ for f in results/artery_ring/artery_ring.xdmf results/artery_ring/artery_ring.h5
          results/par_s4/par_s4_radii.png results/par_s4/par_s4_stresses.png results/par_s4/par_s4_contact.png \
          results/s4_mu0/par_s4_stages.csv results/axi_cylinder/axi_cylinder_history.csv \
          mywork/results/continued/artery_ring_history.csv results/axi_np2/axi_cylinder_history.csv \
-         results/artery_ring_vtu/artery_ring_0.vtu results/artery_ring_vtu/artery_ring.pvd; do
+         results/artery_ring_vtu/artery_ring_0.vtu results/artery_ring_vtu/artery_ring.pvd \
+         results/artery_ring_pictures/artery_ring_von_mises.png results/par_s4_pictures/par_s4_von_mises_0.png \
+         results/par_s4_pictures/par_s4_von_mises_3.png; do
   [ -s "$f" ] || fail "the tutorial promises $f"
 done
 # The log lines and messages the text quotes.
