@@ -464,6 +464,9 @@ void Contact::begin_step(double t_n, double dt, const la::Vector& u_n) {
       nd.hold_active = nd.hold_inactive = false;
       nd.hold_revisions = 0;
       nd.hold_tangent = 0;
+      nd.solve_facet = -1;
+      nd.facet_flips = 0;
+      nd.hold_facet = -1;
     }
   if (has_master_) {
     u_n_->assign(u_n);
@@ -510,6 +513,24 @@ bool Contact::keep_facet(const Pair& p, Slave& nd, const double* x) const {
 
 // Gap, normal and relative displacement of slave node nd at x against its facet (double);
 // the search radius when it has none.
+bool Contact::hold_facet_projection(const Pair& p, Slave& nd, const double* x) const {
+  if (nd.hold_facet == -2) {  // revised: held on its closest facet from now on
+    locate(p, nd, x);
+    nd.hold_facet = nd.facet;
+    if (nd.facet < 0) return false;
+  }
+  const auto hit = p.master->on_facet(nd.hold_facet, dim_, x, master_x_, kHoldReach);
+  if (hit.facet < 0) {
+    nd.hold_facet = -1;
+    return false;
+  }
+  nd.hold_in_band = p.master->on_facet(nd.hold_facet, dim_, x, master_x_, kHoldBand).facet >= 0;
+  nd.facet = hit.facet;
+  nd.xi[0] = nd.xi_free[0] = hit.xi[0], nd.xi[1] = nd.xi_free[1] = hit.xi[1];
+  nd.inside = true;
+  return true;
+}
+
 double Contact::facet_gap(const Pair& p, const Slave& nd, const double* x, double* n, double* rel) const {
   if (nd.facet < 0) return p.master->search_radius();
   contact::NodeInput in;
@@ -594,6 +615,10 @@ void Contact::count_flips(const Pair& p, Slave& nd) const {
   if (was != is) ++nd.normal_flips;
   else if (was && nd.state != nd.base_state) ++nd.tangent_flips;
   if (nd.normal_flips >= kFreezeAfter && is && !nd.hold_inactive) nd.hold_active = true;
+  if (p.master && nd.facet >= 0 && nd.solve_facet >= 0 && (nd.facet != nd.solve_facet || nd.inside != nd.solve_inside))
+    ++nd.facet_flips;
+  nd.solve_facet = nd.facet, nd.solve_inside = nd.inside;
+  if (nd.facet_flips >= kFacetFreezeAfter && nd.hold_facet < 0 && is && nd.facet >= 0) nd.hold_facet = nd.facet;
   if (nd.tangent_flips >= kFreezeAfter && nd.hold_tangent == 0) {
     nd.hold_tangent = contact::Slip;
     const double ct = tangent_penalty(p, nd, dt_);
@@ -609,8 +634,9 @@ void Contact::count_flips(const Pair& p, Slave& nd) const {
 namespace {
 // The worst failed condition among the held nodes of one rank (kind 1: tension on a held
 // active node, 2: a held sticking node outside the Coulomb cone, 3: a held slipping node
-// slipping against or across its friction force, 4: a released node penetrating). Kind 1
-// is always revised (the node is released), so only 2-4 end a step.
+// slipping against or across its friction force, 4: a released node penetrating, 5: a node
+// held on a facet ending off it). Kind 1 is always revised (the node is released), so
+// only 2-5 end a step.
 struct HeldFailure {
   double excess = 0.0, value = 0.0, bound = 0.0;
   long long gid = -1;
@@ -626,6 +652,11 @@ std::string held_message(const HeldFailure& w, const std::string& pair) {
   if (w.kind == 3) os << "cycled between stick and slip; slipping it slides " << w.value << " against or across its friction force";
   if (w.kind == 4) os << "entered and left contact repeatedly; held active it ends in tension, released it penetrates, normal gap measure "
                       << w.value;
+  if (w.kind == 5) {
+    os << "changed master facets repeatedly; held on a facet, then on its closest one, it ends off the facet by more than "
+       << Contact::kHoldBand << " in the facet's parameters";
+    return os.str();
+  }
   os << " (tolerance " << Contact::kKktTolerance << " x the pair's largest nodal force or slip)";
   return os.str();
 }
@@ -655,6 +686,18 @@ int Contact::verify_held(std::string& why) {
           HeldFailure f{(-g - gtol) / std::max(gtol, 1e-300), g, 0.0, static_cast<long long>(nd.gid), static_cast<int>(ip), 4};
           if (f.excess > w.excess) w = f;
         }
+        continue;
+      }
+      if (nd.hold_facet >= 0 && nd.state >= contact::Stick && !nd.hold_in_band) {
+        // Held on a facet past its end: held on its closest facet instead, once; then a failure.
+        if (nd.hold_revisions < 2) {
+          nd.hold_facet = -2;
+          ++nd.hold_revisions;
+          ++revised;
+          continue;
+        }
+        HeldFailure f{1.0, 0.0, 0.0, static_cast<long long>(nd.gid), static_cast<int>(ip), 5};
+        if (f.excess > w.excess) w = f;
         continue;
       }
       if (!(nd.hold_active || nd.hold_tangent) || nd.state < contact::Stick) continue;
@@ -846,7 +889,7 @@ void Contact::evaluate_nodes(const la::Vector& u, la::Vector& r) {
           // the persistence condition itself decides whether it separates).
           if (pp->persistence && !nd.was_active && nd.d_n + lf * (nd.d_n - nd.d_prev) > gap_tol) return;
           if (pp->master) {
-            if (!keep_facet(*pp, nd, x)) locate(*pp, nd, x);
+            if (!(nd.hold_facet != -1 && self->hold_facet_projection(*pp, nd, x)) && !keep_facet(*pp, nd, x)) locate(*pp, nd, x);
             if (nd.facet < 0) return;
           }
           contact::NodeInput in;
@@ -1124,7 +1167,7 @@ std::string Contact::iteration_summary() const {
   for (const auto& p : pairs_) {
     long a = 0, st = 0, sl = 0, ends = 0, held = 0;
     for (const auto& nd : p.nodes) {
-      held += nd.hold_active || nd.hold_inactive || nd.hold_tangent != 0;
+      held += nd.hold_active || nd.hold_inactive || nd.hold_tangent != 0 || nd.hold_facet != -1;
       a += nd.state >= contact::Stick;
       st += nd.state == contact::Stick;
       sl += nd.state == contact::Slip;

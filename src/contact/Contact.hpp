@@ -77,7 +77,12 @@ class Contact {
   void set_step_length(double alpha) { alpha_ = alpha; }
   // Cycle control: a node whose set in the solves went back and forth kFreezeAfter times in
   // this step is held for the rest of the step, so the iteration cannot cycle on it: active
-  // (contact entered and left), slipping with a fixed friction direction (stick and slip).
+  // (contact entered and left), slipping with a fixed friction direction (stick and slip),
+  // on one master facet (its closest facet, or whether its projection fell inside it,
+  // changed kFacetFreezeAfter times, e.g. over a master vertex or past the surface's edge: the facet
+  // extended past its ends, no clamping, so its conditions are smooth; at convergence its
+  // projection must lie on the facet or within kHoldBand of it, else the node is held on
+  // its closest facet as a revision, once).
   // At convergence its conditions are checked from the converged contact force and slip,
   // each to kKktTolerance of the pair's largest nodal force or slip: a held active node must
   // press, a held slipping node must slip along its friction force (neither reversed nor,
@@ -87,6 +92,12 @@ class Contact {
   // a held node fails with no state left, `why` naming the node (the step is then cut
   // back). Collective.
   static constexpr int kFreezeAfter = 3;
+  static constexpr double kFacetBand = 0.02;  // facet hysteresis (keep_facet)
+  static constexpr int kFacetFreezeAfter = 2;  // facet changes (A -> B -> A: a cycle) before a facet hold
+  // A node held on a facet passes when its projection is within kHoldBand (parametric: a
+  // tenth of a line2 or quad facet's side) past the facet's edge, the master surface
+  // extended there as Abaqus extends its master surfaces.
+  static constexpr double kHoldBand = 0.2;
   static constexpr double kKktTolerance = 1e-3;
   int verify_held(std::string& why);
   // After a failed attempt at a step: the k slave nodes whose set changed most often in the
@@ -212,6 +223,14 @@ class Contact {
     int hold_tangent = 0;        // 0, or the held contact::Stick / contact::Slip
     int hold_revisions = 0;      // switches of the tangential hold by verify_held (at most 2)
     double hold_dir[3] = {0, 0, 0};  // the held slip's friction direction (unit, world frame)
+    // Facet cycle control (node-to-segment): the facet, and whether the projection was inside
+    // it, at the last solve; changes of them between solves; the facet held after
+    // kFreezeAfter changes (-1: none), extended past its ends (hold_facet_projection).
+    int solve_facet = -1;
+    bool solve_inside = true;
+    int facet_flips = 0;
+    int hold_facet = -1;         // -2: to be held on its closest facet at the next evaluation (a revision)
+    bool hold_in_band = true;    // the held facet's projection within kHoldBand of the facet
     double lam_base[3] = {0, 0, 0}, kdu[3] = {0, 0, 0};
   };
 
@@ -247,8 +266,11 @@ class Contact {
   // Positions of the master nodes at u (3 per master node; imports u's master dofs).
   void update_master_positions(const la::Vector& u, std::vector<double>& xm) const;
   void locate(const Pair& p, Slave& nd, const double* x) const;
-  static constexpr double kFacetBand = 0.02;
   bool keep_facet(const Pair& p, Slave& nd, const double* x) const;
+  // A held facet (Slave::hold_facet) extended by up to kHoldReach of its parameter range
+  // past each end: false (the hold dropped) when the node's projection leaves that.
+  static constexpr double kHoldReach = 0.5;
+  bool hold_facet_projection(const Pair& p, Slave& nd, const double* x) const;
   double facet_gap(const Pair& p, const Slave& nd, const double* x, double* n, double* rel) const;
   void node_input(const Pair& p, const Slave& nd, const double* x, contact::NodeInput& in) const;
   // The law's parameters of one slave node: its stiffness scale, release threshold and c_nu, c_tau.
