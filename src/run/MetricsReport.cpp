@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <limits>
 
 #include "io/Units.hpp"
 
@@ -87,12 +88,18 @@ void MetricsReport::end_stage(const RunState& s, const std::string& name, std::o
     rings_->table(log);
     log << "  stage";
   }
-  row.insert(row.end(), {dE, wext, diss, wc, fric});
+  const double none = std::numeric_limits<double>::quiet_NaN();
+  if (m_.dynamic)
+    row.insert(row.end(), {dE, wext, diss, wc, fric});
+  else
+    row.insert(row.end(), {dE, none, none, none, none});
   if (plastic_) row.push_back(plast);
   if (stages_csv_) stages_csv_->row(row);
-  log << std::scientific << std::setprecision(3) << (vessel_ ? "; energy: dE " : " energy: dE ") << dE << ", W_ext "
-      << wext << ", W_contact " << wc << (plastic_ ? ", D_visc + D_plastic " : ", D_visc ") << diss << ", D_fric " << fric;
+  log << std::scientific << std::setprecision(3) << (vessel_ ? "; energy: dE " : " energy: dE ") << dE;
+  if (m_.dynamic)
+    log << ", W_ext " << wext << ", W_contact " << wc << (plastic_ ? ", D_visc + D_plastic " : ", D_visc ") << diss << ", D_fric " << fric;
   if (plastic_) log << ", D_plastic " << plast;
+  if (!m_.dynamic) log << " (static: stored energy" << (plastic_ ? " and plastic dissipation" : "") << " only, no energy audit)";
   log << "\n"
       << std::defaultfloat;
   stage_max_ = now_;

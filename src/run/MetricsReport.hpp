@@ -24,7 +24,10 @@ class MetricsReport {
   void open(const std::string& stem);
   // After step s (and at t = 0): the metrics at u; E = kinetic + strain energy (collective).
   void step(const RunState& s, const la::Vector& u, double E);
-  // The stage (or the whole run) that ends at s: its row and log paragraph (rank 0).
+  // The stage (or the whole run) that ends at s: its row and log paragraph (rank 0). A
+  // static stage has no energy audit: its row carries the change of stored energy and the
+  // plastic dissipation, NaN for the works and the other dissipations, and its log line
+  // names only those two.
   void end_stage(const RunState& s, const std::string& name, std::ostream& log);
   void close();
   // Columns of <stem>_metrics.csv worth a plot: radii; stresses and pressure.

@@ -246,6 +246,7 @@ StepRecord Stepper::accept(RunState& s, double dt, const NewtonResult& nr) {
   m_.assembler->commit_history();  // Newton's last assemble() was at the accepted u
   if (m_.contact) rec.contact = m_.contact->accept(s.u);
   if (!m_.dynamic) {
+    s.energy.plastic += rec.plastic_dissipation;  // the one energy term a static step has besides the stored energy
     rec.nonfinite = nonfinite(s, nullptr);
     if (rec.nonfinite.empty() && nr.iterations > 0) rec.free_motion = free_translation();  // 0 iterations: nothing solved
     return rec;
