@@ -220,7 +220,7 @@ def render(res, a, out):
         ob = pv.Show(pv.Xdmf3ReaderS(FileName=[obstacles]), view)
         pv.ColorBy(ob, None)
         ob.AmbientColor = ob.DiffuseColor = [0.6, 0.6, 0.6]
-        ob.Opacity = 0.5
+        ob.Opacity = 0.5 if res.planar else 0.15  # in 3D the bodies seen through it
     label = pv.Text()
     tl = pv.Show(label, view)
     tl.Color, tl.FontSize, tl.WindowLocation = [0.0, 0.0, 0.0], 18, "Upper Left Corner"

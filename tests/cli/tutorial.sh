@@ -37,7 +37,8 @@ for f in results/artery_ring/artery_ring.xdmf results/artery_ring/artery_ring.h5
          mywork/results/continued/artery_ring_history.csv results/axi_np2/axi_cylinder_history.csv \
          results/artery_ring_vtu/artery_ring_0.vtu results/artery_ring_vtu/artery_ring.pvd \
          results/artery_ring_pictures/artery_ring_von_mises.png results/par_s4_pictures/par_s4_von_mises_0.png \
-         results/par_s4_pictures/par_s4_von_mises_3.png; do
+         results/par_s4_pictures/par_s4_von_mises_3.png results/s6_ring_quarter/s6_ring_quarter_metrics.csv \
+         results/s6_ring_quarter_pictures/s6_ring_quarter_equivalent_plastic_strain.png; do
   [ -s "$f" ] || fail "the tutorial promises $f"
 done
 # The log lines and messages the text quotes.
@@ -45,7 +46,8 @@ for pat in "^Summary: 10 steps" "lumen gain at t = 1: 18.06 %" "^coarse  lumen g
            "^stage 2/3 'inflation'" "metrics at the end of 'extraction'" "restart  from results/half/artery_ring_checkpoint.h5: step 5" \
            "parallel 2 MPI rank" "unknown parameter 'Materials->artery->C_1'; did you mean 'C1'" "^exit status 2$" \
            "every line-search trial inverted elements; where: cell [0-9]* of 'artery'" "^FAILED: Newton failed" "the failed step's last iterate (t = .*) is in results/burst.partial/artery_ring_failed.xdmf" \
-           "^exit status 3$" "max |u| = " "2D, 5785 nodes, 2505 cells (artery: 988 tri6, stent: 1517 tri6)"; do
+           "^exit status 3$" "max |u| = " "2D, 5785 nodes, 2505 cells (artery: 988 tri6, stent: 1517 tri6)" \
+           "^  0    |         3.8071 |         3.7637 |           1.141 |            9.422 |           - | 0.0716"; do
   grep -q -- "$pat" tutorial.out || fail "the tutorial's output lacks '$pat'"
 done
 grep -q 'W 1.551834e-01' mywork/continued.log || fail "the restarted run does not end at W = 1.551834e-01"
