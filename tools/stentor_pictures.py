@@ -42,12 +42,13 @@ except ImportError as e:  # pragma: no cover
 
 # The dimension of each field, for the legend: L length, S stress, 1 none.
 DIMENSION = {"displacement": "L", "velocity": "V", "cauchy_stress": "S", "von_mises": "S",
-             "contact_pressure": "S", "contact_gap": "L", "contact_slip": "L",
+             "contact_pressure": "S", "contact_master_pressure": "S", "contact_gap": "L", "contact_slip": "L",
              "equivalent_plastic_strain": "1", "J": "1"}
 UNITS = {"SI": {"L": "m", "S": "Pa", "V": "m/s"}, "mm-N-s": {"L": "mm", "S": "MPa", "V": "mm/s"},
          "mm-g-ms": {"L": "mm", "S": "MPa", "V": "mm/ms"}}
 TITLES = {"von_mises": "von Mises stress", "displacement": "displacement", "J": "J = det F",
           "cauchy_stress": "Cauchy stress", "contact_pressure": "contact pressure",
+          "contact_master_pressure": "contact pressure (master side)",
           "equivalent_plastic_strain": "equivalent plastic strain", "velocity": "velocity"}
 
 

@@ -1312,16 +1312,18 @@ Contact::NodalFields Contact::nodal_fields() const {
 }
 
 Contact::NodalFields Contact::master_fields() const {
-  std::map<int, std::array<double, 3>> force;  // master position -> force
+  std::map<int, std::array<double, 4>> force;  // master position -> force, normal force
   for (const Pair& p : pairs_) {
     if (!p.master) continue;
     for (const Slave& nd : p.nodes) {
       if (nd.state < contact::Stick || nd.facet < 0) continue;
+      const double fn = dot3(nd.f, nd.normal);
       if (p.mortar) {
         const contact::MortarRows& mo = p.mortar_out[static_cast<std::size_t>(&nd - p.nodes.data())];
         for (std::size_t k = 0; k < mo.masters.size(); ++k) {
           auto& f = force[mo.masters[k]];
           for (int c = 0; c < 3; ++c) f[static_cast<std::size_t>(c)] -= mo.w[k] * nd.f[c];
+          f[3] += mo.w[k] * fn;
         }
         continue;
       }
@@ -1334,13 +1336,14 @@ Contact::NodalFields Contact::master_fields() const {
       for (int a = 0; a < fc.nn; ++a) {
         auto& f = force[fc.node[a]];
         for (int c = 0; c < 3; ++c) f[static_cast<std::size_t>(c)] -= fr.N[a] * nd.f[c];
+        f[3] += fr.N[a] * fn;
       }
     }
   }
   NodalFields out;
   for (const auto& [pos, f] : force) {
     out.nodes.push_back(static_cast<long long>(master_nodes_[static_cast<std::size_t>(pos)]));
-    out.values.insert(out.values.end(), {f[0], f[1], f[2], master_area_[static_cast<std::size_t>(pos)]});
+    out.values.insert(out.values.end(), {f[0], f[1], f[2], master_area_[static_cast<std::size_t>(pos)], f[3]});
   }
   return out;
 }

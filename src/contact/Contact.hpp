@@ -150,11 +150,13 @@ class Contact {
     std::vector<double> values;
   };
   NodalFields nodal_fields() const;
-  // Per master node touched by an active slave of this rank: global node id and 4 values
-  // (the reaction force on the master node, -sum N_a F, x y z; its HRZ tributary area). The
-  // same node may come from several ranks: sum the forces, keep the area. (The output's
-  // contact_master_traction projects the summed forces instead: mesh/SurfaceProjection.hpp.)
-  static constexpr int kMasterValues = 4;
+  // Per master node touched by an active slave of this rank: global node id and 5 values
+  // (the reaction force on the master node, -sum N_a F, x y z; its HRZ tributary area; the
+  // normal force it carries, sum N_a F . n, compression > 0, n the slave's contact normal).
+  // The same node may come from several ranks: sum the forces, keep the area. (The
+  // output's contact_master_traction and contact_master_pressure project the summed forces
+  // instead: mesh/SurfaceProjection.hpp.)
+  static constexpr int kMasterValues = 5;
   bool has_master_surfaces() const { return has_master_; }
   // The rigid obstacles at time t (position and radius), in deck order (for drawing).
   std::vector<contact::Obstacle> rigid_obstacles(double t) const;

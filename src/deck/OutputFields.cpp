@@ -49,6 +49,8 @@ const std::vector<OutputField>& output_fields() {
       {"contact_slip", W::Node, 3, "length", N::Contact, true, "Tangential relative displacement of slave nodes over the last step."},
       {"contact_master_traction", W::Node, 3, "stress", N::MasterSurface, true,
        "Reaction on the master surface per reference area, recovered like contact_pressure."},
+      {"contact_master_pressure", W::Node, 1, "stress", N::MasterSurface, true,
+       "Contact pressure on the master side: the normal force (along the contact normal, compression > 0) per reference area, recovered like contact_pressure; equals it across a pair in equilibrium."},
   };
   return f;
 }

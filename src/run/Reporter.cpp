@@ -74,10 +74,10 @@ Gathered gather_on_root(MPI_Comm comm, const std::vector<long long>& ids, const 
 // (then the gap is NaN, the value without meaning that ParaView draws in its NaN colour, so
 // that no node off the contact surfaces reads as touching; the forces, pressure and slip
 // are 0); 0 free, 1 inactive, 2 stick, 3 slip. `slaves`: the slave nodes' values routed to
-// their rows. Master surfaces (`traction` not null): contact_master_traction = the
-// reaction forces on the master nodes (summed over ranks) projected on the master surfaces
-// like the contact pressure (mesh/SurfaceProjection.hpp; zero on other nodes), routed to
-// their rows. Only the fields of Output->field list are written. Collective.
+// their rows. Master surfaces (`traction` not null): contact_master_traction and
+// contact_master_pressure = the reaction forces on the master nodes and their normal parts
+// (summed over ranks) projected on the master surfaces like the contact pressure
+// (mesh/SurfaceProjection.hpp; zero on other nodes), routed to their rows. Only the fields of Output->field list are written. Collective.
 void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, const Records& slaves, const Records* traction) {
   constexpr int kv = Contact::kNodalValues;
   const RowRange rows = xdmf.node_rows();
@@ -106,22 +106,29 @@ void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, const Records
   put("contact_lambda_tangent", 3, lambda_t);
   put("contact_slip", 3, slip);
   if (!traction) return;
-  std::vector<double> t(3 * nn, 0.0);
-  for (std::size_t i = 0; i < traction->ids.size(); ++i)
-    for (std::size_t k = 0; k < 3; ++k) t[3 * (static_cast<std::size_t>(traction->ids[i]) - rows.begin) + k] = traction->values[3 * i + k];
-  xdmf.node_field("contact_master_traction", 3, t);
+  std::vector<double> t(3 * nn, 0.0), pm(nn, 0.0);
+  for (std::size_t i = 0; i < traction->ids.size(); ++i) {
+    const std::size_t g = static_cast<std::size_t>(traction->ids[i]) - rows.begin;
+    for (std::size_t k = 0; k < 3; ++k) t[3 * g + k] = traction->values[4 * i + k];
+    pm[g] = traction->values[4 * i + 3];
+  }
+  put("contact_master_traction", 3, t);
+  put("contact_master_pressure", 1, pm);
 }
 
-// Rank 0: the master surfaces' traction (projected summed forces) at their nodes, 3 values
-// each, from the gathered master records (write_contact_fields).
+// Rank 0: the master surfaces' traction and normal pressure (projected summed forces) at
+// their nodes, 4 values each (x y z, p), from the gathered master records
+// (write_contact_fields).
 void master_traction(const Gathered& masters, const SurfaceProjection& s, std::vector<long long>& ids, std::vector<double>& values) {
   constexpr int km = Contact::kMasterValues;
-  std::vector<double> force(3 * s.nodes().size(), 0.0);
+  std::vector<double> force(4 * s.nodes().size(), 0.0);
   for (std::size_t i = 0; i < masters.ids.size(); ++i) {
     const long at = s.index(static_cast<GId>(masters.ids[i]));  // every master node is on a master surface
-    for (std::size_t k = 0; k < 3 && at >= 0; ++k) force[3 * static_cast<std::size_t>(at) + k] += masters.values[km * i + k];
+    if (at < 0) continue;
+    for (std::size_t k = 0; k < 3; ++k) force[4 * static_cast<std::size_t>(at) + k] += masters.values[km * i + k];
+    force[4 * static_cast<std::size_t>(at) + 3] += masters.values[km * i + 4];
   }
-  values = s.project(force, 3);
+  values = s.project(force, 4);
   ids.assign(s.nodes().begin(), s.nodes().end());
 }
 
@@ -459,13 +466,14 @@ void Reporter::write_contact(XdmfWriter& w, MPI_Comm comm) {
   const Records slaves = route_to_rows(comm, m_.mesh.num_nodes(), nf.nodes, nf.values, Contact::kNodalValues);
   const Contact::NodalFields mf = m_.contact->master_fields();
   const Gathered masters = gather_on_root(comm, mf.nodes, mf.values, Contact::kMasterValues, m_.nranks);
-  const bool traction = master_traction_ && m_.contact->has_master_surfaces() && cfg_.output.wants("contact_master_traction");
+  const bool traction = master_traction_ && m_.contact->has_master_surfaces() &&
+                        (cfg_.output.wants("contact_master_traction") || cfg_.output.wants("contact_master_pressure"));
   Records t;
   if (traction) {
     std::vector<long long> ids;
     std::vector<double> values;
     if (m_.rank == 0) master_traction(masters, *master_surface_, ids, values);
-    t = route_to_rows(comm, m_.mesh.num_nodes(), ids, values, 3);
+    t = route_to_rows(comm, m_.mesh.num_nodes(), ids, values, 4);
   }
   write_contact_fields(w, cfg_.output, slaves, traction ? &t : nullptr);
 }

@@ -160,7 +160,8 @@ TEST(ContactOutput, UniformPressureOnEveryFacetType) {
 // Against another body: the two tetrahedral blocks of inputs/contact_patch3d.xml with
 // matching tri6 interface facets (3 x 3 divisions, Mesh->order 2) under p on the upper
 // block's top: a homogeneous state, so the upper block's contact_pressure is p and the
-// lower block's contact_master_traction is (0, 0, -p) at every interface node.
+// lower block's contact_master_traction is (0, 0, -p), its contact_master_pressure p, at
+// every interface node.
 // Measured before the projection: both 0 at the tri6 corner nodes and 1.1875 p at the
 // mid-edge nodes.
 TEST(ContactOutput, PressureAndMasterTractionUniformOnTri6Interface) {
@@ -184,8 +185,9 @@ TEST(ContactOutput, PressureAndMasterTractionUniformOnTri6Interface) {
   H5 h5(out / "contact_patch3d.h5");
   ASSERT_EQ(h5.times().size(), 2u);
   const auto X = h5.read("/mesh/coordinates"), st = h5.read("/step_1/contact_status"), pr = h5.read("/step_1/contact_pressure"),
-             tr = h5.read("/step_1/contact_master_traction");
+             tr = h5.read("/step_1/contact_master_traction"), pm = h5.read("/step_1/contact_master_pressure");
   ASSERT_EQ(tr.size(), X.size());
+  ASSERT_EQ(pm.size(), st.size());
   int slaves = 0, masters = 0;
   double worst = 0.0;
   for (std::size_t n = 0; n < st.size(); ++n) {
@@ -195,7 +197,8 @@ TEST(ContactOutput, PressureAndMasterTractionUniformOnTri6Interface) {
       worst = std::max(worst, std::abs(pr[n] - kP) / kP);
     } else {
       ++masters;
-      worst = std::max({worst, std::abs(tr[3 * n]) / kP, std::abs(tr[3 * n + 1]) / kP, std::abs(tr[3 * n + 2] + kP) / kP});
+      worst = std::max({worst, std::abs(tr[3 * n]) / kP, std::abs(tr[3 * n + 1]) / kP, std::abs(tr[3 * n + 2] + kP) / kP,
+                        std::abs(pm[n] - kP) / kP});
     }
   }
   std::printf("tri6 interface: %d slave and %d master nodes, max deviation from p %.2e\n", slaves, masters, worst);
