@@ -1266,6 +1266,7 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
     p.last_normal_force = ps.normal_force;
     p.last_dt = dynamic_ ? dt_ : 0.0;
     ps.min_gap = mglob[i];
+    if (round_obstacle(p)) ps.obstacle_diameter = 2.0 * obstacle(p, t1_).radius;
     s.pairs.push_back(ps);
   }
   s.work = glob[kPer * np];
@@ -1359,13 +1360,15 @@ std::vector<std::string> Contact::history_columns() const {
     c.push_back(b + "normal_force");
     c.push_back(b + "two_step_mean_normal_force");
     c.push_back(b + "min_gap");
+    if (round_obstacle(p)) c.push_back(b + "obstacle_diameter");
   }
   return c;
 }
 
 std::vector<double> Contact::history_values(const StepStats& s) const {
   std::vector<double> v;
-  for (const auto& ps : s.pairs) {
+  for (std::size_t i = 0; i < s.pairs.size(); ++i) {
+    const PairStats& ps = s.pairs[i];
     v.push_back(static_cast<double>(ps.active));
     v.push_back(static_cast<double>(ps.stick));
     v.push_back(static_cast<double>(ps.slip));
@@ -1373,6 +1376,7 @@ std::vector<double> Contact::history_values(const StepStats& s) const {
     v.push_back(ps.normal_force);
     v.push_back(ps.normal_force_mean);
     v.push_back(ps.min_gap);
+    if (round_obstacle(pairs_[i])) v.push_back(ps.obstacle_diameter);
   }
   return v;
 }

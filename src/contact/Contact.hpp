@@ -25,6 +25,7 @@
 // the contact couplings, across ranks). Without active nodes K is used as it is.
 #pragma once
 #include <array>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -125,6 +126,9 @@ class Contact {
     // "Sustained contact"). In a static step (and the first step after one): normal_force.
     double normal_force_mean = 0.0;
     double min_gap = 0.0;
+    // A rigid circle, sphere, cylinder or capsule (a balloon): its diameter at the step's
+    // end (history column contact_<pair>_obstacle_diameter; NaN for other pairs).
+    double obstacle_diameter = std::numeric_limits<double>::quiet_NaN();
   };
   struct StepStats {
     std::vector<PairStats> pairs;
@@ -264,6 +268,8 @@ class Contact {
   void setup_master_maps(const Mesh& mesh, const std::vector<GId>& surface_set, const Assembler& assembler);
   int master_pos(GId g) const;  // index of node g in master_nodes_, or -1
   contact::Obstacle obstacle(const Pair& p, double t) const;
+  // A rigid circle, sphere, cylinder or capsule: a pair with an obstacle diameter.
+  static bool round_obstacle(const Pair& p) { return !p.master && p.cfg.obstacle != "plane"; }
   std::array<double, 3> translation(const Pair& p, double t) const;
   // Positions of the master nodes at u (3 per master node; imports u's master dofs).
   void update_master_positions(const la::Vector& u, std::vector<double>& xm) const;

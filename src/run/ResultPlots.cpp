@@ -96,6 +96,15 @@ void history_plots(const Model& m, const PlotTable& h, const std::string& stem, 
     if (m.cfg.any_dynamic() && h.find(mean) >= 0) contact.curves.push_back({mean, c.name + ", two-step mean", ""});
   }
   if (m.contact && !contact.curves.empty() && plot_png(h, stem + "_contact.png", contact)) made.push_back(stem + "_contact.png");
+  // A balloon (a rigid round obstacle whose radius changes): its force-diameter curve.
+  for (const auto& c : m.cfg.contact) {
+    const std::string d = "contact_" + c.name + "_obstacle_diameter", f = "contact_" + c.name + "_normal_force";
+    if (c.radius_change == 0.0 || h.find(d) < 0 || h.find(f) < 0) continue;
+    PlotSpec fd{"Force-diameter curve of '" + c.name + "': normal contact force against the obstacle's diameter",
+                with_unit("diameter", u.length), with_unit("normal force", u.force), d, {{f, c.name, ""}}, false};
+    const std::string png = stem + "_force_diameter_" + file_part(c.name) + ".png";
+    if (plot_png(h, png, fd)) made.push_back(png);
+  }
 }
 
 // What the `plastic_dissipation` column holds: the dissipation of the deck's laws with

@@ -188,6 +188,17 @@ TEST(Stages, RigidBalloonInflateDeflateEqualsRampTable) {
   ASSERT_EQ(fy.size(), 6u);
   EXPECT_GT(std::abs(fy[3]), 0.0);
   expect_same(a, b, 1e-10);
+  // The balloon's diameter in the history (the x of its force-diameter plot): 2 (r0 + dr
+  // ramp(t)), the table rising to 1 at t = 1 and back to 0.5 at t = 1.5, in both decks.
+  for (const Outcome* o : {&a, &b}) {
+    const auto& t = o->history["time"];
+    const auto& d = o->history["contact_balloon_obstacle_diameter"];
+    ASSERT_EQ(d.size(), t.size());
+    for (std::size_t k = 0; k < t.size(); ++k) {
+      const double ramp = t[k] <= 1.0 ? t[k] : 1.0 - (t[k] - 1.0);
+      EXPECT_NEAR(d[k], 2.0 * (0.45 + 0.15 * ramp), 1e-14) << "t = " << t[k];
+    }
+  }
 
   // Released: with the pair off in a third stage the block springs back to rest.
   const Outcome c = run(deck(false, body("") + stages +
