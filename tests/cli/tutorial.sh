@@ -37,7 +37,7 @@ for f in results/artery_ring/artery_ring.xdmf results/artery_ring/artery_ring.h5
          mywork/results/continued/artery_ring_history.csv results/axi_np2/axi_cylinder_history.csv \
          results/artery_ring_vtu/artery_ring_0.vtu results/artery_ring_vtu/artery_ring.pvd \
          results/artery_ring_pictures/artery_ring_von_mises.png results/par_s4_pictures/par_s4_von_mises_0.png \
-         results/par_s4_pictures/par_s4_von_mises_3.png results/s6_ring_quarter/s6_ring_quarter_metrics.csv \
+         results/par_s4_pictures/par_s4_von_mises_3.png results/s6_ring_quarter/s6_ring_quarter_metrics.csv results/s6_ring_quarter/s6_ring_quarter_force_diameter_cylinder.png \
          results/s6_ring_quarter_pictures/s6_ring_quarter_equivalent_plastic_strain.png; do
   [ -s "$f" ] || fail "the tutorial promises $f"
 done
