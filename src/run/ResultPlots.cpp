@@ -23,6 +23,13 @@ std::string file_part(std::string s) {
   return s;
 }
 
+// A dashed line where each stage but the last ends, for every plot against time.
+std::vector<PlotMark> stage_marks(const Config& cfg) {
+  std::vector<PlotMark> marks;
+  for (std::size_t k = 0; k + 1 < cfg.stages.size(); ++k) marks.push_back({cfg.stages[k].end, "end of " + cfg.stages[k].name});
+  return marks;
+}
+
 // The history table with the initial state as row 0 (t = 0): probe displacements when
 // known, reactions and contact forces 0 when at rest and unloaded, else NaN (no point).
 void prepend_initial_row(PlotTable& h, const Model& m, const InitialState& init) {
@@ -72,7 +79,7 @@ void reaction_plots(const Model& m, PlotTable& h, const std::string& stem, const
       if (plot_png(h, png, vs_u)) made.push_back(png);
     }
   }
-  if (!vs_time.curves.empty() && plot_png(h, stem + "_reactions.png", vs_time)) made.push_back(stem + "_reactions.png");
+  if (!vs_time.curves.empty() && plot_png(h, stem + "_reactions.png", vs_time, stage_marks(m.cfg))) made.push_back(stem + "_reactions.png");
 }
 
 // Probe displacements and contact forces vs time.
@@ -83,7 +90,7 @@ void history_plots(const Model& m, const PlotTable& h, const std::string& stem, 
       const std::string col = "u_" + p.name + "_" + kAxes[k];
       if (h.find(col) >= 0) probes.curves.push_back({col, p.name + ": u_" + kAxes[k], ""});
     }
-  if (!probes.curves.empty() && plot_png(h, stem + "_probes.png", probes)) made.push_back(stem + "_probes.png");
+  if (!probes.curves.empty() && plot_png(h, stem + "_probes.png", probes, stage_marks(m.cfg))) made.push_back(stem + "_probes.png");
   // The normal force of each pair (the sum of its nodes' normal forces: the radial force
   // against a cylinder or a balloon), not the vector sum, in which opposite walls cancel.
   PlotSpec contact{"Normal contact force of each pair (compression > 0)", with_unit("time", u.time), with_unit("normal force", u.force), "time", {}, true};
@@ -95,7 +102,7 @@ void history_plots(const Model& m, const PlotTable& h, const std::string& stem, 
     const std::string mean = "contact_" + c.name + "_two_step_mean_normal_force";
     if (m.cfg.any_dynamic() && h.find(mean) >= 0) contact.curves.push_back({mean, c.name + ", two-step mean", ""});
   }
-  if (m.contact && !contact.curves.empty() && plot_png(h, stem + "_contact.png", contact)) made.push_back(stem + "_contact.png");
+  if (m.contact && !contact.curves.empty() && plot_png(h, stem + "_contact.png", contact, stage_marks(m.cfg))) made.push_back(stem + "_contact.png");
   // A balloon (a rigid round obstacle whose radius changes): its force-diameter curve.
   for (const auto& c : m.cfg.contact) {
     const std::string d = "contact_" + c.name + "_obstacle_diameter", f = "contact_" + c.name + "_normal_force";
@@ -155,12 +162,12 @@ void energy_plots(const Model& m, const std::string& stem, const UnitLabels& u, 
   if (wc) s.curves.push_back({"contact_work", "contact work W_contact", ""});
   if (fric) s.curves.push_back({"friction_dissipation", "frictional dissipation D_friction", ""});
   s.curves.push_back({"balance_error", "balance error " + balance, ""});
-  if (plot_png(e, stem + "_energy.png", s)) made.push_back(stem + "_energy.png");
+  if (plot_png(e, stem + "_energy.png", s, stage_marks(m.cfg))) made.push_back(stem + "_energy.png");
   const std::string per_step = std::string("E_{n+1} - E_n - (W_ext + W_sup") + (c ? " + W_contact" : "") + " - D" +
                                (c ? " - D_friction" : "") + ") of the step";
   PlotSpec b{"Energy balance residual per step (" + m.cfg.time.scheme + ")", with_unit("time", u.time),
              with_unit("balance residual", u.energy), "time", {{"balance_residual", per_step, ""}}, true};
-  if (plot_png(e, stem + "_balance.png", b)) made.push_back(stem + "_balance.png");
+  if (plot_png(e, stem + "_balance.png", b, stage_marks(m.cfg))) made.push_back(stem + "_balance.png");
 }
 
 // A metrics column as a legend: "lumen_radius_mean" -> "lumen radius, mean".
@@ -179,16 +186,16 @@ std::string metric_legend(const std::string& c) {
   return s;
 }
 
-void metrics_plots(const std::string& stem, const UnitLabels& u, const std::vector<std::string>& radii,
+void metrics_plots(const Model& m, const std::string& stem, const UnitLabels& u, const std::vector<std::string>& radii,
                    const std::vector<std::string>& stresses, std::vector<std::string>& made) {
   PlotTable t;
   if (radii.empty() || !read_csv_table(stem + "_metrics.csv", t)) return;
   PlotSpec r{"Lumen and stent radii", with_unit("time", u.time), with_unit("radius", u.length), "time", {}, true};
   for (const auto& c : radii) r.curves.push_back({c, metric_legend(c), ""});
-  if (plot_png(t, stem + "_radii.png", r)) made.push_back(stem + "_radii.png");
+  if (plot_png(t, stem + "_radii.png", r, stage_marks(m.cfg))) made.push_back(stem + "_radii.png");
   PlotSpec s{"Artery wall stress, contact pressure", with_unit("time", u.time), with_unit("stress", u.stress), "time", {}, true};
   for (const auto& c : stresses) s.curves.push_back({c, metric_legend(c), ""});
-  if (plot_png(t, stem + "_stresses.png", s)) made.push_back(stem + "_stresses.png");
+  if (plot_png(t, stem + "_stresses.png", s, stage_marks(m.cfg))) made.push_back(stem + "_stresses.png");
 }
 
 // A generated stent's outer diameters against time, a dashed line where each stage ends.
@@ -204,8 +211,7 @@ void diameter_plot(const Model& m, const std::string& stem, const UnitLabels& u,
       if (ch == '_') ch = ' ';
     d.curves.push_back({c, legend, ""});
   }
-  std::vector<PlotMark> marks;
-  for (std::size_t k = 0; k + 1 < m.cfg.stages.size(); ++k) marks.push_back({m.cfg.stages[k].end, "end of " + m.cfg.stages[k].name});
+  std::vector<PlotMark> marks = stage_marks(m.cfg);
   const int dm = t.find(cols.front()), tc = t.find("time");  // the peak: the largest mean diameter
   if (dm >= 0 && tc >= 0 && t.rows() > 0) {
     const auto& D = t.columns[static_cast<std::size_t>(dm)];
@@ -254,7 +260,7 @@ std::vector<std::string> write_result_plots(const Model& m, const std::string& s
     history_plots(m, h, stem, u, made);
   }
   if (m.any_dynamic) energy_plots(m, stem, u, made);
-  metrics_plots(stem, u, radius_columns, stress_columns, made);
+  metrics_plots(m, stem, u, radius_columns, stress_columns, made);
   diameter_plot(m, stem, u, diameter_columns, made);
   return made;
 }
