@@ -1,9 +1,10 @@
 """Pictures of Stentor results with ParaView, without opening its window.
 
-usage: xvfb-run -a pvbatch tools/stentor_pictures.py RESULT.xdmf [--field NAME]
+usage: pvbatch tools/stentor_pictures.py RESULT.xdmf [--field NAME]
            [--time last | all | T] [--body NAME] [--warp S] [--out DIR] [--size WxH]
            [--no-obstacles] [--overwrite] [--list]
 
+Without an X display (a cluster node, ssh): xvfb-run -a -s -noreset pvbatch tools/stentor_pictures.py ...
 Renders the deformed bodies coloured by one field with a titled colour legend (with the
 deck's units) and the time, as PNG files, the way one would in ParaView's window:
   --field NAME   a point or cell field of the result (default von_mises); vectors and
@@ -36,8 +37,8 @@ try:
     import numpy as np
     from paraview import simple as pv
 except ImportError as e:  # pragma: no cover
-    print("stentor_pictures: %s (run it with ParaView's pvbatch: xvfb-run -a pvbatch %s ...; "
-          "Debian: apt install paraview python3-paraview xvfb)" % (e, sys.argv[0]), file=sys.stderr)
+    print("stentor_pictures: %s (run it with ParaView's pvbatch: pvbatch %s ..., without an X display xvfb-run -a -s -noreset pvbatch %s ...; "
+          "Debian: apt install paraview python3-paraview xvfb)" % (e, sys.argv[0], sys.argv[0]), file=sys.stderr)
     sys.exit(77)
 
 # The dimension of each field, for the legend: L length, S stress, 1 none.

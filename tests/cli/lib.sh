@@ -47,3 +47,23 @@ deck_copy() {
   dir=$(cd "$(dirname "$deck")" && pwd)
   sed -e "s#\(name=\"file\" type=\"string\" value=\"\)\([^/\"][^\"]*\)\"#\1$dir/\2\"#" "$@" "$deck" > "$out"
 }
+
+# start_xvfb DIR: an X server of this script's own for ParaView's pvbatch, DISPLAY
+# exported, ended when the script exits. Xvfb picks a free display itself (-displayfd),
+# so parallel tests do not race for one as with `xvfb-run -a`, and -noreset keeps it
+# accepting connections: by default an X server resets when its last client leaves, and
+# pvbatch (which probes OpenGL in one connection, then draws in another) then met a
+# resetting server under load and aborted with "bad X server connection".
+start_xvfb() {
+  rm -f "$1/xvfb.display"
+  Xvfb -displayfd 9 -screen 0 1280x1024x24 -nolisten tcp -noreset 9>"$1/xvfb.display" 2>"$1/xvfb.log" &
+  _xvfb_pid=$!
+  trap 'kill "$_xvfb_pid" 2>/dev/null' EXIT
+  local i
+  for i in $(seq 200); do
+    [ -s "$1/xvfb.display" ] && break
+    sleep 0.1
+  done
+  [ -s "$1/xvfb.display" ] || fail "Xvfb did not start (its log: $1/xvfb.log)"
+  export DISPLAY=":$(head -n 1 "$1/xvfb.display")"
+}

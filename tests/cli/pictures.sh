@@ -3,14 +3,14 @@
 # it promises exist (one per output with --time all), are PNGs of the size asked for with
 # the bodies drawn in many colours (pictures_check.py reads them back with VTK); a
 # missing field or body and an existing picture are refused with exit 2 and nothing
-# overwritten. Skipped (77) where ParaView's Python modules or xvfb-run are missing.
+# overwritten. Skipped (77) where ParaView's Python modules or Xvfb are missing.
 # usage: pictures.sh STENTOR WORKDIR DECK SOURCE_DIR FIELD [BODY]
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 stentor=$1 work=$2 deck=$3 src=$4 field=$5 body=${6:-}
-command -v pvbatch >/dev/null && command -v xvfb-run >/dev/null && [ -d /usr/lib/python3/dist-packages/paraview ] || {
-  echo "skipped: pvbatch, xvfb-run or python3-paraview not installed"; exit 77; }
+command -v pvbatch >/dev/null && command -v Xvfb >/dev/null && [ -d /usr/lib/python3/dist-packages/paraview ] || {
+  echo "skipped: pvbatch, Xvfb or python3-paraview not installed"; exit 77; }
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || fail "cannot make $work"
 sed -e "s|value=\"\\([^\"]*\\.geo\\)\"|value=\"$(dirname "$deck")/\\1\"|" \
     -e "s|<Parameter name=\"fields\" type=\"bool\" value=\"false\"/>|<Parameter name=\"fields\" type=\"bool\" value=\"true\"/>|" \
@@ -21,7 +21,8 @@ base=$(basename "$xdmf" .xdmf)
 nout=$(grep -c '<Grid Name="step' "$xdmf" || true)
 [ "$nout" -ge 3 ] || fail "$xdmf has $nout outputs, expected 3 or more"
 export PYTHONPATH=/usr/lib/python3/dist-packages
-pictures() { timeout 120 xvfb-run -a pvbatch "$src/tools/stentor_pictures.py" "$@" 2>&1 | grep -v '^$'; return "${PIPESTATUS[0]}"; }
+start_xvfb "$PWD"
+pictures() { timeout 120 pvbatch "$src/tools/stentor_pictures.py" "$@" 2>&1 | grep -v '^$'; return "${PIPESTATUS[0]}"; }
 bodyarg=(); [ -n "$body" ] && bodyarg=(--body "$body")
 pictures "$xdmf" --list | tee list.txt || fail "--list failed"
 grep -q "^fields: .*$field" list.txt || fail "--list does not name $field"

@@ -16,6 +16,9 @@ awk '/^```bash tutorial$/ { on = 1; n++; print "echo \"=== tutorial block " n "\
      on { print }' "$src/docs/tutorial.md" > tutorial_commands.sh
 blocks=$(grep -c '^```bash tutorial$' "$src/docs/tutorial.md")
 [ "$blocks" -ge 15 ] || fail "docs/tutorial.md has $blocks \`\`\`bash tutorial blocks, expected at least 15"
+# The pictures' pvbatch draws on an X server of the test's own (lib.sh start_xvfb).
+command -v pvbatch >/dev/null && command -v Xvfb >/dev/null || fail "the tutorial needs ParaView's pvbatch and Xvfb (bash ci/setup.sh installs them)"
+start_xvfb "$work"
 # Debian's python3 (python3-meshio) first; Open MPI as root in CI.
 export PATH=/usr/bin:$PATH OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 start=$(date +%s)
