@@ -609,13 +609,15 @@ double tangential(const double* v, const double* n, double* vt) {
 // entered or left contact kFreezeAfter times in the step is held active from now on, one
 // that changed between stick and slip that often is held slipping, with its friction
 // direction fixed to that of q = lambda_tau + c_tau v at this iterate (the direction the
-// slip law would take; verify_held may revise it).
+// slip law would take; verify_held may revise it). Node-to-segment: a node whose facet (or
+// whether its projection fell inside it) changed kFacetFreezeAfter times is held on its
+// facet (hold_facet_projection).
 void Contact::count_flips(const Pair& p, Slave& nd) const {
   const bool was = nd.base_state >= contact::Stick, is = nd.state >= contact::Stick;
   if (was != is) ++nd.normal_flips;
   else if (was && nd.state != nd.base_state) ++nd.tangent_flips;
   if (nd.normal_flips >= kFreezeAfter && is && !nd.hold_inactive) nd.hold_active = true;
-  if (p.master && nd.facet >= 0 && nd.solve_facet >= 0 && (nd.facet != nd.solve_facet || nd.inside != nd.solve_inside))
+  if (p.master && !p.mortar && nd.facet >= 0 && nd.solve_facet >= 0 && (nd.facet != nd.solve_facet || nd.inside != nd.solve_inside))
     ++nd.facet_flips;
   nd.solve_facet = nd.facet, nd.solve_inside = nd.inside;
   if (nd.facet_flips >= kFacetFreezeAfter && nd.hold_facet < 0 && is && nd.facet >= 0) nd.hold_facet = nd.facet;
