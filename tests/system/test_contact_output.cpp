@@ -207,6 +207,37 @@ TEST(ContactOutput, PressureAndMasterTractionUniformOnTri6Interface) {
   EXPECT_LT(worst, 1e-9);
 }
 
+// Both sides of a 2D pair with non-matching meshes (inputs/contact_patch2d.xml, 4 / 5
+// divisions) under dual mortar, which passes the patch test: contact_pressure on the
+// slave nodes and contact_master_pressure on the master nodes are p at every interface
+// node (the master side from the forces the slave nodes put on it).
+TEST(ContactOutput, MasterPressureEqualsSlavePressureWithMortar) {
+  std::ifstream in(kInputs + "contact_patch2d.xml");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  std::string deck = ss.str();
+  const std::string file = R"X(<Parameter name="file" type="string" value="two_blocks.geo"/>)X";
+  deck.replace(deck.find(file), file.size(), R"X(<Parameter name="file" type="string" value=")X" + kInputs + R"X(two_blocks.geo"/>)X");
+  const std::string master = R"X(<Parameter name="master" type="string" value="lower_top"/>)X";
+  deck.replace(deck.find(master), master.size(), master + R"X(<Parameter name="discretization" type="string" value="mortar"/>)X");
+  const fs::path out = run_deck("mortar_both_sides", deck);
+  H5 h5(out / "contact_patch2d.h5");
+  const auto X = h5.read("/mesh/coordinates"), st = h5.read("/step_1/contact_status"), ps = h5.read("/step_1/contact_pressure"),
+             pm = h5.read("/step_1/contact_master_pressure");
+  int slaves = 0, masters = 0;
+  double worst = 0.0;
+  for (std::size_t n = 0; n < st.size(); ++n) {
+    if (X[3 * n + 1] != 0.5) continue;
+    const double p = st[n] >= 0.0 ? ps[n] : pm[n];
+    (st[n] >= 0.0 ? slaves : masters) += 1;
+    worst = std::max(worst, std::abs(p - kP) / kP);
+  }
+  std::printf("mortar 4/5: %d slave and %d master nodes, max |p - p0| / p0 %.2e\n", slaves, masters, worst);
+  EXPECT_EQ(slaves, 6);
+  EXPECT_EQ(masters, 5);
+  EXPECT_LT(worst, 1e-9);
+}
+
 // contact_gap where the block of UniformPressureOnEveryFacetType rests on the plane (0, the
 // nodes active: status 2 or 3), below the lid (1.2 - the top's height, status
 // 1: checked, not in contact) and elsewhere (NaN, status -1). Measured before: 0 on every
