@@ -150,8 +150,8 @@ class Result:
         x = np.asarray(self.h5["mesh/coordinates"], dtype=float)
         x = np.pad(x, ((0, 0), (0, 3 - x.shape[1])))
         nodes = slice(None)
-        if body is not None and self.cell_block is not None:
-            top = np.asarray(self.h5["mesh/topology"])
+        top = np.asarray(self.h5["mesh/topology"])
+        if body is not None and self.cell_block is not None and top.ndim == 2:  # (a "Mixed" list: all nodes)
             nodes = np.unique(top[self.cell_block == self.bodies[body]])
             nodes = nodes[nodes >= 0]
         lo, hi = np.full(3, math.inf), np.full(3, -math.inf)
