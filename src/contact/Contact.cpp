@@ -511,8 +511,6 @@ bool Contact::keep_facet(const Pair& p, Slave& nd, const double* x) const {
   return true;
 }
 
-// Gap, normal and relative displacement of slave node nd at x against its facet (double);
-// the search radius when it has none.
 bool Contact::hold_facet_projection(const Pair& p, Slave& nd, const double* x) const {
   if (nd.hold_facet == -2) {  // revised: held on its closest facet from now on
     locate(p, nd, x);
@@ -531,6 +529,8 @@ bool Contact::hold_facet_projection(const Pair& p, Slave& nd, const double* x) c
   return true;
 }
 
+// Gap, normal and relative displacement of slave node nd at x against its facet (double);
+// the search radius when it has none.
 double Contact::facet_gap(const Pair& p, const Slave& nd, const double* x, double* n, double* rel) const {
   if (nd.facet < 0) return p.master->search_radius();
   contact::NodeInput in;
@@ -1169,7 +1169,7 @@ std::string Contact::iteration_summary() const {
   for (const auto& p : pairs_) {
     long a = 0, st = 0, sl = 0, ends = 0, held = 0;
     for (const auto& nd : p.nodes) {
-      held += nd.hold_active || nd.hold_inactive || nd.hold_tangent != 0 || nd.hold_facet != -1;
+      held += nd.held();
       a += nd.state >= contact::Stick;
       st += nd.state == contact::Stick;
       sl += nd.state == contact::Slip;

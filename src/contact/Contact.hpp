@@ -227,17 +227,19 @@ class Contact {
     bool hold_active = false;
     bool hold_inactive = false;  // a held active node that ended in tension, released (verify_held)
     int hold_tangent = 0;        // 0, or the held contact::Stick / contact::Slip
-    int hold_revisions = 0;      // switches of the tangential hold by verify_held (at most 2)
+    int hold_revisions = 0;      // revisions of the tangential or facet hold by verify_held (at most 2)
     double hold_dir[3] = {0, 0, 0};  // the held slip's friction direction (unit, world frame)
     // Facet cycle control (node-to-segment): the facet, and whether the projection was inside
     // it, at the last solve; changes of them between solves; the facet held after
-    // kFreezeAfter changes (-1: none), extended past its ends (hold_facet_projection).
+    // kFacetFreezeAfter changes (-1: none), extended past its ends (hold_facet_projection).
     int solve_facet = -1;
     bool solve_inside = true;
     int facet_flips = 0;
     int hold_facet = -1;         // -2: to be held on its closest facet at the next evaluation (a revision)
     bool hold_in_band = true;    // the held facet's projection within kHoldBand of the facet
     double lam_base[3] = {0, 0, 0}, kdu[3] = {0, 0, 0};
+    // Held in some way by the cycle control (the log's and the failure report's "held").
+    bool held() const { return hold_active || hold_inactive || hold_tangent != 0 || hold_facet != -1; }
   };
 
 

@@ -29,8 +29,7 @@ std::string Contact::most_changed_nodes(int k) const {
       if (nd.normal_flips + nd.tangent_flips + nd.facet_flips > 0)
         mine.push_back({static_cast<double>(nd.gid), static_cast<double>(ip), static_cast<double>(nd.normal_flips),
                         static_cast<double>(nd.tangent_flips),
-                        nd.hold_active || nd.hold_inactive || nd.hold_tangent || nd.hold_facet != -1 ? 1.0 : 0.0, nd.X[0], nd.X[1],
-                        nd.X[2], static_cast<double>(nd.facet_flips)});
+                        nd.held() ? 1.0 : 0.0, nd.X[0], nd.X[1], nd.X[2], static_cast<double>(nd.facet_flips)});
   // Most changes first; ties by pair and node id, so every rank count gives the same list.
   const auto before = [](const std::array<double, kNodeRecord>& a, const std::array<double, kNodeRecord>& b) {
     const double fa = a[2] + a[3] + a[8], fb = b[2] + b[3] + b[8];

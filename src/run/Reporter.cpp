@@ -77,7 +77,8 @@ Gathered gather_on_root(MPI_Comm comm, const std::vector<long long>& ids, const 
 // their rows. Master surfaces (`traction` not null): contact_master_traction and
 // contact_master_pressure = the reaction forces on the master nodes and their normal parts
 // (summed over ranks) projected on the master surfaces like the contact pressure
-// (mesh/SurfaceProjection.hpp; zero on other nodes), routed to their rows. Only the fields of Output->field list are written. Collective.
+// (mesh/SurfaceProjection.hpp; zero on other nodes), routed to their rows. Only the
+// fields of Output->field list are written. Collective.
 void write_contact_fields(XdmfWriter& xdmf, const OutputConfig& o, const Records& slaves, const Records* traction) {
   constexpr int kv = Contact::kNodalValues;
   const RowRange rows = xdmf.node_rows();
