@@ -43,13 +43,13 @@ except ImportError as e:  # pragma: no cover
 
 # The dimension of each field, for the legend: L length, S stress, 1 none.
 DIMENSION = {"displacement": "L", "velocity": "V", "cauchy_stress": "S", "von_mises": "S",
-             "contact_pressure": "S", "contact_master_pressure": "S", "contact_gap": "L", "contact_slip": "L",
+             "contact_pressure": "S", "contact_master_pressure": "S", "contact_master_traction": "S", "contact_gap": "L", "contact_slip": "L",
              "equivalent_plastic_strain": "1", "J": "1"}
 UNITS = {"SI": {"L": "m", "S": "Pa", "V": "m/s"}, "mm-N-s": {"L": "mm", "S": "MPa", "V": "mm/s"},
          "mm-g-ms": {"L": "mm", "S": "MPa", "V": "mm/ms"}}
 TITLES = {"von_mises": "von Mises stress", "displacement": "displacement", "J": "J = det F",
           "cauchy_stress": "Cauchy stress", "contact_pressure": "contact pressure",
-          "contact_master_pressure": "contact pressure (master side)",
+          "contact_master_pressure": "contact pressure (master side)", "contact_master_traction": "contact traction (master side)",
           "equivalent_plastic_strain": "equivalent plastic strain", "velocity": "velocity"}
 
 
@@ -118,11 +118,14 @@ class Result:
             return None
         return "SI"
 
+    def is_vector(self, field):
+        """More than one value per point or cell (a vector or tensor: drawn by its magnitude)."""
+        d = self.h5[self.steps[-1]].get(field)
+        return d is not None and d.ndim > 1 and d.shape[1] > 1
+
     def legend(self, field):
         u = UNITS.get(self.units or "", {}).get(DIMENSION.get(field, "?"))
-        title = TITLES.get(field, field)
-        if field in ("displacement", "velocity", "cauchy_stress"):
-            title += " magnitude"
+        title = TITLES.get(field, field) + (" magnitude" if self.is_vector(field) else "")
         return title + (" [%s]" % u if u else "")
 
     def field_range(self, field, steps, body):
@@ -204,8 +207,7 @@ def render(res, a, out):
     view.Background = [1.0, 1.0, 1.0]
     shown = pv.Show(pipeline(res, a), view)
     center = "POINTS" if res.center[a.field] == "Node" else "CELLS"
-    pv.ColorBy(shown, (center, a.field, "Magnitude") if res.center[a.field] != "Cell" or
-               a.field == "cauchy_stress" else (center, a.field))
+    pv.ColorBy(shown, (center, a.field, "Magnitude") if res.is_vector(a.field) else (center, a.field))
     lut = pv.GetColorTransferFunction(a.field)
     lut.ApplyPreset("Rainbow Uniform", True)
     lut.RescaleTransferFunction(lo, hi)
