@@ -109,6 +109,13 @@ std::string block_on_plane_deck(const BlockCase& c) {
 }
 
 // Runs `deck` in system_tests/contact_output/<name>; returns the output folder.
+std::string read_text(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
 fs::path run_deck(const std::string& name, const std::string& deck) {
   const fs::path dir = kDir / name;
   fs::create_directories(dir);
@@ -165,14 +172,8 @@ TEST(ContactOutput, UniformPressureOnEveryFacetType) {
 // Measured before the projection: both 0 at the tri6 corner nodes and 1.1875 p at the
 // mid-edge nodes.
 TEST(ContactOutput, PressureAndMasterTractionUniformOnTri6Interface) {
-  std::ifstream in(kInputs + "contact_patch3d.xml");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string deck = ss.str();
-  std::ifstream gin(kInputs + "two_blocks3d.geo");
-  std::stringstream gs;
-  gs << gin.rdbuf();
-  std::string geo = gs.str();
+  std::string deck = read_text(kInputs + "contact_patch3d.xml");
+  std::string geo = read_text(kInputs + "two_blocks3d.geo");
   for (const auto& [from, to] : {std::pair<std::string, std::string>{"nu = DefineNumber[4", "nu = DefineNumber[3"}, {"tet = DefineNumber[0", "tet = DefineNumber[1"}})
     geo.replace(geo.find(from), from.size(), to);
   fs::create_directories(kDir);
@@ -212,10 +213,7 @@ TEST(ContactOutput, PressureAndMasterTractionUniformOnTri6Interface) {
 // slave nodes and contact_master_pressure on the master nodes are p at every interface
 // node (the master side from the forces the slave nodes put on it).
 TEST(ContactOutput, MasterPressureEqualsSlavePressureWithMortar) {
-  std::ifstream in(kInputs + "contact_patch2d.xml");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  std::string deck = ss.str();
+  std::string deck = read_text(kInputs + "contact_patch2d.xml");
   const std::string file = R"X(<Parameter name="file" type="string" value="two_blocks.geo"/>)X";
   deck.replace(deck.find(file), file.size(), R"X(<Parameter name="file" type="string" value=")X" + kInputs + R"X(two_blocks.geo"/>)X");
   const std::string master = R"X(<Parameter name="master" type="string" value="lower_top"/>)X";
@@ -287,11 +285,9 @@ TEST(ContactOutput, RigidObstaclesInTheirOwnXdmf) {
     H5 h5(out / "block_obstacles.h5"), fields(out / "block.h5");
     ASSERT_GE(h5.f, 0) << c.name;
     EXPECT_EQ(h5.times(), fields.times()) << c.name;
-    std::ifstream xin(out / "block_obstacles.xdmf");
-    std::stringstream xs;
-    xs << xin.rdbuf();
-    EXPECT_NE(xs.str().find(R"(<Information Name="cell_block" Value="0: floor; 1: lid"/>)"), std::string::npos) << c.name;
-    EXPECT_NE(xs.str().find(c.dim == 2 ? R"(TopologyType="Polyline")" : R"(TopologyType="Quadrilateral")"), std::string::npos);
+    const std::string xs = read_text(out / "block_obstacles.xdmf");
+    EXPECT_NE(xs.find(R"(<Information Name="cell_block" Value="0: floor; 1: lid"/>)"), std::string::npos) << c.name;
+    EXPECT_NE(xs.find(c.dim == 2 ? R"(TopologyType="Polyline")" : R"(TopologyType="Quadrilateral")"), std::string::npos);
     const std::size_t npc = c.dim == 2 ? 2 : 4;
     const auto topo = h5.read("/mesh/topology"), block = h5.read("/mesh/cell_block");
     ASSERT_EQ(topo.size(), npc * block.size()) << c.name;
