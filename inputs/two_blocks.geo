@@ -8,6 +8,10 @@
 nl = DefineNumber[4, Name "Parameters/nl"];
 nu = DefineNumber[5, Name "Parameters/nu"];
 h = DefineNumber[0.25, Name "Parameters/h"];
+// gl, gu: the growth ratio of the lower and upper interface divisions (1: uniform; a
+// graded interface puts master kinks under the slave nodes, docs/contact.md "Facet hold").
+gl = DefineNumber[1, Name "Parameters/gl"];
+gu = DefineNumber[1, Name "Parameters/gu"];
 
 Point(1) = {0, 0, 0, h};
 Point(2) = {1, 0, 0, h};
@@ -31,8 +35,10 @@ Line(8) = {8, 5};
 Curve Loop(2) = {5, 6, 7, 8};
 Plane Surface(2) = {2};
 
-Transfinite Curve{1, 3} = nl + 1;
-Transfinite Curve{5, 7} = nu + 1;
+Transfinite Curve{1} = nl + 1;
+Transfinite Curve{3} = nl + 1 Using Progression gl;
+Transfinite Curve{7} = nu + 1;
+Transfinite Curve{5} = nu + 1 Using Progression gu;
 
 Physical Surface("lower") = {1};
 Physical Surface("upper") = {2};
