@@ -11,7 +11,8 @@
 #   (f1 - f2) / (f2 - f3) = (h1^p - h2^p) / (h2^p - h3^p),  h = 1 / N,
 # and the extrapolated value f3 + (f3 - f2) h3^p / (h2^p - h3^p).
 # A run that fails or runs past TIMEOUT (seconds, env; none by default) gives its metrics
-# up to where it stopped: the peak's columns, "-" for the end's.
+# up to where it stopped: the peak's columns, "-" for the end's. TECH=f-bar (env) runs the
+# stent with `element technology` = f-bar instead of the fully integrated hex8.
 # Usage: perf/studies/s6_mesh_convergence.sh [STENTOR] [N ...]
 #   STENTOR defaults to build/stentor; output folders in a temporary directory (KEEP=1 keeps it).
 set -euo pipefail
@@ -26,6 +27,7 @@ for n in "${meshes[@]}"; do
   sed -e "s|\"elements through width\" type=\"int\" value=\"3\"|\"elements through width\" type=\"int\" value=\"$n\"|" \
       -e "s|\"elements through thickness\" type=\"int\" value=\"3\"|\"elements through thickness\" type=\"int\" value=\"$n\"|" \
       -e 's|"every" type="int" value="5"|"every" type="int" value="40"|' \
+      -e "s|<Parameter name=\"material\" type=\"string\" value=\"steel\"/>|&${TECH:+<Parameter name=\"element technology\" type=\"string\" value=\"$TECH\"/>}|" \
       "$here/inputs/s6_ring_quarter.xml" > "$tmp/n$n.xml"
   start=$(date +%s.%N)
   OMP_NUM_THREADS=1 ${TIMEOUT:+timeout $TIMEOUT} "$stentor" --output "$tmp/out$n" "$tmp/n$n.xml" > "$tmp/log$n.txt" 2>&1 \
@@ -78,7 +80,7 @@ for k in names:
                     mid = 0.5 * (lo + hi)
                     (lo, hi) = (mid, hi) if g(lo) * g(mid) > 0 else (lo, mid)
                 p = 0.5 * (lo + hi)
-        ext = f[2] + d2 * h[2]**p / (h[1]**p - h[2]**p) if p == p else float("nan")
+        ext = f[2] - d2 * h[2]**p / (h[1]**p - h[2]**p) if p == p else float("nan")  # f3 + (f3 - f2) ...
         line += f" | {p:.2f} | {ext:.5f}" if p == p else " | none (not in the asymptotic range) | -"
     elif len(meshes) == 3:
         line += " | - | -"

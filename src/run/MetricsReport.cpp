@@ -105,6 +105,7 @@ void MetricsReport::end_stage(const RunState& s, const std::string& name, std::o
   stage_max_ = now_;
   stage_e0_ = e;
   stage_E0_ = E_;
+  if (rings_) rings_->begin_stage();
 }
 
 void MetricsReport::close() {

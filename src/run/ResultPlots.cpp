@@ -212,11 +212,23 @@ void diameter_plot(const Model& m, const std::string& stem, const UnitLabels& u,
     d.curves.push_back({c, legend, ""});
   }
   std::vector<PlotMark> marks = stage_marks(m.cfg);
-  const int dm = t.find(cols.front()), tc = t.find("time");  // the peak: the largest mean diameter
+  // The peak of the expansion as the metrics take it (RingMetrics): the largest mean
+  // diameter since the smallest one so far; a stage's end at the same time gets the words.
+  const int dm = t.find(cols.front()), tc = t.find("time");
   if (dm >= 0 && tc >= 0 && t.rows() > 0) {
     const auto& D = t.columns[static_cast<std::size_t>(dm)];
-    const auto peak = static_cast<std::size_t>(std::max_element(D.begin(), D.end()) - D.begin());
-    marks.push_back({t.columns[static_cast<std::size_t>(tc)][peak], "peak of the expansion"});
+    std::size_t peak = 0, low = 0;
+    for (std::size_t i = 1; i < D.size(); ++i) {
+      if (!(D[i] > D[low])) low = peak = i;
+      else if (D[i] > D[peak]) peak = i;
+    }
+    const auto& time = t.columns[static_cast<std::size_t>(tc)];
+    const double tp = time[peak], tol = 1e-9 * std::max(1.0, std::fabs(time.back()));
+    auto at = std::find_if(marks.begin(), marks.end(), [&](const PlotMark& k) { return std::fabs(k.x - tp) <= tol; });
+    if (at != marks.end())
+      at->label += ", peak of the expansion";
+    else
+      marks.push_back({tp, "peak of the expansion"});
   }
   if (plot_png(t, stem + "_diameters.png", d, marks)) made.push_back(stem + "_diameters.png");
 }

@@ -279,12 +279,17 @@ std::vector<double> RingMetrics::evaluate(const la::Vector& u, double t) {
     ring_L0_ = ring_L_now_;
     started_ = true;
   }
-  if (all.mean > D_peak_) {
+  // The peak of the expansion: the largest D_mean since the smallest one so far (as cut,
+  // or crimped), so that a crimp is no recoil and the recoil counts from the expansion.
+  const bool smallest = D_peak_ < 0.0 || !(all.mean > D_min_);
+  if (smallest) D_min_ = all.mean;
+  if (smallest || all.mean > D_peak_) {
     D_peak_ = all.mean, L_peak_ = L, t_peak_ = t;
     ring_D_peak_ = ring_D_now_;
     dogbone_peak_ = dogbone, centre_peak_ = dc;
   }
   D_now_ = all.mean, L_now_ = L;
+  if (D_start_ < 0.0) begin_stage();
   v.insert(v.end(), {L, L0_ > 0.0 ? (L0_ - L) / L0_ : 0.0, (D_peak_ - all.mean) / D_peak_, L_peak_ > 0.0 ? (L_peak_ - L) / L_peak_ : 0.0});
   if (rings_full_ >= 3) v.push_back(dogbone);
   const double cyl = kPi * all.mean * L;
@@ -300,6 +305,11 @@ std::vector<double> RingMetrics::evaluate(const la::Vector& u, double t) {
   return v;
 }
 
+void RingMetrics::begin_stage() {
+  D_start_ = D_now_;
+  ring_D_start_ = ring_D_now_;
+}
+
 void RingMetrics::table(std::ostream& log) const {
   if (!started_) return;
   const std::string L = length_unit_.empty() ? "" : " [" + length_unit_ + "]";
@@ -310,11 +320,12 @@ void RingMetrics::table(std::ostream& log) const {
   else
     log << ", mass not known (no density in the stent's material)";
   log << "; peak of the expansion at t = " << std::defaultfloat << t_peak_ << "\n";
-  log << "  ring | " << std::setw(14) << "D at peak" + L << " | " << std::setw(14) << "D now" + L
-      << " | radial recoil % | foreshortening % | dogboning % | max eps_p\n";
-  auto row = [&](const std::string& name, double dp, double dn, double l0, double l, double dog, double eps) {
+  log << "  ring | " << std::setw(15) << "D at start" + L << " | " << std::setw(15) << "D at peak" + L << " | "
+      << std::setw(15) << "D now" + L << " | change % | radial recoil % | foreshortening % | dogboning % | max eps_p\n";
+  auto row = [&](const std::string& name, double ds, double dp, double dn, double l0, double l, double dog, double eps) {
     log << "  " << std::left << std::setw(4) << name << std::right << " | " << std::fixed << std::setprecision(4)
-        << std::setw(14) << dp << " | " << std::setw(14) << dn << " | " << std::setprecision(3) << std::setw(15)
+        << std::setw(15) << ds << " | " << std::setw(15) << dp << " | " << std::setw(15) << dn << " | "
+        << std::setprecision(3) << std::setw(8) << 100.0 * (dn - ds) / ds << " | " << std::setw(15)
         << 100.0 * (dp - dn) / dp << " | " << std::setw(16) << (l0 > 0.0 ? 100.0 * (l0 - l) / l0 : 0.0) << " | ";
     if (std::isnan(dog))
       log << std::setw(11) << "-" << " | ";
@@ -328,15 +339,16 @@ void RingMetrics::table(std::ostream& log) const {
   for (int k = 0; k < rings_; ++k) {
     const auto kk = static_cast<std::size_t>(k);
     const double dog = rings_full_ >= 3 && centre_peak_ > 0.0 ? (ring_D_peak_[kk] - centre_peak_) / centre_peak_ : std::nan("");
-    row(std::to_string(k), ring_D_peak_[kk], ring_D_now_[kk], ring_L0_[kk], ring_L_now_[kk], dog,
+    row(std::to_string(k), ring_D_start_[kk], ring_D_peak_[kk], ring_D_now_[kk], ring_L0_[kk], ring_L_now_[kk], dog,
         ring_eps_.empty() ? 0.0 : ring_eps_[kk]);
   }
   if (!links_.idx.empty() && ring_eps_.size() > static_cast<std::size_t>(rings_))
     log << "  links: max eps_p " << std::setprecision(4) << ring_eps_.back() << "\n";
-  row("all", D_peak_, D_now_, L0_, L_now_, rings_full_ >= 3 ? dogbone_peak_ : std::nan(""),
+  row("all", D_start_, D_peak_, D_now_, L0_, L_now_, rings_full_ >= 3 ? dogbone_peak_ : std::nan(""),
       ring_eps_.empty() ? 0.0 : *std::max_element(ring_eps_.begin(), ring_eps_.end()));
-  log << "  (dogboning (D_ring - D_centre) / D_centre at the peak, D_centre the centre ring" << (rings_full_ % 2 ? "" : "s'")
-      << " mean; the stent's row: end rings against centre)\n";
+  log << "  (change: D now against D at the stage's start; the peak: the largest D since the smallest so far (as cut or\n"
+         "  crimped); dogboning (D_ring - D_centre) / D_centre at the peak, D_centre the centre ring"
+      << (rings_full_ % 2 ? "" : "s'") << " mean; the stent's row: end rings against centre)\n";
   log << std::defaultfloat;
 }
 

@@ -43,6 +43,9 @@ class RingMetrics {
   std::vector<double> evaluate(const la::Vector& u, double t);
   // The per-ring table at the last evaluate() (rank 0 writes; every rank may call).
   void table(std::ostream& log) const;
+  // The last evaluate() is the start of a stage: the table's "D at start" (the first
+  // evaluate() starts the first stage).
+  void begin_stage();
 
  private:
   struct NodeSet {
@@ -76,8 +79,11 @@ class RingMetrics {
   bool started_ = false;
   double L0_ = 0.0, volume_ = 0.0, density_ = 0.0;
   std::vector<double> ring_L0_;
-  double D_peak_ = -1.0, L_peak_ = 0.0, t_peak_ = 0.0;
+  // The peak: the largest D_mean since the smallest so far (D_min_).
+  double D_peak_ = -1.0, L_peak_ = 0.0, t_peak_ = 0.0, D_min_ = 0.0;
   std::vector<double> ring_D_peak_, ring_D_now_, ring_L_now_, ring_eps_;
+  double D_start_ = -1.0;  // at the current stage's start
+  std::vector<double> ring_D_start_;
   double dogbone_peak_ = 0.0, centre_peak_ = 0.0;
   double D_now_ = 0.0, L_now_ = 0.0;
 };

@@ -7,6 +7,8 @@
 //  2. a uniform radial expansion x -> lambda x (in x, y) and an axial field z -> (1 - e) z:
 //     D = lambda D0, foreshortening e, and after a smaller second state the radial recoil
 //     (lambda1 - lambda2) / lambda1 and the longitudinal recoil (L1 - L2) / L1, to 1e-12;
+//     after a crimp (lambda < 1) and its spring-back the recoil counts from the expansion's
+//     peak, not from the as-cut diameter, and the stage table gives each stage's change;
 //  3. a quarter ring and the full ring under the same field (symmetric about x = 0 and
 //     y = 0, varying around the ring and along it): every metric equal to 1e-12 (the
 //     symmetry weights and factors of RingMetrics);
@@ -150,6 +152,44 @@ TEST(RingMetrics, UniformExpansionAndAxialFieldGiveTheirDiametersRecoilAndForesh
   ASSERT_NE(at, std::string::npos) << t;
   const StentConfig& s = r.cfg.mesh.stent;
   EXPECT_NEAR(std::stod(t.substr(at + 7)) / (8e-9 * s.centreline_length() * s.strut_width * s.thickness), 1.0, 1e-2) << t;
+}
+
+// Crimp (lambda 0.7), spring-back (0.72), expansion (1.25), recoil (1.2): a crimp is no
+// recoil (the peak follows the stent down), the recoil counts from the expansion's peak, and
+// the stage table gives each stage's start and change.
+TEST(RingMetrics, CrimpIsNoRecoilAndTheRecoilCountsFromTheExpansion) {
+  Rig r(deck("full"), "crimp");
+  r.at(zero);
+  auto field = [](double lambda) {
+    return [=](const double* x, double* u) { u[0] = (lambda - 1.0) * x[0], u[1] = (lambda - 1.0) * x[1], u[2] = 0.0; };
+  };
+  const auto crimped = r.at(field(0.7), 1.0);
+  EXPECT_NEAR(r.get(crimped, "D_mean [mm]"), 2.1, 1e-12);
+  EXPECT_EQ(r.get(crimped, "radial_recoil [-]"), 0.0);
+  std::ostringstream crimp_log;
+  r.rm->table(crimp_log);
+  r.rm->begin_stage();
+  const auto released = r.at(field(0.72), 1.25);
+  EXPECT_EQ(r.get(released, "radial_recoil [-]"), 0.0);
+  std::ostringstream release_log;
+  r.rm->table(release_log);
+  r.rm->begin_stage();
+  EXPECT_EQ(r.get(r.at(field(1.25), 2.25), "radial_recoil [-]"), 0.0);
+  r.rm->begin_stage();
+  const auto recoiled = r.at(field(1.2), 2.75);
+  EXPECT_NEAR(r.get(recoiled, "radial_recoil [-]"), (1.25 - 1.2) / 1.25, 1e-12);
+  // The stage rows ("all": start, peak, now, change %, recoil %): the crimp from 3 to 2.1
+  // (-30 %), the spring-back from 2.1 to 2.16 (+2.857 %, no recoil), the recoil 4 %.
+  auto all_row = [](const std::string& t) { return t.substr(t.find("\n  all ")); };
+  EXPECT_NE(all_row(crimp_log.str()).find("3.0000 |          2.1000 |          2.1000 |  -30.000 |           0.000"), std::string::npos)
+      << crimp_log.str();
+  EXPECT_NE(all_row(release_log.str()).find("2.1000 |          2.1600 |          2.1600 |    2.857 |           0.000"),
+            std::string::npos)
+      << release_log.str();
+  std::ostringstream end_log;
+  r.rm->table(end_log);
+  EXPECT_NE(all_row(end_log.str()).find("3.7500 |          3.7500 |          3.6000 |   -4.000 |           4.000"), std::string::npos)
+      << end_log.str();
 }
 
 TEST(RingMetrics, QuarterEqualsFullUnderASymmetricField) {
