@@ -81,6 +81,8 @@ std::string check_scalars(const Model& m, const CheckpointData& d, const std::st
       return path + ": /reals/time = " + num(t) + " is not in stage " + std::to_string(d.ints.at("stage")) + " ('" + st.name +
              "', " + num(st.start) + " to " + num(st.end) + ")";
   }
+  for (const auto& [name, v] : d.reals)  // the stent metrics' state (Reporter::metrics_state)
+    if (name.rfind("metrics_", 0) == 0 && !std::isfinite(v)) return path + ": /reals/" + name + " = " + num(v) + " is not finite";
   return "";
 }
 

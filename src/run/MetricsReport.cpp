@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <iterator>
 #include <limits>
 
 #include "io/Units.hpp"
@@ -106,6 +107,48 @@ void MetricsReport::end_stage(const RunState& s, const std::string& name, std::o
   stage_e0_ = e;
   stage_E0_ = E_;
   if (rings_) rings_->begin_stage();
+}
+
+namespace {
+const char* const kEnergyKeys[] = {"external", "support", "dissipation", "contact", "friction", "plastic"};
+double* energy_field(EnergyTotals& e, std::size_t i) {
+  double* f[] = {&e.external, &e.support, &e.dissipation, &e.contact, &e.friction, &e.plastic};
+  return f[i];
+}
+}  // namespace
+
+void MetricsReport::save(std::map<std::string, double>& out) const {
+  if (!started_) return;
+  for (std::size_t k = 0; k < first_.size(); ++k) {
+    out["metrics_first_" + std::to_string(k)] = first_[k];
+    out["metrics_stage_max_" + std::to_string(k)] = stage_max_[k];
+  }
+  EnergyTotals e0 = stage_e0_;
+  for (std::size_t i = 0; i < std::size(kEnergyKeys); ++i) out[std::string("metrics_stage_e0_") + kEnergyKeys[i]] = *energy_field(e0, i);
+  out["metrics_stage_E0"] = stage_E0_;
+  out["metrics_stent_r_max"] = stent_r_max_;
+  if (rings_) rings_->save(out, "metrics_ring_");
+}
+
+void MetricsReport::restore(const std::map<std::string, double>& in) {
+  // All or nothing: a checkpoint without the state (or with other columns) starts afresh.
+  auto get = [&](const std::string& key, double& v) {
+    const auto it = in.find(key);
+    if (it == in.end()) return false;
+    v = it->second;
+    return true;
+  };
+  std::vector<double> first(names_.size()), stage_max(names_.size());
+  EnergyTotals e0;
+  double E0 = 0.0, r_max = 0.0;
+  bool ok = get("metrics_stage_E0", E0) && get("metrics_stent_r_max", r_max);
+  for (std::size_t k = 0; ok && k < names_.size(); ++k)
+    ok = get("metrics_first_" + std::to_string(k), first[k]) && get("metrics_stage_max_" + std::to_string(k), stage_max[k]);
+  for (std::size_t i = 0; ok && i < std::size(kEnergyKeys); ++i)
+    ok = get(std::string("metrics_stage_e0_") + kEnergyKeys[i], *energy_field(e0, i));
+  if (!ok || (rings_ && !rings_->restore(in, "metrics_ring_"))) return;
+  first_ = first, stage_max_ = stage_max, stage_e0_ = e0, stage_E0_ = E0, stent_r_max_ = r_max;
+  started_ = true;
 }
 
 void MetricsReport::close() {

@@ -5,6 +5,7 @@
 // A stent in an artery: StentMetrics; a generated stent: RingMetrics (with its per-ring
 // table in each stage's paragraph).
 #pragma once
+#include <map>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -30,6 +31,12 @@ class MetricsReport {
   // names only those two.
   void end_stage(const RunState& s, const std::string& name, std::ostream& log);
   void close();
+  // The state the report carries between steps (the t = 0 metrics, the stage's start and
+  // maxima, the largest stent radius; a generated stent's peak and reference), as named
+  // values for a checkpoint ("metrics_..."), and back after a restart (before the first
+  // step(); a checkpoint without them leaves the report to start afresh).
+  void save(std::map<std::string, double>& out) const;
+  void restore(const std::map<std::string, double>& in);
   // Columns of <stem>_metrics.csv worth a plot: radii; stresses and pressure.
   std::vector<std::string> radius_columns() const;
   std::vector<std::string> stress_columns() const;

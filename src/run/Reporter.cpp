@@ -528,6 +528,16 @@ void Reporter::initial_metrics(const RunState& s) {
   metrics_->step(s, s.u, m_.dynamic ? total_energy_ : 0.0);
 }
 
+std::map<std::string, double> Reporter::metrics_state() const {
+  std::map<std::string, double> m;
+  if (metrics_) metrics_->save(m);
+  return m;
+}
+
+void Reporter::restore_metrics(const std::map<std::string, double>& state) {
+  if (metrics_) metrics_->restore(state);
+}
+
 void Reporter::end_stage(const RunState& s, const std::string& name) {
   if (metrics_) metrics_->end_stage(s, name, out_);
 }

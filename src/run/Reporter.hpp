@@ -5,6 +5,7 @@
 // HDF5, run/OutputRows.hpp); the collective parts (field output, probes) run on every rank.
 #pragma once
 #include <chrono>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -56,6 +57,9 @@ class Reporter {
   // The stent metrics (Output->Stent Metrics) at t = 0 (collective; nothing without them),
   // and, at step 0, the initial state the plots start from (probes; collective).
   void initial_metrics(const RunState& s);
+  // The stent metrics' state for a checkpoint, and back after --restart (MetricsReport).
+  std::map<std::string, double> metrics_state() const;
+  void restore_metrics(const std::map<std::string, double>& state);
   // Stage k of Config::stages begins: its header line.
   void begin_stage(std::size_t k);
   // A stage (or, without stages, the run) ended at s: its stent metrics row and lines.

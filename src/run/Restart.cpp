@@ -379,8 +379,10 @@ std::string checkpoint_path(const Reporter& reporter, const Model& model) {
   return dir.empty() ? std::string() : dir + "/" + model.cfg.output.basename + "_checkpoint.h5";
 }
 
-bool write_checkpoint(const Model& model, const Stepper& stepper, const RunState& s, const std::string& path, std::ostream& log) {
-  const CheckpointData d = collect(model, stepper, s);
+bool write_checkpoint(const Model& model, const Stepper& stepper, const RunState& s, const std::string& path, std::ostream& log,
+                      const std::map<std::string, double>& extra) {
+  CheckpointData d = collect(model, stepper, s);
+  for (const auto& [key, value] : extra) d.reals[key] = value;
   try {  // every rank writes its rows; a failure anywhere is thrown on every rank
     write_checkpoint_file(path, d, raw_mpi_comm(*model.comm));
   } catch (const std::exception& e) {

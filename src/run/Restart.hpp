@@ -10,6 +10,7 @@
 // number of ranks. Layout: io/Checkpoint.hpp; the names are in Restart.cpp.
 #pragma once
 #include <ostream>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -31,7 +32,9 @@ std::string checkpoint_path(const Reporter& reporter, const Model& model);
 // every rank when the file could not be written on any one (the ranks agree before
 // closing it; the run then stops with exit status 3, as for any failed result write;
 // rank 0 notes on `log` that the previous checkpoint stays).
-bool write_checkpoint(const Model& model, const Stepper& stepper, const RunState& s, const std::string& path, std::ostream& log);
+// `extra`: more scalars for /reals (the stent metrics' state, Reporter::metrics_state()).
+bool write_checkpoint(const Model& model, const Stepper& stepper, const RunState& s, const std::string& path, std::ostream& log,
+                      const std::map<std::string, double>& extra = {});
 
 // A checkpoint read for a restart, on every rank.
 struct Restart {

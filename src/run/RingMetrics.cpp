@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <iterator>
 #include <map>
 #include <utility>
 
@@ -280,8 +281,10 @@ std::vector<double> RingMetrics::evaluate(const la::Vector& u, double t) {
     started_ = true;
   }
   // The peak of the expansion: the largest D_mean since the smallest one so far (as cut,
-  // or crimped), so that a crimp is no recoil and the recoil counts from the expansion.
-  const bool smallest = D_peak_ < 0.0 || !(all.mean > D_min_);
+  // or crimped), so that a crimp is no recoil and the recoil counts from the expansion. A
+  // new smallest diameter is one below the last by more than round-off (kNewSmallestDiameter), so
+  // that a stent that springs back to its as-cut diameter shows its whole recoil.
+  const bool smallest = D_peak_ < 0.0 || all.mean < D_min_ * (1.0 - kNewSmallestDiameter);
   if (smallest) D_min_ = all.mean;
   if (smallest || all.mean > D_peak_) {
     D_peak_ = all.mean, L_peak_ = L, t_peak_ = t;
@@ -308,6 +311,51 @@ std::vector<double> RingMetrics::evaluate(const la::Vector& u, double t) {
 void RingMetrics::begin_stage() {
   D_start_ = D_now_;
   ring_D_start_ = ring_D_now_;
+}
+
+namespace {
+// Per-ring values as prefix + name + "_" + k.
+void save_rings(std::map<std::string, double>& out, const std::string& key, const std::vector<double>& v) {
+  for (std::size_t k = 0; k < v.size(); ++k) out[key + "_" + std::to_string(k)] = v[k];
+}
+bool restore_rings(const std::map<std::string, double>& in, const std::string& key, std::vector<double>& v) {
+  for (std::size_t k = 0; k < v.size(); ++k) {
+    const auto it = in.find(key + "_" + std::to_string(k));
+    if (it == in.end()) return false;
+    v[k] = it->second;
+  }
+  return true;
+}
+}  // namespace
+
+void RingMetrics::save(std::map<std::string, double>& out, const std::string& prefix) const {
+  if (!started_) return;
+  const double scalars[] = {L0_, D_peak_, L_peak_, t_peak_, D_min_, dogbone_peak_, centre_peak_, D_start_};
+  const char* names[] = {"L0", "D_peak", "L_peak", "t_peak", "D_min", "dogbone_peak", "centre_peak", "D_start"};
+  for (std::size_t i = 0; i < std::size(names); ++i) out[prefix + names[i]] = scalars[i];
+  save_rings(out, prefix + "ring_L0", ring_L0_);
+  save_rings(out, prefix + "ring_D_peak", ring_D_peak_);
+  save_rings(out, prefix + "ring_D_start", ring_D_start_);
+}
+
+bool RingMetrics::restore(const std::map<std::string, double>& in, const std::string& prefix) {
+  double scalars[8];
+  const char* names[] = {"L0", "D_peak", "L_peak", "t_peak", "D_min", "dogbone_peak", "centre_peak", "D_start"};
+  for (std::size_t i = 0; i < std::size(names); ++i) {
+    const auto it = in.find(prefix + names[i]);
+    if (it == in.end()) return false;
+    scalars[i] = it->second;
+  }
+  const auto n = static_cast<std::size_t>(rings_);
+  std::vector<double> L0(n), peak(n), start(n);
+  if (!restore_rings(in, prefix + "ring_L0", L0) || !restore_rings(in, prefix + "ring_D_peak", peak) ||
+      !restore_rings(in, prefix + "ring_D_start", start))
+    return false;
+  L0_ = scalars[0], D_peak_ = scalars[1], L_peak_ = scalars[2], t_peak_ = scalars[3], D_min_ = scalars[4];
+  dogbone_peak_ = scalars[5], centre_peak_ = scalars[6], D_start_ = scalars[7];
+  ring_L0_ = L0, ring_D_peak_ = peak, ring_D_start_ = start;
+  started_ = true;
+  return true;
 }
 
 void RingMetrics::table(std::ostream& log) const {

@@ -33,6 +33,9 @@ namespace stentor {
 class RingMetrics {
  public:
   explicit RingMetrics(const Model& model);
+  // A D_mean below the smallest so far by more than this fraction of it is a new smallest
+  // one, from which the peak of the expansion counts again (a crimp; not round-off).
+  static constexpr double kNewSmallestDiameter = 1e-9;
   // The boundary groups every rank needs whole (Model distributes them so).
   static std::vector<std::string> whole_groups(const Config& cfg);
 
@@ -46,6 +49,12 @@ class RingMetrics {
   // The last evaluate() is the start of a stage: the table's "D at start" (the first
   // evaluate() starts the first stage).
   void begin_stage();
+  // What the metrics carry from step to step (the as-cut lengths, the peak and the smallest
+  // diameter so far, the stage's start) as named values for a checkpoint, and back: a run
+  // restarted from it goes on measuring from the same reference, peak and stage start.
+  void save(std::map<std::string, double>& out, const std::string& prefix) const;
+  // false (nothing changed) when a value is missing.
+  bool restore(const std::map<std::string, double>& in, const std::string& prefix);
 
  private:
   struct NodeSet {

@@ -44,7 +44,7 @@ struct Run {
 
 void checkpoint(Run& r) {
   Timers::Scope t{r.timers, "checkpoint"};
-  write_checkpoint(r.model, r.stepper, r.state, r.checkpoint, r.reporter.out());
+  write_checkpoint(r.model, r.stepper, r.state, r.checkpoint, r.reporter.out(), r.reporter.metrics_state());
   r.checkpoint_step = r.state.step;
   r.model.linear->rebuild_preconditioner();  // as a run restarted from here will
 }
@@ -88,7 +88,8 @@ void resume(Run& r, const Restart& rs) {
                    << (r.model.cfg.stages.empty() ? std::string() : ", stage " + r.model.cfg.stages[static_cast<std::size_t>(s.stage)].name)
                    << ", next dt " << s.control.dt() << "\n";
   if (r.model.rank == 0) carry_rows(rs, r.reporter, r.reporter.out());
-  r.reporter.initial_metrics(s);  // stent metrics restart here: gains and recoil count from the checkpoint
+  r.reporter.restore_metrics(rs.data.reals);  // the metrics' reference, peak and stage start
+  r.reporter.initial_metrics(s);
   if (r.model.cfg.output.fields) write_fields(r);
   if (r.model.cfg.output.checkpoint_every > 0) checkpoint(r);
 }

@@ -126,4 +126,23 @@ for f in history energy; do
     fail "$b differs from the uninterrupted run"
   if [ "$np_killed" = "$np_restart" ]; then cmp "$a" "$b" || fail "$b: not byte for byte the uninterrupted run's"; fi
 done
+
+# Stent metrics: the restarted run's rows start at the checkpoint, so its last metrics and
+# stage rows (the recoil from the peak before the checkpoint, the foreshortening from the
+# as-cut length, the stage's start) must equal the uninterrupted run's.
+for f in metrics stages; do
+  a=ref/${base}_$f.csv b=out/${base}_$f.csv
+  [ -f "$a" ] || continue
+  [ -f "$b" ] || fail "$b missing"
+  { head -1 "$a"; tail -1 "$a"; tail -1 "$b"; } | awk -F, -v tol="$tol" -v file="$b" '
+    function abs(x) { return x < 0 ? -x : x }
+    NR == 1 { for (i = 1; i <= NF; ++i) h[i] = $i; next }
+    NR == 2 { for (i = 1; i <= NF; ++i) a[i] = $i; n = NF; next }
+    { if (NF != n) { print file ": " NF " columns, the reference has " n; exit 1 }
+      for (i = 1; i <= NF; ++i) {
+        if ($i == a[i]) continue
+        if (abs($i - a[i]) > tol * (abs(a[i]) > 1 ? abs(a[i]) : 1)) { print file ": last row, " h[i] " = " $i ", the uninterrupted run: " a[i]; exit 1 } } }
+    END { if (NR == 3) print file ": the last row equals the uninterrupted run'"'"'s" }' ||
+    fail "$b: the last row differs from the uninterrupted run"
+done
 echo "PASS"

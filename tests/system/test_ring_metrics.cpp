@@ -23,6 +23,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -190,6 +191,51 @@ TEST(RingMetrics, CrimpIsNoRecoilAndTheRecoilCountsFromTheExpansion) {
   r.rm->table(end_log);
   EXPECT_NE(all_row(end_log.str()).find("3.7500 |          3.7500 |          3.6000 |   -4.000 |           4.000"), std::string::npos)
       << end_log.str();
+}
+
+// A stent that springs back to its as-cut diameter (elastic) shows its whole recoil: the
+// return to D0 is not a new smallest diameter (that takes more than round-off below it).
+TEST(RingMetrics, SpringingBackToTheAsCutDiameterIsTheWholeRecoil) {
+  Rig r(deck("full"), "spring_back");
+  r.at(zero);
+  auto field = [](double lambda) {
+    return [=](const double* x, double* u) { u[0] = (lambda - 1.0) * x[0], u[1] = (lambda - 1.0) * x[1], u[2] = 0.0; };
+  };
+  r.at(field(1.25), 0.5);
+  EXPECT_NEAR(r.get(r.at(field(1.0 - 1e-13), 1.0), "radial_recoil [-]"), 0.2, 1e-12);
+  EXPECT_EQ(r.get(r.at(field(0.99), 1.5), "radial_recoil [-]"), 0.0);  // below D0: a crimp
+}
+
+// The state a checkpoint carries (RingMetrics::save / restore): a second metrics object
+// restored from the first's state after the crimp, the expansion's peak and a stage start
+// gives the same row and table as the first at the recoiled state, where a fresh one
+// would count from the recoiled state itself (recoil 0, foreshortening 0).
+TEST(RingMetrics, SavedStateRestoresThePeakReferenceAndStageStart) {
+  Rig a(deck("full"), "save_a");
+  a.at(zero);
+  auto field = [](double lambda, double e) {
+    return [=](const double* x, double* u) { u[0] = (lambda - 1.0) * x[0], u[1] = (lambda - 1.0) * x[1], u[2] = -e * x[2]; };
+  };
+  a.at(field(0.7, -0.05), 1.0);
+  a.at(field(1.25, 0.1), 2.0);
+  a.rm->begin_stage();
+  std::map<std::string, double> state;
+  a.rm->save(state, "metrics_ring_");
+  Rig b(deck("full"), "save_b");
+  ASSERT_TRUE(b.rm->restore(state, "metrics_ring_"));
+  const auto va = a.at(field(1.2, 0.08), 3.0), vb = b.at(field(1.2, 0.08), 3.0);
+  ASSERT_EQ(va.size(), vb.size());
+  for (std::size_t k = 0; k < va.size(); ++k) EXPECT_EQ(va[k], vb[k]) << a.rm->columns()[k];
+  EXPECT_NEAR(a.get(vb, "radial_recoil [-]"), (1.25 - 1.2) / 1.25, 1e-12);
+  EXPECT_NEAR(a.get(vb, "foreshortening [-]"), 0.08, 1e-12);
+  std::ostringstream ta, tb;
+  a.rm->table(ta);
+  b.rm->table(tb);
+  EXPECT_EQ(ta.str(), tb.str());
+  std::map<std::string, double> partial = state;
+  partial.erase("metrics_ring_D_min");
+  Rig c(deck("full"), "save_c");
+  EXPECT_FALSE(c.rm->restore(partial, "metrics_ring_"));  // all or nothing
 }
 
 TEST(RingMetrics, QuarterEqualsFullUnderASymmetricField) {
