@@ -167,12 +167,56 @@ void check_before_first_step(Model& model, Reporter& reporter, Timers& timers) {
 // Output->times: a time counts as reached by a step ending within round-off of it.
 double output_time_tolerance(const Config& cfg) { return 1e-10 * cfg.stepping.end_time; }
 
-// The first Output->times entry after t (not reached at t), or `end` if none comes before.
-double next_stop(const Config& cfg, double t, double end) {
+// The turning points of a `table` ramp, shifted by `start`: its first and last points and
+// the interior ones where the factor stops rising or falling (a peak, a trough, the start
+// or end of a hold). A dense monotone table (a measured curve) adds only its ends.
+void add_turning_points(const std::vector<double>& times, const std::vector<double>& f, double start, std::vector<double>& out) {
+  const std::size_t n = std::min(times.size(), f.size());
+  for (std::size_t i = 0; i < n; ++i)
+    if (i == 0 || i + 1 == n || (f[i] - f[i - 1]) * (f[i + 1] - f[i]) <= 0.0) out.push_back(start + times[i]);
+}
+
+// The same on the run's clock (with stages: in the stages where the table is active).
+void add_knots(const Ramp& r, std::vector<double>& out) {
+  if (r.stages.empty()) {
+    if (r.kind == Ramp::Kind::Table) add_turning_points(r.times, r.factors, 0.0, out);
+    return;
+  }
+  for (const Ramp::Piece& p : r.stages)
+    if (p.mode == Ramp::Piece::Mode::Active && p.kind == Ramp::Kind::Table) add_turning_points(p.times, p.factors, p.start, out);
+}
+
+// Where the loads' and the obstacles' table ramps turn, sorted.
+std::vector<double> ramp_knots(const Config& cfg) {
+  std::vector<double> k;
+  for (const LoadConfig& l : cfg.loads) add_knots(l.ramp, k);
+  for (const ContactPairConfig& c : cfg.contact) {
+    add_knots(c.translation_ramp, k);
+    add_knots(c.radius_ramp, k);
+  }
+  std::sort(k.begin(), k.end());
+  return k;
+}
+
+// Where the step from t must end at the latest: the first Output->times entry after t (not
+// reached at t), in a static interval the first turning point of a table ramp after t (time
+// is the load parameter there: a table's extreme values, the peak of an expansion or of a
+// load cycle, are reached exactly; a dynamic interval keeps its time grid), or `end`.
+double next_stop(const Config& cfg, double t, double end, bool dynamic) {
   const double tol = output_time_tolerance(cfg);
+  double stop = end;
   for (double tau : cfg.output.times)
-    if (tau > t + tol) return std::min(tau, end);
-  return end;
+    if (tau > t + tol) {
+      stop = std::min(stop, tau);
+      break;
+    }
+  if (!dynamic)
+    for (double tau : ramp_knots(cfg))
+      if (tau > t + tol) {
+        stop = std::min(stop, tau);
+        break;
+      }
+  return stop;
 }
 
 // Whether a step from t0 to t1 reached an Output->times entry.
@@ -256,7 +300,7 @@ bool run_interval(Run& r, double end) {
       return false;
     }
     ++s.attempts;
-    const double dt = s.control.propose(next_stop(r.model.cfg, s.t, end) - s.t);  // shortened to an output time
+    const double dt = s.control.propose(next_stop(r.model.cfg, s.t, end, r.model.dynamic) - s.t);  // to an output time or a table's point
     const NewtonResult nr = r.stepper.solve(s, dt);
     if (nr.converged) {
       if (!accept_step(r, dt, nr, end)) return false;
