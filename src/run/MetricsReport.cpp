@@ -111,10 +111,8 @@ void MetricsReport::end_stage(const RunState& s, const std::string& name, std::o
 
 namespace {
 const char* const kEnergyKeys[] = {"external", "support", "dissipation", "contact", "friction", "plastic"};
-double* energy_field(EnergyTotals& e, std::size_t i) {
-  double* f[] = {&e.external, &e.support, &e.dissipation, &e.contact, &e.friction, &e.plastic};
-  return f[i];
-}
+constexpr double EnergyTotals::* kEnergyFields[] = {&EnergyTotals::external, &EnergyTotals::support, &EnergyTotals::dissipation,
+                                                   &EnergyTotals::contact,  &EnergyTotals::friction, &EnergyTotals::plastic};
 }  // namespace
 
 void MetricsReport::save(std::map<std::string, double>& out) const {
@@ -123,8 +121,7 @@ void MetricsReport::save(std::map<std::string, double>& out) const {
     out["metrics_first_" + std::to_string(k)] = first_[k];
     out["metrics_stage_max_" + std::to_string(k)] = stage_max_[k];
   }
-  EnergyTotals e0 = stage_e0_;
-  for (std::size_t i = 0; i < std::size(kEnergyKeys); ++i) out[std::string("metrics_stage_e0_") + kEnergyKeys[i]] = *energy_field(e0, i);
+  for (std::size_t i = 0; i < std::size(kEnergyKeys); ++i) out[std::string("metrics_stage_e0_") + kEnergyKeys[i]] = stage_e0_.*kEnergyFields[i];
   out["metrics_stage_E0"] = stage_E0_;
   out["metrics_stent_r_max"] = stent_r_max_;
   if (rings_) rings_->save(out, "metrics_ring_");
@@ -145,7 +142,7 @@ void MetricsReport::restore(const std::map<std::string, double>& in) {
   for (std::size_t k = 0; ok && k < names_.size(); ++k)
     ok = get("metrics_first_" + std::to_string(k), first[k]) && get("metrics_stage_max_" + std::to_string(k), stage_max[k]);
   for (std::size_t i = 0; ok && i < std::size(kEnergyKeys); ++i)
-    ok = get(std::string("metrics_stage_e0_") + kEnergyKeys[i], *energy_field(e0, i));
+    ok = get(std::string("metrics_stage_e0_") + kEnergyKeys[i], e0.*kEnergyFields[i]);
   if (!ok || (rings_ && !rings_->restore(in, "metrics_ring_"))) return;
   first_ = first, stage_max_ = stage_max, stage_e0_ = e0, stage_E0_ = E0, stent_r_max_ = r_max;
   started_ = true;

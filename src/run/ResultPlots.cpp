@@ -220,7 +220,7 @@ void diameter_plot(const Model& m, const std::string& stem, const UnitLabels& u,
     const auto& D = t.columns[static_cast<std::size_t>(dm)];
     std::size_t peak = 0, low = 0;
     for (std::size_t i = 1; i < D.size(); ++i) {
-      if (D[i] < D[low] * (1.0 - RingMetrics::kNewSmallestDiameter)) low = peak = i;
+      if (RingMetrics::new_smallest(D[i], D[low])) low = peak = i;
       else if (D[i] > D[peak]) peak = i;
     }
     const auto& time = t.columns[static_cast<std::size_t>(tc)];

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <iterator>
 #include <map>
 #include <utility>
 
@@ -282,9 +281,9 @@ std::vector<double> RingMetrics::evaluate(const la::Vector& u, double t) {
   }
   // The peak of the expansion: the largest D_mean since the smallest one so far (as cut,
   // or crimped), so that a crimp is no recoil and the recoil counts from the expansion. A
-  // new smallest diameter is one below the last by more than round-off (kNewSmallestDiameter), so
+  // new smallest diameter is one below the last by more than round-off (new_smallest), so
   // that a stent that springs back to its as-cut diameter shows its whole recoil.
-  const bool smallest = D_peak_ < 0.0 || all.mean < D_min_ * (1.0 - kNewSmallestDiameter);
+  const bool smallest = D_peak_ < 0.0 || new_smallest(all.mean, D_min_);
   if (smallest) D_min_ = all.mean;
   if (smallest || all.mean > D_peak_) {
     D_peak_ = all.mean, L_peak_ = L, t_peak_ = t;
@@ -328,31 +327,30 @@ bool restore_rings(const std::map<std::string, double>& in, const std::string& k
 }
 }  // namespace
 
+// The scalars a checkpoint carries, by name.
+const std::pair<const char*, double RingMetrics::*> RingMetrics::kSaved[] = {
+    {"L0", &RingMetrics::L0_},         {"D_peak", &RingMetrics::D_peak_},
+    {"L_peak", &RingMetrics::L_peak_}, {"t_peak", &RingMetrics::t_peak_},
+    {"D_min", &RingMetrics::D_min_},   {"dogbone_peak", &RingMetrics::dogbone_peak_},
+    {"centre_peak", &RingMetrics::centre_peak_}, {"D_start", &RingMetrics::D_start_}};
+
 void RingMetrics::save(std::map<std::string, double>& out, const std::string& prefix) const {
   if (!started_) return;
-  const double scalars[] = {L0_, D_peak_, L_peak_, t_peak_, D_min_, dogbone_peak_, centre_peak_, D_start_};
-  const char* names[] = {"L0", "D_peak", "L_peak", "t_peak", "D_min", "dogbone_peak", "centre_peak", "D_start"};
-  for (std::size_t i = 0; i < std::size(names); ++i) out[prefix + names[i]] = scalars[i];
+  for (const auto& [name, member] : kSaved) out[prefix + name] = this->*member;
   save_rings(out, prefix + "ring_L0", ring_L0_);
   save_rings(out, prefix + "ring_D_peak", ring_D_peak_);
   save_rings(out, prefix + "ring_D_start", ring_D_start_);
 }
 
 bool RingMetrics::restore(const std::map<std::string, double>& in, const std::string& prefix) {
-  double scalars[8];
-  const char* names[] = {"L0", "D_peak", "L_peak", "t_peak", "D_min", "dogbone_peak", "centre_peak", "D_start"};
-  for (std::size_t i = 0; i < std::size(names); ++i) {
-    const auto it = in.find(prefix + names[i]);
-    if (it == in.end()) return false;
-    scalars[i] = it->second;
-  }
+  for (const auto& [name, member] : kSaved)
+    if (!in.count(prefix + name)) return false;
   const auto n = static_cast<std::size_t>(rings_);
   std::vector<double> L0(n), peak(n), start(n);
   if (!restore_rings(in, prefix + "ring_L0", L0) || !restore_rings(in, prefix + "ring_D_peak", peak) ||
       !restore_rings(in, prefix + "ring_D_start", start))
     return false;
-  L0_ = scalars[0], D_peak_ = scalars[1], L_peak_ = scalars[2], t_peak_ = scalars[3], D_min_ = scalars[4];
-  dogbone_peak_ = scalars[5], centre_peak_ = scalars[6], D_start_ = scalars[7];
+  for (const auto& [name, member] : kSaved) this->*member = in.at(prefix + name);
   ring_L0_ = L0, ring_D_peak_ = peak, ring_D_start_ = start;
   started_ = true;
   return true;

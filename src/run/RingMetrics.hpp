@@ -33,9 +33,10 @@ namespace stentor {
 class RingMetrics {
  public:
   explicit RingMetrics(const Model& model);
-  // A D_mean below the smallest so far by more than this fraction of it is a new smallest
-  // one, from which the peak of the expansion counts again (a crimp; not round-off).
-  static constexpr double kNewSmallestDiameter = 1e-9;
+  // The peak of the expansion counts again from a new smallest D_mean: one below the
+  // smallest so far by more than 1e-9 of it (a crimp; not round-off). Shared with the
+  // diameter plot, which finds the same peak in the CSV.
+  static bool new_smallest(double D, double D_min) { return D < D_min * (1.0 - 1e-9); }
   // The boundary groups every rank needs whole (Model distributes them so).
   static std::vector<std::string> whole_groups(const Config& cfg);
 
@@ -93,6 +94,7 @@ class RingMetrics {
   std::vector<double> ring_D_peak_, ring_D_now_, ring_L_now_, ring_eps_;
   double D_start_ = -1.0;  // at the current stage's start
   std::vector<double> ring_D_start_;
+  static const std::pair<const char*, double RingMetrics::*> kSaved[8];  // save / restore
   double dogbone_peak_ = 0.0, centre_peak_ = 0.0;
   double D_now_ = 0.0, L_now_ = 0.0;
 };
