@@ -135,6 +135,7 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
   std::vector<double> owned_val(owned_set.size(), 0.0);
   for (std::size_t s = 0; s < loads.dirichlet.size(); ++s) {
     const DirichletSet& d = loads.dirichlet[s];
+    if (d.normal) continue;  // setup_planes
     for (GId g : d.nodes) {
       const la::LO l = dist.local_node(g);
       if (l < 0) continue;
@@ -162,6 +163,7 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
   owned_dirichlet_flag_.assign(owned_set.size(), 0);
   for (la::LO i : owned_dirichlet_dofs_) owned_dirichlet_flag_[static_cast<std::size_t>(i)] = 1;
   reactions_.assign(loads.dirichlet.size(), {0.0, 0.0, 0.0});
+  setup_planes();
   setup_loads(mesh);
 }
 
@@ -436,17 +438,23 @@ void Assembler::setup_loads(const Mesh& mesh) {
 }
 
 void Assembler::apply_dirichlet(la::Vector& u, double t, double end_time) const {
-  auto uh = u.getLocalViewHost(Tpetra::Access::ReadWrite);
-  for (std::size_t i = 0; i < owned_dirichlet_dofs_.size(); ++i) {
-    const DirichletSet& d = loads_.dirichlet[static_cast<std::size_t>(owned_dirichlet_set_[i])];
-    uh(owned_dirichlet_dofs_[i], 0) = owned_dirichlet_value_[i] * d.ramp(t, end_time);
+  {
+    auto uh = u.getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (std::size_t i = 0; i < owned_dirichlet_dofs_.size(); ++i) {
+      const DirichletSet& d = loads_.dirichlet[static_cast<std::size_t>(owned_dirichlet_set_[i])];
+      uh(owned_dirichlet_dofs_[i], 0) = owned_dirichlet_value_[i] * d.ramp(t, end_time);
+    }
   }
+  apply_planes(u, t, end_time);
 }
 
 double Assembler::support_work(const la::Vector& du) const {
   auto dh = du.getLocalViewHost(Tpetra::Access::ReadOnly);
   double loc = 0.0, glob = 0.0;
   for (std::size_t k = 0; k < dirichlet_r_.size(); ++k) loc += dirichlet_r_[k] * dh(owned_dirichlet_dofs_[k], 0);
+  for (std::size_t k = 0; k < plane_r_.size(); ++k)
+    for (int i = 0; i < planes_[k].m; ++i)
+      for (int c = 0; c < dim_; ++c) loc += plane_r_[k][static_cast<std::size_t>(i)] * planes_[k].e[i][c] * dh(planes_[k].lid * dim_ + c, 0);
   Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &loc, &glob);
   return glob;
 }
@@ -709,20 +717,23 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
   }
   if (in.extra) r.update(1.0, *in.extra, 1.0);
   {
-    // Reactions, then zero the constrained rows.
-    auto rh = r.getLocalViewHost(Tpetra::Access::ReadWrite);
+    // Reactions, then zero the constrained rows (and project those of the planes).
     std::vector<double> loc(3 * reactions_.size(), 0.0), glob(loc.size(), 0.0);
-    for (std::size_t k = 0; k < owned_dirichlet_dofs_.size(); ++k) {
-      const la::LO i = owned_dirichlet_dofs_[k];
-      loc[3 * static_cast<std::size_t>(owned_reaction_set_[k]) + static_cast<std::size_t>(i % dim_)] += rh(i, 0);
+    {
+      auto rh = r.getLocalViewHost(Tpetra::Access::ReadWrite);
+      for (std::size_t k = 0; k < owned_dirichlet_dofs_.size(); ++k) {
+        const la::LO i = owned_dirichlet_dofs_[k];
+        loc[3 * static_cast<std::size_t>(owned_reaction_set_[k]) + static_cast<std::size_t>(i % dim_)] += rh(i, 0);
+      }
+      dirichlet_r_.resize(owned_dirichlet_dofs_.size());
+      for (std::size_t k = 0; k < owned_dirichlet_dofs_.size(); ++k) {
+        dirichlet_r_[k] = rh(owned_dirichlet_dofs_[k], 0);
+        rh(owned_dirichlet_dofs_[k], 0) = 0.0;
+      }
     }
+    project_plane_rows(r, loc);
     if (!loc.empty()) Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), glob.data());
     for (std::size_t s = 0; s < reactions_.size(); ++s) reactions_[s] = {glob[3 * s], glob[3 * s + 1], glob[3 * s + 2]};
-    dirichlet_r_.resize(owned_dirichlet_dofs_.size());
-    for (std::size_t k = 0; k < owned_dirichlet_dofs_.size(); ++k) {
-      dirichlet_r_[k] = rh(owned_dirichlet_dofs_[k], 0);
-      rh(owned_dirichlet_dofs_[k], 0) = 0.0;
-    }
   }
   if (with_tangent) {
     // Identity on owned constrained rows (owned dofs are a prefix of the overlap dofs).
@@ -768,6 +779,7 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
               Kv.values(j) = s * Kv.values(j) + (c != 0.0 ? c * Mv.values(j) : 0.0);
           });
     }
+    project_plane_matrix();
     K_->fillComplete(dist_.owned_map(), dist_.owned_map());
   }
   return st;
@@ -780,6 +792,17 @@ Assembler::DofReactions Assembler::dof_reactions() const {
     d.nodes.push_back(dist_.global_node(i / dim_));
     d.components.push_back(static_cast<int>(i % dim_));
     d.values.push_back(dirichlet_r_[k]);
+  }
+  for (std::size_t k = 0; k < planes_.size() && k < plane_r_.size(); ++k) {
+    const PlaneNode& p = planes_[k];
+    for (int c = 0; c < dim_; ++c) {
+      if (is_dirichlet(p.lid * dim_ + c) && std::find(p.j, p.j + p.m, c) == p.j + p.m) continue;  // Cartesian: listed above
+      double v = 0.0;
+      for (int i = 0; i < p.m; ++i) v += plane_r_[k][static_cast<std::size_t>(i)] * p.e[i][c];
+      d.nodes.push_back(dist_.global_node(p.lid));
+      d.components.push_back(c);
+      d.values.push_back(v);
+    }
   }
   return d;
 }

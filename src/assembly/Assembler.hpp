@@ -91,8 +91,16 @@ class Assembler {
   // dE + D - W_ext = W_sup). Until session 6 the sign was reversed: invisible with fixed
   // supports (du = 0), a balance error of 2 W_sup with moving ones.
   double support_work(const la::Vector& du) const;
-  // Dirichlet flag of each owned dof.
+  // Dirichlet flag of each owned dof (on `normal` planes: the dofs that carry the planes'
+  // constraint rows, plane_normals()).
   bool is_dirichlet(la::LO owned_dof) const;
+  // An owned node on `normal` Dirichlet sets (planes at any angle): the number m of its
+  // orthonormal constraint directions e[0..m-1] (the planes' normals with the Cartesian-
+  // prescribed components removed, Gram-Schmidt); 0 elsewhere. Its rows: m of them
+  // (is_dirichlet) are the constraints e_i . du = 0, the others those of the residual
+  // projected on the planes, (I - sum e_i e_i^T) r (PlaneConstraints.cpp).
+  // j: the components whose rows carry the constraints.
+  int plane_normals(la::LO owned_node, double e[3][3], int j[3]) const;
 
   const la::RCP<la::CrsMatrix>& matrix() const { return K_; }
 
@@ -221,6 +229,26 @@ class Assembler {
   std::vector<double> owned_dirichlet_value_;           // full value (times ramp of its set)
   std::vector<int> owned_dirichlet_set_;                // the set whose value is prescribed (the last)
   std::vector<int> owned_reaction_set_;                 // the set its reaction counts for (the first)
+
+  // Owned nodes on `normal` Dirichlet sets (PlaneConstraints.cpp). The residual and tangent
+  // rows of such a node are projected after assembly; apply_dirichlet keeps u on its planes.
+  struct PlaneNode {
+    la::LO lid = 0;                 // owned node
+    int m = 0;                      // constraint directions
+    double e[3][3] = {};            // orthonormal, orthogonal to the node's Cartesian-prescribed axes
+    int j[3] = {0, 0, 0};           // the components whose rows carry e_i . du = 0
+    int set[3] = {0, 0, 0};         // the sets (planes) that constrain it, m of them
+    double n[3][3] = {};            // their unit normals (all components)
+    la::LO self[3] = {-1, -1, -1};  // K_'s local columns of the node's own dofs
+  };
+  std::vector<PlaneNode> planes_;
+  Kokkos::View<PlaneNode*, la::ExecSpace> planes_dev_;
+  std::vector<std::array<double, 3>> plane_r_;  // e_i . r per plane node at the last assemble()
+  void setup_planes();
+  void apply_planes(la::Vector& u, double t, double end_time) const;
+  // Reactions along e into loc (3 per set), the projection of r; the tangent's rows.
+  void project_plane_rows(la::Vector& r, std::vector<double>& loc);
+  void project_plane_matrix();
 
   // Dead loads (traction, body force): assembled once for a unit ramp, scaled each step.
   struct DeadLoad {

@@ -28,6 +28,79 @@ std::vector<const CellBlock*> boundary_blocks_named(const Mesh& mesh, const std:
   return r;
 }
 
+// The unit normal of the plane (3D) or line (2D) through the group's nodes, pointing away
+// from the cells that touch it; InputError (naming `where` and the group) when the nodes do
+// not span a plane or do not lie on one. Deterministic: ranks holding the whole group (Model
+// reads these groups whole) compute the same normal.
+std::array<double, 3> plane_normal(const Mesh& mesh, const std::vector<GId>& nodes, const std::string& where, const std::string& group) {
+  const int dim = mesh.dim;
+  double x0[3] = {0, 0, 0};
+  std::size_t count = 0;
+  for (GId g : nodes) {
+    if (mesh.stored_index(g) < 0) continue;
+    for (int c = 0; c < 3; ++c) x0[c] += mesh.coord(g)[c];
+    ++count;
+  }
+  std::array<double, 3> n{};
+  if (count == 0) return n;  // nothing of the group on this rank: nothing to constrain here
+  for (double& v : x0) v /= static_cast<double>(count);
+  double C[3][3] = {}, extent = 0.0;
+  for (GId g : nodes) {
+    if (mesh.stored_index(g) < 0) continue;
+    double d[3];
+    for (int c = 0; c < 3; ++c) d[c] = mesh.coord(g)[c] - x0[c];
+    extent = std::max(extent, std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+    for (int a = 0; a < dim; ++a)
+      for (int b = 0; b < dim; ++b) C[a][b] += d[a] * d[b];
+  }
+  // The rows of the scatter matrix lie in the plane (a line in 2D): the normal is the largest
+  // cross product of two rows (2D: the largest row turned by 90 degrees).
+  double best = 0.0;
+  if (dim == 2) {
+    for (int a = 0; a < 2; ++a) {
+      const double len = std::hypot(C[a][0], C[a][1]);
+      if (len > best) best = len, n = {-C[a][1] / len, C[a][0] / len, 0.0};
+    }
+  } else {
+    for (int a = 0; a < 3; ++a)
+      for (int b = a + 1; b < 3; ++b) {
+        const double v[3] = {C[a][1] * C[b][2] - C[a][2] * C[b][1], C[a][2] * C[b][0] - C[a][0] * C[b][2],
+                             C[a][0] * C[b][1] - C[a][1] * C[b][0]};
+        const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        if (len > best) best = len, n = {v[0] / len, v[1] / len, v[2] / len};
+      }
+  }
+  const double scale = std::pow(static_cast<double>(count) * extent * extent, dim == 2 ? 1.0 : 2.0);
+  if (!(extent > 0.0) || !(best > 1e-12 * scale))
+    throw InputError(where + ": components 'normal' needs group '" + group + "' to span a " + (dim == 2 ? "line" : "plane") +
+                     "; its " + std::to_string(count) + " nodes do not");
+  for (GId g : nodes) {
+    if (mesh.stored_index(g) < 0) continue;
+    double off = 0.0;
+    for (int c = 0; c < dim; ++c) off += n[static_cast<std::size_t>(c)] * (mesh.coord(g)[c] - x0[c]);
+    if (std::abs(off) > 1e-6 * extent) {
+      std::ostringstream os;
+      os << where << ": components 'normal' needs group '" << group << "' to be " << (dim == 2 ? "straight" : "planar") << "; node " << g
+         << " lies " << std::abs(off) << " off the best-fitting " << (dim == 2 ? "line" : "plane") << " (tolerance 1e-6 x its extent "
+         << extent << ")";
+      throw InputError(os.str());
+    }
+  }
+  // Outward: the cells touching the group lie on the other side.
+  const std::set<GId> on(nodes.begin(), nodes.end());
+  double side = 0.0;
+  for (const auto& b : mesh.volumes)
+    for (std::size_t e = 0; e < b.num_cells(); ++e) {
+      const GId* cell = &b.conn[e * static_cast<std::size_t>(b.nodes_per_cell)];
+      if (std::none_of(cell, cell + b.nodes_per_cell, [&](GId g) { return on.count(g) > 0; })) continue;
+      for (int a = 0; a < b.nodes_per_cell; ++a)
+        for (int c = 0; c < dim; ++c) side += n[static_cast<std::size_t>(c)] * (mesh.coord(cell[a])[c] - x0[c]);
+    }
+  if (side > 0.0)
+    for (double& v : n) v = -v;
+  return n;
+}
+
 }  // namespace
 
 // Each facet's outward side, from the whole mesh (mesh/MeshPart.hpp facet_sides), or
@@ -106,6 +179,15 @@ Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
         d.values = lc.vector;
         d.field = lc.field;
         d.ramp = lc.ramp;
+        if (lc.normal) {
+          if (cfg.any_dynamic())
+            throw InputError(where + "->components: 'normal' is implemented for static analyses; this deck has a dynamic stage "
+                             "(constrain the Cartesian components x, y, z instead)");
+          d.normal = true;
+          d.normal_value = lc.value;
+          d.components = {true, true, mesh.dim == 3};
+          d.n = plane_normal(mesh, d.nodes, where + "->boundary", lc.group);
+        }
         if (mesh.dim == 2 && lc.all_components) d.components[2] = false;
         if (mesh.dim == 2 && d.components[2])
           throw InputError(where + "->components: 'z' is not a component of a 2D (plane strain) problem");

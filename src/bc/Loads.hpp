@@ -18,6 +18,13 @@ struct DirichletSet {
   std::array<double, 3> values{};      // full value, multiplied by ramp(t)
   std::function<std::array<double, 3>(const double*)> field;  // if set: value at X instead of `values`
   Ramp ramp;
+  // `components` = normal: the displacement along the unit normal n of the (planar) group is
+  // normal_value times the ramp; the other directions are free (a roller or symmetry plane
+  // at any angle). n points out of the body (the side of the cells that touch the group).
+  // `components` is then all (the reaction is a vector along n) and `values` zeros.
+  bool normal = false;
+  std::array<double, 3> n{};
+  double normal_value = 0.0;
 };
 
 // Traction (dead load on the reference area) or follower pressure on boundary facets.

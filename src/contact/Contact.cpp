@@ -152,7 +152,7 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
   const std::vector<GId> nodes = boundary_nodes(mesh, pc.slave);  // throws InputError naming the group
   const auto areas = tributary_areas(mesh, pc.slave, axi_);
   p.surface = std::make_unique<SurfaceProjection>(mesh, std::vector<std::string>{pc.slave}, axi_);
-  long excluded = 0, partial = 0;
+  long excluded = 0, partial = 0, planar = 0;
   for (GId g : nodes) {
     if (std::binary_search(master_set.begin(), master_set.end(), g)) {
       std::string of;  // the pairs whose master surface holds the node
@@ -171,6 +171,8 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
     Slave nd;
     int nfixed = 0;
     for (int c = 0; c < dim_; ++c) nfixed += nd.fixed[c] = assembler.is_dirichlet(l * dim_ + c);
+    nd.planes = assembler.plane_normals(l, nd.e, nd.pj);
+    planar += nd.planes > 0;
     if (nfixed == dim_) {
       ++excluded;
       continue;
@@ -187,6 +189,12 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
   p.out.resize(p.nodes.size());
   Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &excluded, &p.excluded);
   Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &partial, &p.partial);
+  long planar_all = 0;
+  Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &planar, &planar_all);
+  if (planar_all > 0 && p.master && pc.discretization == "mortar")
+    throw InputError(where + "->slave: " + std::to_string(planar_all) + " nodes of group '" + pc.slave +
+                     "' slide on a plane of a Dirichlet set with components 'normal', which dual mortar contact does not "
+                     "implement; use 'discretization' = node-to-segment for this pair, or Cartesian components");
   long mine = static_cast<long>(p.nodes.size()), usable = 0;
   Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_SUM, 1, &mine, &usable);
   if (usable == 0)
@@ -210,6 +218,10 @@ void Contact::setup_master_maps(const Mesh& mesh, const std::vector<GId>& surfac
     for (GId g : d.nodes) {
       const int pos = master_pos(g);
       if (pos < 0) continue;
+      if (d.normal)  // the same on every rank: the master surface and the plane's group are read whole
+        throw InputError("'Boundary Conditions->" + d.name + "->components' = normal: node " + std::to_string(g) + " of group '" + d.group +
+                         "' lies on a contact master surface, whose reactions are not projected on the plane; make that "
+                         "surface the slave side, or use Cartesian components");
       for (int c = 0; c < dim_; ++c)
         if (d.components[static_cast<std::size_t>(c)]) master_fixed_[static_cast<std::size_t>(pos * dim_ + c)] = 1;
     }
@@ -580,6 +592,11 @@ contact::LawParams Contact::node_params(const Pair& p, const Slave& nd, const co
   const double area = nd.area > 0.0 ? nd.area : 1.0;
   q.cn = p.cfg.c_normal > 0.0 ? p.cfg.c_normal * area : nd.scale * (p.persistence ? lp.dt : 1.0);
   q.ct = tangent_penalty(p, nd, lp.dt);
+  q.planes = nd.planes;
+  for (int i = 0; i < 3; ++i) {
+    q.pj[i] = nd.pj[i];
+    for (int c = 0; c < 3; ++c) q.e[i][c] = nd.e[i][c];
+  }
   q.force_active = nd.hold_active;
   q.force_inactive = nd.hold_inactive;
   q.force_tangent = nd.hold_tangent;
@@ -591,6 +608,7 @@ contact::LawParams Contact::node_params(const Pair& p, const Slave& nd, const co
     q.has_lam = true;
     const bool active = nd.base_state >= contact::Stick;
     for (int c = 0; c < 3; ++c) q.lam[c] = active && !nd.fixed[c] ? nd.lam_base[c] + alpha_ * nd.kdu[c] : 0.0;
+    if (active && nd.planes > 0) contact::complete_on_planes(q, q.lam);
     q.base = nd.base_state;
   }
   return q;

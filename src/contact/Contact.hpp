@@ -202,6 +202,9 @@ class Contact {
     GId gid = 0;
     std::array<la::LO, 3> col{};       // local column indices (tangent's column map) of the node's dofs
     bool fixed[3] = {false, false, false};  // prescribed components (symmetry planes): rows stay Dirichlet rows
+    int planes = 0;                    // on `normal` Dirichlet planes (Assembler::plane_normals): e_i . u fixed
+    double e[3][3] = {};               // ... their orthonormal directions
+    int pj[3] = {0, 0, 0};             // ... and the components whose rows carry e_i . du = 0
     double X[3] = {0, 0, 0};
     double x_n[3] = {0, 0, 0};
     double d_n = 0.0, d_prev = 0.0;

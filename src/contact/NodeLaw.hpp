@@ -32,7 +32,10 @@
 // and their bulk residual (zeroed by the assembler) is a constant 0 here; the normal
 // condition goes to the free component most aligned with n, and the remaining free rows
 // take the tangential conditions along the free directions orthogonal to n (3D with one
-// prescribed axis e: t = e x n / |e x n|).
+// prescribed axis e: t = e x n / |e x n|). A node on planes at any angle (LawParams::planes,
+// Assembler::plane_normals) is the same with their normals: its fixed rows carry e_i . du
+// = 0 and its bulk residual is the projection on the planes, whose fixed components the
+// free ones give (complete_on_planes).
 #pragma once
 #include <Kokkos_Macros.hpp>
 #include <cmath>
@@ -127,7 +130,37 @@ struct LawParams {
   // checked at convergence (Contact::verify_held). Unset: the direction of q.
   bool has_slip_dir = false;
   double slip_dir[3] = {0, 0, 0};
+  // The node slides on planes (`normal` Dirichlet sets): orthonormal directions e_i, whose
+  // constraint rows are the components pj_i (Assembler::plane_normals).
+  int planes = 0;
+  double e[3][3] = {};
+  int pj[3] = {0, 0, 0};
 };
+
+// A vector v on the node's planes (e_i . v = 0) from its free components: the components
+// pj_i, which carry the constraint rows, solve sum_l e_i(pj_l) v_pj_l = -sum_{k free} e_i(k)
+// v_k (Cramer; prescribed Cartesian components are 0 in v and in e_i).
+template <class T>
+KOKKOS_INLINE_FUNCTION void complete_on_planes(const LawParams& p, T v[3]) {
+  const int m = p.planes;
+  if (m == 0) return;
+  bool row[3] = {false, false, false};
+  for (int i = 0; i < m; ++i) row[p.pj[i]] = true;
+  T b[3] = {T(0.0), T(0.0), T(0.0)};
+  for (int i = 0; i < m; ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!row[c]) b[i] -= p.e[i][c] * v[c];
+  if (m == 1) {
+    v[p.pj[0]] = b[0] / p.e[0][p.pj[0]];
+  } else if (m == 2) {
+    const double a00 = p.e[0][p.pj[0]], a01 = p.e[0][p.pj[1]], a10 = p.e[1][p.pj[0]], a11 = p.e[1][p.pj[1]];
+    const double det = a00 * a11 - a01 * a10;
+    v[p.pj[0]] = (a11 * b[0] - a01 * b[1]) / det;
+    v[p.pj[1]] = (a00 * b[1] - a10 * b[0]) / det;
+  } else {
+    for (int i = 0; i < 3; ++i) v[p.pj[i]] = T(0.0);
+  }
+}
 
 // Results of one evaluation (double): values and derivatives with respect to y.
 struct NodeOutput {
@@ -341,6 +374,8 @@ KOKKOS_INLINE_FUNCTION int law(int dim, const bool fixed[3], const LawParams& p,
     // The one free tangential direction: e x n (orthogonal to the prescribed axis e and n).
     T e[3] = {T(0.0), T(0.0), T(0.0)};
     e[fixed_axis] = T(1.0);
+    if (p.planes == 1)
+      for (int c = 0; c < 3; ++c) e[c] = T(p.e[0][c]);
     T a[3] = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
     const T len = sqrt(dot3(a, a));
     for (int c = 0; c < 3; ++c) t[0][c] = a[c] / len;
@@ -403,6 +438,7 @@ KOKKOS_INLINE_FUNCTION void evaluate(const NodeInput& in, const LawParams& p, co
     if (!in.fixed[c]) r[c] = AD::seed(in.r[c], v);
     ++v;  // the layout keeps a slot per component
   }
+  complete_on_planes(p, r);
   out.nvar = v;
   AD res[3], add[facet::kMaxNodes][3];
   out.state = conditions(in, p, ob, xs, xa, r, res, add, &out.gap, out.normal, out.rel);

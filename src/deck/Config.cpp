@@ -1382,11 +1382,16 @@ void DeckReader::read_loads(const ParameterList& pl) {
       std::string tok;
       std::vector<int> listed;
       bool all = false;
-      const std::string expect = " must list components x, y, z (separated by spaces or commas) or be 'all'";
+      const std::string expect = " must list components x, y, z (separated by spaces or commas) or be 'all' or 'normal'";
+      bool normal = false;
       while (is >> tok) {
         const std::string t = lower(tok);
         if (t == "all") {
           all = true;
+          continue;
+        }
+        if (t == "normal") {
+          normal = true;
           continue;
         }
         if (t != "x" && t != "y" && t != "z") fail(quoted(cpath) + expect + "; got '" + comp + "' ('" + tok + "' is not a component)");
@@ -1396,6 +1401,21 @@ void DeckReader::read_loads(const ParameterList& pl) {
         listed.push_back(c);
       }
       if (all && !listed.empty()) fail(quoted(cpath) + ": 'all' cannot be combined with other components; got '" + comp + "'");
+      if (normal && (all || !listed.empty()))
+        fail(quoted(cpath) + ": 'normal' cannot be combined with other components; got '" + comp + "'");
+      if (normal) {
+        // The displacement along the boundary's unit outward normal (Loads: the group must be planar).
+        lc.normal = true;
+        if (sub.isParameter("values")) {
+          const auto v = get_array(sub, typed, "values");
+          if (v.size() != 1)
+            fail(quoted(path + "->values") + " must have one value (the displacement along the normal) for components 'normal', got " +
+                 std::to_string(v.size()));
+          lc.value = v[0];
+        }
+        cfg_.loads.push_back(lc);
+        continue;
+      }
       if (!all && listed.empty()) fail(quoted(cpath) + expect + "; got '" + comp + "'");
       const int dim = cfg_.mesh.dimension;
       if (dim == 2 && std::find(listed.begin(), listed.end(), 2) != listed.end())

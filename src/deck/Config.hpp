@@ -130,8 +130,9 @@ struct LoadConfig {
   std::string group;                   // "boundary" (Dirichlet/Traction/Pressure) or "body" (BodyForce, "" = all)
   std::array<bool, 3> components{};    // Dirichlet: "components", e.g. "x y" or "x" or "all"
   bool all_components = false;         // Dirichlet "all": components = {x, y, z}; z is to be dropped in 2D
+  bool normal = false;                 // Dirichlet "normal": the displacement along the (planar) boundary's normal; value in `value`
   std::array<double, 3> vector{};      // Dirichlet "values" / Traction "traction" / BodyForce "force": per component
-  double value = 0.0;                  // Pressure "pressure" [Pa]: acts against the current outward normal (follower)
+  double value = 0.0;                  // Pressure "pressure" [Pa] (against the current outward normal); Dirichlet "normal": its value
   Ramp ramp;                           // "ramp" (+ "ramp times", "ramp factors" for "table")
   // Programmatic only (tests, API users; no deck syntax): when set, replaces `vector` by a
   // function of the reference position X (3 coordinates): the prescribed displacement for

@@ -202,8 +202,12 @@ std::vector<ListSpec> build_schema() {
            .dflt_doc("`strut width` / `elements through width`"),
        str("sector", "full",
            "`full`: the whole circumference; `quarter`: 0 <= theta <= 90 deg, cut on the symmetry planes x = 0 "
-           "(`symmetry_x`) and y = 0 (`symmetry_y`) through crowns (`crowns` divisible by 4, links symmetric).")
-           .one_of({"full", "quarter"}),
+           "(`symmetry_x`) and y = 0 (`symmetry_y`) through crowns (`crowns` divisible by 4, links symmetric); "
+           "`period`: the smallest sector 0 <= theta <= Theta between two symmetry planes through crowns that repeats "
+           "the stent, y = 0 (`symmetry_y`) and the oblique plane theta = Theta (`symmetry_sector`, to hold with "
+           "Dirichlet `components` = normal): Theta = 180 deg / `crowns` (one strut) without links, a multiple of it "
+           "with links (the log names it).")
+           .one_of({"full", "quarter", "period"}),
        boolean("half length", false,
                "Only the proximal half, z <= total length / 2, cut on the symmetry plane `symmetry_z` (an even "
                "number of rings with `links` = `peak-to-peak`).")}));
@@ -446,12 +450,15 @@ std::vector<ListSpec> build_schema() {
   s.push_back(list("Boundary Conditions/*/Dirichlet", "Boundary Conditions-><load> (type = Dirichlet)",
                    "Prescribed displacement of a boundary.",
                    {str("boundary", "", "Mesh physical group of the constrained boundary.").req().allowed("physical group name"),
-                    str("components", "all", "Constrained displacement components.")
-                        .allowed("`x`, `y`, `z` separated by spaces or commas, or `all`"),
+                    str("components", "all",
+                        "Constrained displacement components. `normal`: the displacement along the boundary's unit "
+                        "outward normal only (a roller or symmetry plane at any angle: the boundary must be planar); "
+                        "the node slides freely in the plane, and the reaction is normal to it. Static analyses.")
+                        .allowed("`x`, `y`, `z` separated by spaces or commas, or `all`, or `normal`"),
                     arr("values", "Displacement [length] of each listed component, in the order listed.")
                         .len(1, 3)
                         .dflt_doc("zeros")
-                        .allowed("one per listed component (for `all`: one per dimension)")}));
+                        .allowed("one per listed component (for `all`: one per dimension; for `normal`: one)")}));
   s.push_back(list("Boundary Conditions/*/traction", "Boundary Conditions-><load> (type = traction)",
                    "Dead load: a fixed traction per unit reference area.",
                    {str("boundary", "", "Mesh physical group of the loaded boundary.").req().allowed("physical group name"),

@@ -21,14 +21,16 @@ std::set<long long> link_set(const StentConfig& s, int gap) {
   return out;
 }
 
-// The links of every gap are mirror images of themselves about theta = 0 and theta = pi/2.
-bool links_quarter_symmetric(const StentConfig& s) {
+// The links of every gap are mirror images of themselves about theta = 0 and the plane
+// `half` half pitches further.
+bool links_mirror_symmetric(const StentConfig& s, long long half) {
+  if (s.rings < 2 || s.links_per_ring == 0) return true;
   const long long n2 = 2LL * s.crowns;  // half pitches around the ring
   for (int g = 0; g + 1 < s.rings; ++g) {
     const std::set<long long> set = link_set(s, g);
     for (long long h : set) {
-      if (!set.count((n2 - h) % n2)) return false;                       // theta -> -theta
-      if (!set.count(((n2 / 2 - h) % n2 + n2) % n2)) return false;      // theta -> pi - theta
+      if (!set.count((n2 - h) % n2)) return false;                        // theta -> -theta
+      if (!set.count(((2 * half - h) % n2 + n2) % n2)) return false;      // theta -> 2 Theta - theta
     }
   }
   return true;
@@ -87,10 +89,14 @@ std::string reduction_error(const StentConfig& s) {
     if (s.crowns % 4)
       return par("sector") + " = quarter needs 'crowns' divisible by 4 (the planes x = 0 and y = 0 through crowns), got " +
              std::to_string(s.crowns);
-    if (s.rings > 1 && s.links_per_ring > 0 && !links_quarter_symmetric(s))
+    if (s.rings > 1 && s.links_per_ring > 0 && !links_mirror_symmetric(s, s.crowns / 2))
       return par("sector") + " = quarter: the links (" + std::to_string(s.links_per_ring) + " per ring, '" + s.links +
              "') are not symmetric about the planes x = 0 and y = 0; use 'sector' = full or another 'links per ring'";
   }
+  if (s.sector == "period" && s.sector_half_pitches() == 0)
+    return par("sector") + " = period: the links (" + std::to_string(s.links_per_ring) + " per ring, '" + s.links +
+           "') are not mirror images of themselves about the plane theta = 0 through a crown, so no sector between two "
+           "symmetry planes repeats the stent; use 'sector' = full";
   if (s.half_length && (s.rings % 2 || s.links != "peak-to-peak"))
     return par("half length") + " = true needs an even number of 'rings' and 'links' = peak-to-peak (the stent is "
            "then its own mirror image about its middle plane), got " + std::to_string(s.rings) + " rings, '" + s.links + "'";
@@ -120,6 +126,21 @@ double StentConfig::link_position(int gap_index, int j) const {
     o = m % 2 ? 0.5 * m : 0.5;  // a half-integer: the crowns of ring gap_index that point to +z
   }
   return o + static_cast<double>(j) * m;
+}
+
+int StentConfig::sector_half_pitches() const {
+  if (sector == "full") return 2 * crowns;
+  if (sector == "quarter") return crowns / 2;
+  for (int h = 1; h <= crowns; ++h)
+    if (crowns % h == 0 && links_mirror_symmetric(*this, h)) return h;
+  return 0;
+}
+
+double StentConfig::sector_angle() const { return sector_half_pitches() * kPi / crowns; }
+
+double StentConfig::symmetry_copies() const {
+  const int h = sector_half_pitches();
+  return (h > 0 ? 2.0 * crowns / h : 1.0) * (half_length ? 2.0 : 1.0);
 }
 
 double StentConfig::centreline_length() const {

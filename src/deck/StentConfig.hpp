@@ -34,7 +34,7 @@ struct StentConfig {
   int elements_width = 3;             // "elements through width"
   int elements_thickness = 3;         // "elements through thickness"
   double element_length = 0.0;       // "element length" along the struts (0: width / elements through width)
-  std::string sector = "full";        // "sector": "full" | "quarter" (0 <= theta <= pi/2)
+  std::string sector = "full";        // "sector": "full" | "quarter" (0 <= theta <= pi/2) | "period" (sector_angle)
   bool half_length = false;           // "half length": the proximal half, z <= total length / 2
 
   // Derived.
@@ -56,6 +56,15 @@ struct StentConfig {
   double link_position(int gap_index, int j) const;
   // Length of one ring's centreline (all crowns), by quadrature.
   double centreline_length() const;
+  // The kept sector 0 <= theta <= sector_angle(): in half crown pitches (pi / crowns each),
+  // 2 crowns for `full`, crowns / 2 for `quarter`, and for `period` the smallest h that
+  // divides `crowns` and about whose planes theta = 0 and theta = h pi / crowns the links
+  // are mirror images of themselves (1, one strut from crown to crown, without links);
+  // 0 when no such sector exists.
+  int sector_half_pitches() const;
+  double sector_angle() const;
+  // How many copies of the kept part make the whole stent (sectors x halves).
+  double symmetry_copies() const;
 };
 
 // "" when the stent can be built, else the message (naming the parameter, as

@@ -44,6 +44,15 @@ struct Curve {
     }
     return 0.5 * (lo + hi);
   }
+  // ... at arc length `target` back from u1.
+  double u_at_arc_from_end(double u0, double u1, double target) const {
+    double lo = u0, hi = u1;
+    for (int it = 0; it < 60; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (arc(mid, u1) < target ? hi : lo) = mid;
+    }
+    return 0.5 * (lo + hi);
+  }
   // Offset (from the crown at uc) of the centreline parameter where the edge on `side`
   // (+1: +z side, -1: -z side) reaches u = uc + half_link.
   double link_offset(double uc, int side, double half_link, double half_pitch) const {
@@ -107,7 +116,11 @@ RingPlan plan_ring(const Plan& p, int k) {
     for (auto [end, cells] : pieces) {
       const double len = r.c.arc(start, end);
       const int n = cells > 0 ? cells : std::max(1, static_cast<int>(std::ceil(len / h - 1e-9)));
-      for (int i = 0; i < n; ++i) r.u.push_back(i == 0 ? start : r.c.u_at_arc(start, end, len * i / n));
+      // The second half measured from the end: a piece symmetric about its middle (a strut
+      // from crown to crown) gets mirror-symmetric nodes, up to round-off (Simpson's error in
+      // the partial arcs is ~1e-10 of a strut, and a sector's symmetry planes would see it).
+      for (int i = 0; i < n; ++i)
+        r.u.push_back(i == 0 ? start : 2 * i <= n ? r.c.u_at_arc(start, end, len * i / n) : r.c.u_at_arc_from_end(start, end, len * (n - i) / n));
       start = end;
     }
   }
@@ -234,7 +247,7 @@ double full_cell_count(const StentConfig& s, const Plan& p) {
 }
 
 double reduction_fraction(const StentConfig& s) {
-  return (s.sector == "quarter" ? 0.25 : 1.0) * (s.half_length ? 0.5 : 1.0);
+  return 1.0 / s.symmetry_copies();
 }
 
 // The kept cells' nodes, renumbered 0.. in the original order.
@@ -242,6 +255,12 @@ struct Kept {
   std::vector<GId> new_id;  // -1: dropped
   std::vector<std::size_t> cells;
 };
+
+// A cell centroid strictly inside the sector 0 < theta < Theta (Theta <= pi).
+bool in_sector(const StentConfig& s, const double* m) {
+  const double th = s.sector_angle();
+  return m[1] > 0.0 && std::sin(th) * m[0] - std::cos(th) * m[1] > 0.0;
+}
 
 Kept reduce(const StentConfig& s, const Raw& raw) {
   Kept k;
@@ -251,7 +270,7 @@ Kept reduce(const StentConfig& s, const Raw& raw) {
     double m[3] = {0, 0, 0};
     for (GId n : raw.cells[c])
       for (int d = 0; d < 3; ++d) m[d] += raw.x[3 * n + d] / 8.0;
-    if (s.sector == "quarter" && !(m[0] > 0.0 && m[1] > 0.0)) continue;
+    if (s.sector != "full" && !in_sector(s, m)) continue;
     if (s.half_length && !(m[2] < zmid)) continue;
     k.cells.push_back(c);
     for (GId n : raw.cells[c]) k.new_id[n] = 0;
@@ -278,7 +297,9 @@ void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh
       ++count[key];
     }
   const double tol = 1e-9 * s.outer_radius(), zmid = 0.5 * s.total_length();
-  std::vector<std::string> order = {"inner", "outer", "end_proximal", "end_distal", "symmetry_x", "symmetry_y", "symmetry_z"};
+  std::vector<std::string> order = {"inner",      "outer",      "end_proximal",    "end_distal",
+                                    "symmetry_x", "symmetry_y", "symmetry_sector", "symmetry_z"};
+  const double th = s.sector_angle(), ct = std::cos(th), st = std::sin(th);
   for (int k = 0; k < s.rings; ++k) order.push_back("ring_" + std::to_string(k));
   order.push_back("links");
   std::map<std::string, std::vector<GId>> groups;
@@ -286,13 +307,14 @@ void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh
     if (count[key] != 1) continue;
     const auto [c, f] = cf;
     std::vector<GId> q;
-    bool on[3] = {true, true, true};
+    bool on[4] = {true, true, true, true};  // x = 0, y = 0, z = middle, theta = Theta
     for (int v = 0; v < 4; ++v) {
       const GId n = raw.cells[c][kFace[f][v]];
       q.push_back(kept.new_id[n]);
       on[0] = on[0] && std::abs(raw.x[3 * n]) <= tol;
       on[1] = on[1] && std::abs(raw.x[3 * n + 1]) <= tol;
       on[2] = on[2] && std::abs(raw.x[3 * n + 2] - zmid) <= tol;
+      on[3] = on[3] && std::abs(st * raw.x[3 * n] - ct * raw.x[3 * n + 1]) <= tol && ct * raw.x[3 * n] + st * raw.x[3 * n + 1] > 0.0;
     }
     const int part = raw.part[c];
     auto add = [&](const std::string& g) { groups[g].insert(groups[g].end(), q.begin(), q.end()); };
@@ -302,7 +324,8 @@ void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh
       add(part >= 0 ? "ring_" + std::to_string(part) : "links");
     }
     if (f >= 2 && s.sector == "quarter" && on[0]) add("symmetry_x");
-    if (f >= 2 && s.sector == "quarter" && on[1]) add("symmetry_y");
+    if (f >= 2 && s.sector != "full" && on[1]) add("symmetry_y");
+    if (f >= 2 && s.sector == "period" && on[3]) add("symmetry_sector");
     if (f >= 2 && s.half_length && on[2]) add("symmetry_z");
     if (f == 2 && part == 0) add("end_proximal");
     if (f == 3 && part == s.rings - 1 && !s.half_length) add("end_distal");

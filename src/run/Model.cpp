@@ -92,6 +92,8 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
       // Boundary groups read whole on every rank: contact surfaces, the stent metrics' groups.
       std::vector<std::string> whole_groups;
       for (const auto& c : cfg.contact) whole_groups.insert(whole_groups.end(), {c.slave, c.master});
+      for (const auto& l : cfg.loads)  // a plane's normal is computed from the whole group, the same on every rank
+        if (l.normal) whole_groups.push_back(l.group);
       if (cfg.output.metrics.enabled && cfg.mesh.generator == "stent") {
         const auto g = RingMetrics::whole_groups(cfg);
         whole_groups.insert(whole_groups.end(), g.begin(), g.end());

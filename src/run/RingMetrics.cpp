@@ -38,8 +38,8 @@ RingMetrics::RingMetrics(const Model& model) : m_(model) {
   const StentConfig& s = m_.cfg.mesh.stent;
   const Mesh& mesh = m_.mesh;
   rings_ = model_rings(s), rings_full_ = s.rings;
-  const bool quarter = s.sector == "quarter";
-  sym_area_ = (quarter ? 4.0 : 1.0) * (s.half_length ? 2.0 : 1.0);
+  const bool sector = s.sector != "full";
+  sym_area_ = s.symmetry_copies();
   sym_length_ = s.half_length ? 2.0 : 1.0;
   const UnitLabels u = unit_labels(m_.cfg.problem.units, 3);
   length_unit_ = u.length, mass_unit_ = u.mass;
@@ -52,9 +52,10 @@ RingMetrics::RingMetrics(const Model& model) : m_(model) {
   nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
   auto index = [&](GId n) { return static_cast<std::size_t>(std::lower_bound(nodes_.begin(), nodes_.end(), n) - nodes_.begin()); };
   const double ro = s.outer_radius(), zsym = 0.5 * s.total_length(), tol = 1e-9 * ro;
+  const double ct = std::cos(s.sector_angle()), st = std::sin(s.sector_angle());
   auto weight = [&](const double* x) {
     double w = 1.0;
-    if (quarter && (std::abs(x[0]) < tol || std::abs(x[1]) < tol)) w *= 0.5;
+    if (sector && (std::abs(x[1]) < tol || std::abs(st * x[0] - ct * x[1]) < tol)) w *= 0.5;  // theta = 0, Theta
     if (s.half_length && std::abs(x[2] - zsym) < tol) w *= 0.5;
     return w;
   };

@@ -12,12 +12,13 @@
 // centroid); the metal-to-artery ratio, outer metal area / (pi D_mean L), current; the
 // metal volume and mass.
 //
-// Symmetry reductions give the whole stent's values: a node on a symmetry plane (x = 0 or
-// y = 0 of a quarter, z = total length / 2 of a half length) weighs 1/2 in the means, so
-// the node means equal the whole stent's node means for a symmetric solution; the half
-// length's stent length is twice the extent of its half; areas and volumes are multiplied
-// by 4 (quarter) and 2 (half length). Diameters need no correction: the axis is in the
-// model. Every rank computes the same values (the group nodes' displacements summed over
+// Symmetry reductions give the whole stent's values: a node on a symmetry plane (theta = 0
+// and theta = Theta of a sector, z = total length / 2 of a half length) weighs 1/2 in the
+// means, so the node means equal the whole stent's node means for a symmetric solution; the
+// half length's stent length is twice the extent of its half; areas and volumes are
+// multiplied by the copies that make the whole (StentConfig::symmetry_copies: 4 for a
+// quarter, 2 crowns / h for a sector of h half pitches, 2 for a half length). Diameters need
+// no correction: the axis is in the model. Every rank computes the same values (the group nodes' displacements summed over
 // ranks, each from its owner; cell maxima and volumes reduced).
 #pragma once
 #include <map>

@@ -11,7 +11,8 @@
 //     peak, not from the as-cut diameter, and the stage table gives each stage's change;
 //  3. a quarter ring and the full ring under the same field (symmetric about x = 0 and
 //     y = 0, varying around the ring and along it): every metric equal to 1e-12 (the
-//     symmetry weights and factors of RingMetrics);
+//     symmetry weights and factors of RingMetrics); the same for the one-strut sector
+//     (sector = period, 0 <= theta <= pi / 8) under a field symmetric about its planes;
 //  4. two rings with links: the links' diameters and the stent length (2 rings + gap);
 //  5. four rings with links: the quarter of the half length and the whole stent under
 //     the same field (mirror-symmetric about the middle plane): every metric, dogboning
@@ -258,6 +259,32 @@ TEST(RingMetrics, QuarterEqualsFullUnderASymmetricField) {
   full.rm->table(lf), quarter.rm->table(lq);
   auto volume = [](const std::string& t) { return std::stod(t.substr(t.find("metal volume ") + 13)); };
   EXPECT_NEAR(volume(lq.str()) / volume(lf.str()), 1.0, 1e-10);
+}
+
+TEST(RingMetrics, OneStrutSectorEqualsFullUnderASymmetricField) {
+  Rig full(deck("full"), "full_s"), sector(deck("period"), "sector");
+  EXPECT_NEAR(sector.cfg.mesh.stent.sector_angle(), std::acos(-1.0) / 8.0, 1e-15);  // one strut of 8 crowns
+  // Symmetric about theta = 0 and theta = pi / 8 (cos 8 theta, cos 16 theta), even in z.
+  auto f = [](double s) {
+    return [=](const double* x, double* u) {
+      const double th = std::atan2(x[1], x[0]), r = std::hypot(x[0], x[1]);
+      const double ur = s * (0.2 + 0.05 * std::cos(8.0 * th) + 0.03 * x[2] * x[2]);
+      u[0] = ur * x[0] / r, u[1] = ur * x[1] / r, u[2] = -s * 0.05 * x[2] * x[2] * (1.0 + 0.2 * std::cos(16.0 * th));
+    };
+  };
+  const auto cols = full.rm->columns();
+  ASSERT_EQ(cols, sector.rm->columns());
+  for (double s : {0.0, 1.0, 0.6}) {
+    const auto a = full.at(f(s), s), b = sector.at(f(s), s);
+    for (std::size_t i = 0; i < cols.size(); ++i) {
+      if (cols[i].rfind("eps_p_max_", 0) == 0) continue;  // where: one of the symmetric copies
+      EXPECT_NEAR(a[i], b[i], 1e-12 * (1.0 + std::abs(a[i]))) << cols[i] << " at " << s;
+    }
+  }
+  std::ostringstream lf, ls;
+  full.rm->table(lf), sector.rm->table(ls);
+  auto volume = [](const std::string& t) { return std::stod(t.substr(t.find("metal volume ") + 13)); };
+  EXPECT_NEAR(volume(ls.str()) / volume(lf.str()), 1.0, 1e-10);
 }
 
 TEST(RingMetrics, TwoRingsWithLinksMeasureTheLinksAndTheWholeLength) {

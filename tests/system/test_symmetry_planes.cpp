@@ -1,0 +1,200 @@
+// Dirichlet sets with components = normal (a roller or symmetry plane at any angle,
+// assembly/PlaneConstraints.cpp; docs/deck.md):
+//  1. the uniaxial unit block of test_reactions.cpp rotated by 40 degrees about (1, 1, 1),
+//     held by rollers on three faces (whose edges and corner lie on two and three planes)
+//     and pulled by 0.2 along the fourth face's normal: the stored energy equals the
+//     aligned block's with Cartesian rollers, each roller's reaction is the force P11 A0
+//     along its plane's normal (the aligned run's reaction), the unloaded rollers carry
+//     nothing, to 1e-9;
+//  2. the S6 ring (elastic, coarse) expanded by a rigid cylinder to its peak: the one-
+//     strut sector (Mesh->Stent->sector = period, theta in [0, 22.5 deg], its oblique
+//     plane held with components = normal and its inner nodes on that plane in contact)
+//     gives the quarter ring's displacements at every common node to 1e-8 of the largest
+//     (measured: 3e-15), with the same Newton iterations to +-2; the oblique plane's
+//     reaction is normal to it;
+//  3. bad input: a curved group (the stent's inner surface) is refused naming the group;
+//     two values for one normal are refused naming the parameter.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <string>
+
+#include "deck/Config.hpp"
+#include "run/Model.hpp"
+#include "run/Simulation.hpp"
+
+using namespace stentor;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "symmetry_planes";
+
+std::string roller(const std::string& name, const std::string& group, const std::string& comps, const std::string& values = "") {
+  std::string s = R"X(<ParameterList name=")X" + name + R"X("><Parameter name="type" type="string" value="Dirichlet"/>
+      <Parameter name="boundary" type="string" value=")X" + group + R"X("/><Parameter name="components" type="string" value=")X" + comps +
+                  R"X("/>)X";
+  if (!values.empty()) s += R"X(<Parameter name="values" type="Array(double)" value=")X" + values + R"X("/>)X";
+  return s + "</ParameterList>\n";
+}
+
+std::string block_deck(const std::string& geo, const std::string& bcs, const std::string& base) {
+  return R"X(<ParameterList name="stentor">
+  <ParameterList name="Mesh"><Parameter name="file" type="string" value=")X" + geo + R"X("/>
+    <Parameter name="size" type="double" value="0.5"/></ParameterList>
+  <ParameterList name="Materials"><ParameterList name="rubber">
+    <Parameter name="C1" type="double" value="0.5e6"/><Parameter name="C2" type="double" value="0.005e6"/>
+    <Parameter name="D" type="double" value="0.35e6"/></ParameterList></ParameterList>
+  <ParameterList name="Bodies"><ParameterList name="block">
+    <Parameter name="material" type="string" value="rubber"/></ParameterList></ParameterList>
+  <ParameterList name="Boundary Conditions">)X" + bcs + R"X(</ParameterList>
+  <ParameterList name="Stepping"><Parameter name="steps" type="int" value="2"/></ParameterList>
+  <ParameterList name="Linear Solver"><Parameter name="method" type="string" value="direct"/></ParameterList>
+  <ParameterList name="Output"><Parameter name="basename" type="string" value=")X" + base + R"X("/>
+    <Parameter name="fields" type="bool" value="false"/></ParameterList>
+</ParameterList>
+)X";
+}
+
+RunResult run(const std::string& text, const std::string& name) {
+  fs::create_directories(kDir);
+  const fs::path p = kDir / (name + ".xml");
+  std::ofstream(p) << text;
+  const Config cfg = read_deck(p.string());
+  RunOptions o;
+  o.output_dir = (kDir / name).string();
+  o.overwrite = true;
+  RunResult res;
+  EXPECT_EQ(run_simulation(cfg, o, &res), 0) << name;
+  return res;
+}
+
+// The 40-degree rotation about (1, 1, 1) / sqrt 3 (Rodrigues) applied to v.
+std::array<double, 3> rotate(const std::array<double, 3>& v) {
+  const double a = 40.0 * std::acos(-1.0) / 180.0, k = 1.0 / std::sqrt(3.0), c = std::cos(a), s = std::sin(a);
+  const double kv = k * (v[0] + v[1] + v[2]);
+  const double kx[3] = {k * (v[2] - v[1]), k * (v[0] - v[2]), k * (v[1] - v[0])};  // k x v
+  std::array<double, 3> r{};
+  for (int i = 0; i < 3; ++i) r[static_cast<std::size_t>(i)] = v[static_cast<std::size_t>(i)] * c + kx[i] * s + k * kv * (1.0 - c);
+  return r;
+}
+
+std::string ring_deck(const std::string& sector) {
+  std::ifstream in(std::string(STENTOR_SOURCE_DIR) + "/tests/cli/decks/restart_stent.xml");
+  std::string s((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  s = std::regex_replace(s, std::regex(R"X(<Parameter name="checkpoint every"[^>]*>)X"), "");
+  // To the peak of the expansion (the cylinder's radius ramp peaks at t = 0.5), in contact.
+  s = std::regex_replace(s, std::regex(R"X(name="end time" type="double" value="1.0")X"), R"X(name="end time" type="double" value="0.5")X");
+  s = std::regex_replace(s, std::regex(R"X(name="steps" type="int" value="20")X"), R"X(name="steps" type="int" value="10")X");
+  s = std::regex_replace(s, std::regex(R"X(<Parameter name="every" type="int" value="5"/>)X"),
+                         R"X(<Parameter name="fields" type="bool" value="false"/>)X");
+  if (sector == "period") {
+    s = std::regex_replace(s, std::regex(R"X(value="quarter")X"), R"X(value="period")X");
+    s = std::regex_replace(s, std::regex(R"X(value="symmetry_x"/>\s*<Parameter name="components" type="string" value="x"/>)X"),
+                           R"X(value="symmetry_sector"/><Parameter name="components" type="string" value="normal"/>)X");
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST(SymmetryPlanes, RotatedUniaxialBlockOnRollersEqualsTheAlignedOne) {
+  fs::create_directories(kDir);
+  const std::string geo = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
+  std::ifstream in(geo);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text = std::regex_replace(text, std::regex("Physical Volume"), "Rotate {{1, 1, 1}, {0, 0, 0}, 40 * Pi / 180} { Volume{1}; }\nPhysical Volume");
+  const fs::path rgeo = kDir / "block_rotated.geo";
+  std::ofstream(rgeo) << text;
+
+  const RunResult a = run(block_deck(geo, roller("left", "left", "x") + roller("front", "front", "y") + roller("bottom", "bottom", "z") +
+                                              roller("pull", "right", "x", "{0.2}"),
+                                     "aligned"),
+                          "aligned");
+  const RunResult r = run(block_deck(rgeo.string(), roller("left", "left", "normal") + roller("front", "front", "normal") +
+                                                        roller("bottom", "bottom", "normal") + roller("pull", "right", "normal", "{0.2}"),
+                                     "rotated"),
+                          "rotated");
+  ASSERT_EQ(r.reactions.size(), 4u);
+  const double F = a.reactions[3][0];  // P11(1.2) A0
+  std::printf("[ planes ] rotated block: W %.15g (aligned %.15g), pull reaction %.12g %.12g %.12g, F = %.12g\n", r.energy, a.energy,
+              r.reactions[3][0], r.reactions[3][1], r.reactions[3][2], F);
+  EXPECT_GT(F, 4e5);
+  EXPECT_NEAR(r.energy, a.energy, 1e-9 * a.energy);
+  const auto nx = rotate({1.0, 0.0, 0.0});
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(r.reactions[3][static_cast<std::size_t>(k)], F * nx[static_cast<std::size_t>(k)], 1e-9 * F) << "pull " << k;
+    EXPECT_NEAR(r.reactions[0][static_cast<std::size_t>(k)], -F * nx[static_cast<std::size_t>(k)], 1e-9 * F) << "left " << k;
+    EXPECT_NEAR(r.reactions[1][static_cast<std::size_t>(k)], 0.0, 1e-9 * F) << "front " << k;
+    EXPECT_NEAR(r.reactions[2][static_cast<std::size_t>(k)], 0.0, 1e-9 * F) << "bottom " << k;
+  }
+}
+
+TEST(SymmetryPlanes, OneStrutSectorOfTheRingEqualsTheQuarter) {
+  const RunResult q = run(ring_deck("quarter"), "ring_quarter");
+  const RunResult s = run(ring_deck("period"), "ring_sector");
+  ASSERT_TRUE(q.converged && s.converged);
+  EXPECT_EQ(s.cutbacks, 0);
+  EXPECT_NEAR(s.newton_iterations, q.newton_iterations, 2);  // round-off may move one step's last test across the tolerance
+  // Common nodes by reference position (the generator builds both from one construction).
+  std::map<std::array<long long, 3>, std::size_t> at;
+  auto key = [](const double* x) {
+    return std::array<long long, 3>{std::llround(x[0] * 1e8), std::llround(x[1] * 1e8), std::llround(x[2] * 1e8)};
+  };
+  for (std::size_t i = 0; i < q.mesh.num_nodes(); ++i) at[key(q.mesh.coord(static_cast<GId>(i)))] = i;
+  double umax = 0.0, dmax = 0.0;
+  std::size_t matched = 0;
+  for (std::size_t i = 0; i < s.mesh.num_nodes(); ++i) {
+    auto it = at.find(key(s.mesh.coord(static_cast<GId>(i))));
+    if (it == at.end()) continue;
+    ++matched;
+    for (std::size_t c = 0; c < 3; ++c) {
+      umax = std::max(umax, std::abs(q.displacement[3 * it->second + c]));
+      dmax = std::max(dmax, std::abs(s.displacement[3 * i + c] - q.displacement[3 * it->second + c]));
+    }
+  }
+  std::printf("[ planes ] sector vs quarter: %zu of %zu nodes matched, max |u| %.6g mm, max difference %.3g mm\n", matched,
+              s.mesh.num_nodes(), umax, dmax);
+  EXPECT_EQ(matched, s.mesh.num_nodes());
+  EXPECT_GT(umax, 0.01);
+  EXPECT_LT(dmax, 1e-8 * umax);
+  // The oblique plane (deck order: sym_x became the sector's plane) pushes along its normal only.
+  const double th = std::acos(-1.0) / 8.0, n[3] = {-std::sin(th), std::cos(th), 0.0};
+  const auto& R = s.reactions[0];
+  const double rn = R[0] * n[0] + R[1] * n[1] + R[2] * n[2];
+  const double rt = std::sqrt(std::pow(R[0] - rn * n[0], 2) + std::pow(R[1] - rn * n[1], 2) + std::pow(R[2] - rn * n[2], 2));
+  EXPECT_LE(rt, 1e-10 * std::abs(rn) + 1e-12);
+}
+
+TEST(SymmetryPlanes, CurvedGroupAndExtraValuesAreRefusedNamingThem) {
+  fs::create_directories(kDir);
+  std::string curved = ring_deck("quarter");
+  curved = std::regex_replace(curved, std::regex(R"X(value="symmetry_x"/>\s*<Parameter name="components" type="string" value="x"/>)X"),
+                              R"X(value="inner"/><Parameter name="components" type="string" value="normal"/>)X");
+  const fs::path p = kDir / "curved.xml";
+  std::ofstream(p) << curved;
+  const Config cfg = read_deck(p.string());
+  Timers timers;
+  try {
+    Model m(cfg, RunOptions{}, timers);
+    ADD_FAILURE() << "a curved group was accepted";
+  } catch (const InputError& e) {
+    const std::string w = e.what();
+    EXPECT_NE(w.find("Boundary Conditions->sym_x->boundary"), std::string::npos) << w;
+    EXPECT_NE(w.find("group 'inner' to be planar"), std::string::npos) << w;
+  }
+  std::string two = std::regex_replace(ring_deck("period"), std::regex(R"X(value="normal"/>)X"),
+                                       R"X(value="normal"/><Parameter name="values" type="Array(double)" value="{0, 1}"/>)X");
+  const fs::path q = kDir / "two_values.xml";
+  std::ofstream(q) << two;
+  try {
+    read_deck(q.string());
+    ADD_FAILURE() << "two values for a normal were accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("Boundary Conditions->sym_x->values' must have one value"), std::string::npos) << e.what();
+  }
+}
