@@ -6,16 +6,25 @@
 # stage exactly. Not compared: where the largest plastic strain is (eps_p_max_ring, _crown,
 # _x, _y, _z): the quarter's crowns 1 and 3 are mirror images, their strains equal to
 # round-off, and which is the larger may change with the partition (its value is compared).
-# usage: metrics_mpi.sh STENTOR MPIEXEC NPFLAG WORKDIR TOL
+# With SECTOR = period the same ring as its one-strut sector (sector = period, the plane
+# x = 0 replaced by the oblique plane theta = 22.5 deg held with components = normal): the
+# plane constraints' rows and reactions split between ranks.
+# usage: metrics_mpi.sh STENTOR MPIEXEC NPFLAG WORKDIR TOL [SECTOR]
 set -u
 . "$(dirname "$0")/lib.sh"
-stentor=$1 mpiexec=$2 npflag=$3 work=$4 tol=$5
+stentor=$1 mpiexec=$2 npflag=$3 work=$4 tol=$5 sector=${6:-quarter}
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || fail "cannot make $work"
 sed -e 's|"end time" type="double" value="1.0"|"end time" type="double" value="0.1"|' \
     -e 's|"steps" type="int" value="40"|"steps" type="int" value="4"|' \
     "$here/../../inputs/s6_ring_quarter.xml" > deck.xml || fail "sed"
 grep -q 'value="0.1"/>' deck.xml || fail "the deck's end time was not edited"
+if [ "$sector" = period ]; then
+  sed -i -e 's|name="sector" type="string" value="quarter"|name="sector" type="string" value="period"|' \
+         -e 's|value="symmetry_x"|value="symmetry_sector"|' \
+         -e 's|"components" type="string" value="x"|"components" type="string" value="normal"|' deck.xml || fail "sed"
+  grep -q 'value="normal"' deck.xml || fail "the deck's plane was not edited"
+fi
 flags=$(mpi_flags "$mpiexec")
 for np in 1 2; do
   # shellcheck disable=SC2086
