@@ -57,7 +57,6 @@ class Forcing {
   double rn_prev_ = 0.0, eta_prev_ = 0.0;
 };
 
-constexpr int kMaxRevisions = 4;  // revisions of held contact nodes in one solve
 
 std::string ordinal(int n) {
   static const char* names[] = {"zeroth", "first", "second", "third", "fourth"};
@@ -369,8 +368,8 @@ class Solve {
       res_.converged = held == 0;
       return -1;
     }
-    if (++rounds_ > kMaxRevisions) {
-      fail("held contact nodes still fail their conditions after " + std::to_string(kMaxRevisions) + " revisions", false);
+    if (++rounds_ > kMaxHeldRevisions) {
+      fail("held contact nodes still fail their conditions after " + std::to_string(kMaxHeldRevisions) + " revisions", false);
       return -1;
     }
     round_start_ = res_.iterations;

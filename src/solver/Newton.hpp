@@ -82,6 +82,13 @@ struct NewtonResult {
 bool linear_solve(LinearSolver& lin, const la::RCP<la::CrsMatrix>& K, const la::Vector& b, la::Vector& x, double tol,
                   LinearSolver::Result& res, std::string& failure);
 
+// Rounds of revisions of held contact nodes in one solve (NewtonSystem::verify_held) before
+// the step fails. Each round revises at least one node, and a node only a few times (it is
+// released once; a held slip becomes a stick once, a held stick a slip at most twice), so
+// the rounds end; the bound caps their cost. The S6 stent released by a shrinking cylinder needs 5 rounds
+// (137 nodes held at the reversal, where they end in contact with nearly zero force).
+constexpr int kMaxHeldRevisions = 16;
+
 // first_ratio_hint > 0: the first iteration's |r_1| / |r_0| in a previous, similar solve (the
 // last step's NewtonResult::first_ratio); Eisenstat-Walker forcing then starts from
 // 0.9 hint^2 instead of `forcing max` (a step that one tight solve nearly converges, as in

@@ -893,7 +893,8 @@ TEST(Newton, WatchdogReturnsWhenTheRelaxedStepLeadsNowhere) {
 // Revised holds start Newton over from a converged point: `max iterations` counts from the
 // last revision, so a step that converged, had its held contact nodes revised and converges
 // again is not cut back for the iterations of the rounds before (S4: 9 -> 5 cut-backs, each
-// of the 4 saved had converged 2-3 times). After 4 revisions the solve fails and says so.
+// of the 4 saved had converged 2-3 times). After kMaxHeldRevisions revisions the solve fails
+// and says so.
 TEST(Newton, RevisedHoldsGetTheirOwnIterationBudget) {
   auto map = Teuchos::rcp(new la::Map(8, 0, comm()));
   LinearSolver lin(unpreconditioned(), comm());
@@ -915,9 +916,9 @@ TEST(Newton, RevisedHoldsGetTheirOwnIterationBudget) {
     std::printf("[newton] 3 revisions of held nodes: converged in %d iterations with max iterations %d\n", res.iterations,
                 nc.max_iterations);
   }
-  RevisedHoldsSystem sys(map, 5);
+  RevisedHoldsSystem sys(map, kMaxHeldRevisions + 1);
   la::Vector u(map);
   const NewtonResult res = newton_solve(sys, u, lin, nc, nullptr);
   EXPECT_FALSE(res.converged);
-  EXPECT_EQ(res.failure, "held contact nodes still fail their conditions after 4 revisions");
+  EXPECT_EQ(res.failure, "held contact nodes still fail their conditions after " + std::to_string(kMaxHeldRevisions) + " revisions");
 }
