@@ -20,9 +20,10 @@
 
 #include <cmath>
 #include <limits>
-#include <map>
+#include <algorithm>
 
 #include "assembly/Assembler.hpp"
+#include "bc/PlaneDirections.hpp"
 #include "deck/Config.hpp"
 
 namespace stentor {
@@ -49,74 +50,32 @@ void solve_small(int m, double A[3][3], double b[3], double x[3]) {
   }
 }
 
-// The rows j_0..j_{m-1} among the free components that maximise |det e_i(j_l)|.
-void choose_rows(int dim, const bool* fixed, int m, const double (*e)[3], int* j) {
-  double best = -1.0;
-  int free_c[3], nf = 0;
-  for (int c = 0; c < dim; ++c)
-    if (!fixed[c]) free_c[nf++] = c;
-  auto det = [&](const int* r) {
-    if (m == 1) return std::abs(e[0][r[0]]);
-    if (m == 2) return std::abs(e[0][r[0]] * e[1][r[1]] - e[0][r[1]] * e[1][r[0]]);
-    return std::abs(e[0][r[0]] * (e[1][r[1]] * e[2][r[2]] - e[1][r[2]] * e[2][r[1]]) -
-                    e[0][r[1]] * (e[1][r[0]] * e[2][r[2]] - e[1][r[2]] * e[2][r[0]]) +
-                    e[0][r[2]] * (e[1][r[0]] * e[2][r[1]] - e[1][r[1]] * e[2][r[0]]));
-  };
-  // Ordered choices of m distinct free components (at most 3! = 6).
-  int r[3];
-  for (int a = 0; a < nf; ++a)
-    for (int b = 0; b < (m > 1 ? nf : 1); ++b)
-      for (int c = 0; c < (m > 2 ? nf : 1); ++c) {
-        if ((m > 1 && b == a) || (m > 2 && (c == a || c == b))) continue;
-        r[0] = free_c[a], r[1] = free_c[b], r[2] = free_c[c];
-        const double d = det(r);
-        if (d > best) best = d, j[0] = r[0], j[1] = r[1], j[2] = r[2];
-      }
-}
-
 }  // namespace
 
 void Assembler::setup_planes() {
   const la::LO nown = dist_.num_owned_nodes();
-  // Per owned node, the planes in deck order (a later parallel plane replaces an earlier one).
-  std::map<la::LO, std::vector<int>> by_node;
-  for (std::size_t s = 0; s < loads_.dirichlet.size(); ++s) {
-    const DirichletSet& d = loads_.dirichlet[s];
-    if (!d.normal) continue;
-    for (GId g : d.nodes) {
-      const la::LO l = dist_.local_node(g);
-      if (l < 0 || l >= nown) continue;
-      std::vector<int>& sets = by_node[l];
-      for (auto it = sets.begin(); it != sets.end(); ++it) {
-        const auto& o = loads_.dirichlet[static_cast<std::size_t>(*it)].n;
-        if (std::abs(o[0] * d.n[0] + o[1] * d.n[1] + o[2] * d.n[2]) > 1.0 - 1e-9) {
-          sets.erase(it);
-          break;
-        }
+  std::vector<GId> candidates;  // the owned nodes of the `normal` sets
+  for (const DirichletSet& d : loads_.dirichlet)
+    if (d.normal)
+      for (GId g : d.nodes) {
+        const la::LO l = dist_.local_node(g);
+        if (l >= 0 && l < nown) candidates.push_back(g);
       }
-      sets.push_back(static_cast<int>(s));
-    }
-  }
-  for (const auto& [l, sets] : by_node) {
-    PlaneNode p;
-    p.lid = l;
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  for (GId g : candidates) {
+    const la::LO l = dist_.local_node(g);
     bool fixed[3] = {false, false, false};
     for (int c = 0; c < dim_; ++c) fixed[c] = owned_dirichlet_flag_[static_cast<std::size_t>(l * dim_ + c)] != 0;
-    for (int s : sets) {
-      const DirichletSet& d = loads_.dirichlet[static_cast<std::size_t>(s)];
-      double v[3] = {0, 0, 0};
-      for (int c = 0; c < dim_; ++c) v[c] = fixed[c] ? 0.0 : d.n[static_cast<std::size_t>(c)];
-      for (int i = 0; i < p.m; ++i) {
-        const double a = v[0] * p.e[i][0] + v[1] * p.e[i][1] + v[2] * p.e[i][2];
-        for (int c = 0; c < 3; ++c) v[c] -= a * p.e[i][c];
-      }
-      const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-      if (!(len > 1e-6)) continue;  // prescribed already by the Cartesian components or the other planes
-      for (int c = 0; c < 3; ++c) p.e[p.m][c] = v[c] / len, p.n[p.m][c] = d.n[static_cast<std::size_t>(c)];
-      p.set[p.m++] = s;
+    const PlaneDirections d = plane_directions(loads_, g, fixed, dim_);
+    if (d.m == 0) continue;
+    PlaneNode p;
+    p.lid = l;
+    p.m = d.m;
+    for (int i = 0; i < 3; ++i) {
+      p.j[i] = d.j[i], p.set[i] = d.set[i];
+      for (int c = 0; c < 3; ++c) p.e[i][c] = d.e[i][c], p.n[i][c] = d.n[i][c];
     }
-    if (p.m == 0) continue;
-    choose_rows(dim_, fixed, p.m, p.e, p.j);
     for (int c = 0; c < dim_; ++c) p.self[c] = K_->getColMap()->getLocalElement(dist_.owned_map()->getGlobalElement(l * dim_ + c));
     for (int i = 0; i < p.m; ++i) owned_dirichlet_flag_[static_cast<std::size_t>(l * dim_ + p.j[i])] = 1;
     planes_.push_back(p);

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "bc/PlaneDirections.hpp"
 #include "contact/MasterSurface.hpp"
 #include "fem/Quadrature.hpp"
 #include "fem/Shape.hpp"
@@ -202,6 +203,42 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
                      "' can touch anything: every one has all its components prescribed by a Dirichlet condition");
 }
 
+// Master nodes on `normal` Dirichlet planes (the groups are read whole, so every rank finds
+// the same directions): the reactions sent to them are projected on their planes, and the
+// rows that carry the planes' constraints take none (bc/PlaneDirections.hpp).
+void Contact::setup_master_planes(const Assembler& assembler) {
+  Loads planes;
+  for (const auto& d : assembler.dirichlet_sets())
+    if (d.normal) planes.dirichlet.push_back(d);
+  for (const auto& p : pairs_)
+    if (p.mortar)
+      for (GId g : p.master->nodes())
+        for (const auto& d : planes.dirichlet)
+          if (std::binary_search(d.nodes.begin(), d.nodes.end(), g))
+            throw InputError("'Contact->" + p.cfg.name + "->master': node " + std::to_string(g) + " lies on group '" + d.group +
+                             "' ('Boundary Conditions->" + d.name + "->components' = normal), which dual mortar contact does "
+                             "not implement; use 'discretization' = node-to-segment for this pair, or Cartesian components");
+  for (std::size_t pos = 0; pos < master_nodes_.size(); ++pos) {
+    bool fixed[3] = {false, false, false};
+    for (int c = 0; c < dim_; ++c) fixed[c] = master_fixed_[pos * static_cast<std::size_t>(dim_) + static_cast<std::size_t>(c)] != 0;
+    const PlaneDirections d = plane_directions(planes, master_nodes_[pos], fixed, dim_);
+    if (d.m == 0) continue;
+    master_plane_[static_cast<int>(pos)] = d;
+    for (int i = 0; i < d.m; ++i) master_fixed_[pos * static_cast<std::size_t>(dim_) + static_cast<std::size_t>(d.j[i])] = 1;
+  }
+}
+
+void Contact::project_on_master_planes(int pos, double* v) const {
+  const auto it = master_plane_.find(pos);
+  if (it == master_plane_.end()) return;
+  const PlaneDirections& d = it->second;
+  for (int i = 0; i < d.m; ++i) {
+    double a = 0.0;
+    for (int c = 0; c < dim_; ++c) a += d.e[i][c] * v[c];
+    for (int c = 0; c < dim_; ++c) v[c] -= a * d.e[i][c];
+  }
+}
+
 // The surface nodes' numbering (master_pos), reference positions, prescribed dofs,
 // tributary areas and the ghosting margin; rebuild_ghosts() makes the import/export.
 void Contact::setup_master_maps(const Mesh& mesh, const std::vector<GId>& surface_set, const Assembler& assembler) {
@@ -214,14 +251,15 @@ void Contact::setup_master_maps(const Mesh& mesh, const std::vector<GId>& surfac
     if (p.master) p.master->index([this](GId g) { return master_pos(g); });
   // Prescribed master dofs keep their identity rows: the reaction goes to the support.
   master_fixed_.assign(master_nodes_.size() * static_cast<std::size_t>(dim_), 0);
+  bool on_plane = false;
   for (const auto& d : assembler.dirichlet_sets())
     for (GId g : d.nodes) {
       const int pos = master_pos(g);
       if (pos < 0) continue;
-      if (d.normal)  // the same on every rank: the master surface and the plane's group are read whole
-        throw InputError("'Boundary Conditions->" + d.name + "->components' = normal: node " + std::to_string(g) + " of group '" + d.group +
-                         "' lies on a contact master surface, whose reactions are not projected on the plane; make that "
-                         "surface the slave side, or use Cartesian components");
+      if (d.normal) {
+        on_plane = true;
+        continue;
+      }
       for (int c = 0; c < dim_; ++c)
         if (d.components[static_cast<std::size_t>(c)]) master_fixed_[static_cast<std::size_t>(pos * dim_ + c)] = 1;
     }
@@ -230,6 +268,7 @@ void Contact::setup_master_maps(const Mesh& mesh, const std::vector<GId>& surfac
     Teuchos::reduceAll(*dist.comm(), Teuchos::REDUCE_MAX, static_cast<int>(mine.size()), mine.data(), any.data());
     for (std::size_t k = 0; k < any.size(); ++k) master_fixed_[k] = static_cast<char>(any[k]);
   }
+  if (on_plane) setup_master_planes(assembler);
   master_x_ = master_X_;
   master_xn_ = master_X_;
   double h = 0.0;
@@ -949,12 +988,15 @@ void Contact::send_reactions(la::Vector& r) {
           continue;
         }
         const auto& fc = p.master->facets()[static_cast<std::size_t>(nd.facet)];
-        for (int a = 0; a < fc.nn; ++a)
+        for (int a = 0; a < fc.nn; ++a) {
+          double add[3] = {p.out[i].add[a][0], p.out[i].add[a][1], p.out[i].add[a][2]};
+          project_on_master_planes(fc.node[a], add);
           for (int c = 0; c < dim_; ++c) {
             const auto k = static_cast<std::size_t>(fc.node[a] * dim_ + c);
             const auto gi = static_cast<std::size_t>(ghost_index_[static_cast<std::size_t>(fc.node[a])] * dim_ + c);
-            if (!master_fixed_[k]) mh(gi, 0) += p.out[i].add[a][c];
+            if (!master_fixed_[k]) mh(gi, 0) += add[c];
           }
+        }
       }
     }
   }
@@ -1055,15 +1097,24 @@ la::RCP<la::CrsMatrix> Contact::coupled_tangent(const la::RCP<la::CrsMatrix>& K)
         for (int j = 0; j < dim_; ++j) qr.push_back({static_cast<la::GO>(nd.gid) * dim_ + j, o.dres[k][off_r + j] - (j == k ? 1.0 : 0.0)});
         for (int l = 0; l < off_r; ++l) gr.push_back({ydof(l), o.dres[k][l]});
       }
-      for (int a = 0; a < fc.nn; ++a)
+      for (int a = 0; a < fc.nn; ++a) {
+        // The derivatives of the node's additions, projected on its planes (if any).
+        double dadd[3][contact::kMaxLocal] = {};
+        for (int l = 0; l < off_r + dim_; ++l) {
+          double v[3] = {0, 0, 0};
+          for (int c = 0; c < dim_; ++c) v[c] = o.dadd[a][c][l];
+          project_on_master_planes(fc.node[a], v);
+          for (int c = 0; c < dim_; ++c) dadd[c][l] = v[c];
+        }
         for (int c = 0; c < dim_; ++c) {
           if (master_fixed_[static_cast<std::size_t>(fc.node[a] * dim_ + c)]) continue;
           const la::GO row = static_cast<la::GO>(fc.gid[a]) * dim_ + c;
           Row& qr = row_of(row, q, q_far);
           Row& gr = row_of(row, g, g_far);
-          for (int j = 0; j < dim_; ++j) qr.push_back({static_cast<la::GO>(nd.gid) * dim_ + j, o.dadd[a][c][off_r + j]});
-          for (int l = 0; l < off_r; ++l) gr.push_back({ydof(l), o.dadd[a][c][l]});
+          for (int j = 0; j < dim_; ++j) qr.push_back({static_cast<la::GO>(nd.gid) * dim_ + j, dadd[c][off_r + j]});
+          for (int l = 0; l < off_r; ++l) gr.push_back({ydof(l), dadd[c][l]});
         }
+      }
     }
   }
   long active_glob = 0;

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include "assembly/Assembler.hpp"
+#include "bc/PlaneDirections.hpp"
 #include "contact/MortarNode.hpp"
 #include "contact/NodeLaw.hpp"
 #include "deck/Config.hpp"
@@ -341,7 +342,11 @@ class Contact {
   std::vector<double> master_X_;           // reference coordinates, 3 per master node
   std::vector<double> master_area_;        // tributary reference area per master node
   std::vector<double> master_x_, master_xn_;  // current / start-of-step positions, 3 per master node
-  std::vector<char> master_fixed_;         // per master dof (dim per node): prescribed
+  std::vector<char> master_fixed_;         // per master dof (dim per node): prescribed (or a plane's constraint row)
+  std::map<int, PlaneDirections> master_plane_;  // master nodes (master_pos) on `normal` planes
+  void setup_master_planes(const Assembler& assembler);
+  // v (dim values) less its components along the planes' normals of master node pos.
+  void project_on_master_planes(int pos, double* v) const;
   std::vector<char> present_;              // per surface node: imported on this rank
   std::vector<int> ghost_pos_;             // the imported surface nodes (positions), master_map_ order
   std::vector<int> ghost_index_;           // per surface node: its index in ghost_pos_, or -1

@@ -12,7 +12,14 @@
 //     gives the quarter ring's displacements at every common node to 1e-8 of the largest
 //     (measured: 3e-15), with the same Newton iterations to +-2; the oblique plane's
 //     reaction is normal to it;
-//  3. bad input: a curved group (the stent's inner surface) is refused naming the group;
+//  3. the 3D contact patch test (inputs/contact_patch3d.xml: two blocks with non-matching
+//     hex8 interfaces, node-to-segment, pressed by a uniform traction) with its mesh rotated
+//     by 40 degrees about (1, 1, 1), rollers along the normals of the base and the two
+//     symmetry faces and the traction rotated: slave and master nodes lie on the planes
+//     (the reactions sent to the master nodes are projected on them). The stored energy
+//     and the base's reaction (the total force, along the base's normal) equal the
+//     aligned run's to 1e-9;
+//  4. bad input: a curved group (the stent's inner surface) is refused naming the group;
 //     two values for one normal are refused naming the parameter.
 #include <gtest/gtest.h>
 
@@ -24,6 +31,8 @@
 #include <string>
 
 #include "deck/Config.hpp"
+#include "geometry/MshWriter.hpp"
+#include "mesh/GmshReader.hpp"
 #include "run/Model.hpp"
 #include "run/Simulation.hpp"
 
@@ -168,6 +177,41 @@ TEST(SymmetryPlanes, OneStrutSectorOfTheRingEqualsTheQuarter) {
   const double rn = R[0] * n[0] + R[1] * n[1] + R[2] * n[2];
   const double rt = std::sqrt(std::pow(R[0] - rn * n[0], 2) + std::pow(R[1] - rn * n[1], 2) + std::pow(R[2] - rn * n[2], 2));
   EXPECT_LE(rt, 1e-10 * std::abs(rn) + 1e-12);
+}
+
+TEST(SymmetryPlanes, RotatedContactPatchEqualsTheAlignedOne) {
+  fs::create_directories(kDir);
+  std::ifstream in(std::string(STENTOR_SOURCE_DIR) + "/inputs/contact_patch3d.xml");
+  const std::string aligned((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The aligned mesh, rotated node by node, as a .msh (the same cells and groups).
+  MeshConfig mc;
+  mc.file = std::string(STENTOR_SOURCE_DIR) + "/inputs/two_blocks3d.geo";
+  Mesh m = read_mesh(mc);
+  for (std::size_t i = 0; i < m.num_nodes(); ++i) {
+    const auto r = rotate({m.x[3 * i], m.x[3 * i + 1], m.x[3 * i + 2]});
+    for (int c = 0; c < 3; ++c) m.x[3 * i + static_cast<std::size_t>(c)] = r[static_cast<std::size_t>(c)];
+  }
+  const fs::path msh = kDir / "two_blocks_rotated.msh";
+  std::ofstream(msh) << mesh_to_msh(m);
+  const auto t = rotate({0.0, 0.0, -1e4});
+  char traction[128];
+  std::snprintf(traction, sizeof traction, "{%.17g, %.17g, %.17g}", t[0], t[1], t[2]);
+  std::string rotated = std::regex_replace(aligned, std::regex(R"X(value="two_blocks3d.geo")X"), "value=\"" + msh.string() + "\"");
+  rotated = std::regex_replace(rotated, std::regex(R"X(value="\{0, 0, -1e4\}")X"), std::string("value=\"") + traction + "\"");
+  rotated = std::regex_replace(rotated, std::regex(R"X(("components" type="string" value=")[xyz]")X"), "$1normal\"");
+  ASSERT_NE(rotated.find(R"X(value="normal")X"), std::string::npos);
+  ASSERT_NE(rotated.find(traction), std::string::npos);
+  std::string aligned_deck = std::regex_replace(
+      aligned, std::regex(R"X(value="two_blocks3d.geo")X"), "value=\"" + std::string(STENTOR_SOURCE_DIR) + "/inputs/two_blocks3d.geo\"");
+  const RunResult a = run(aligned_deck, "patch_aligned");
+  const RunResult r = run(rotated, "patch_rotated");
+  ASSERT_TRUE(a.converged && r.converged);
+  std::printf("[ planes ] rotated contact patch: W %.15g (aligned %.15g), base reaction %.10g %.10g %.10g (aligned z %.10g)\n", r.energy,
+              a.energy, r.reactions[0][0], r.reactions[0][1], r.reactions[0][2], a.reactions[0][2]);
+  EXPECT_NEAR(r.energy, a.energy, 1e-9 * a.energy);
+  const auto nz = rotate({0.0, 0.0, 1.0});
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(r.reactions[0][static_cast<std::size_t>(k)], a.reactions[0][2] * nz[static_cast<std::size_t>(k)], 1e-9 * std::abs(a.reactions[0][2]));
 }
 
 TEST(SymmetryPlanes, CurvedGroupAndExtraValuesAreRefusedNamingThem) {
