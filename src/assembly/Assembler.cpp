@@ -162,6 +162,7 @@ Assembler::Assembler(const Mesh& mesh, const Distribution& dist, const Config& c
     }
   owned_dirichlet_flag_.assign(owned_set.size(), 0);
   for (la::LO i : owned_dirichlet_dofs_) owned_dirichlet_flag_[static_cast<std::size_t>(i)] = 1;
+  owned_cartesian_flag_ = owned_dirichlet_flag_;
   reactions_.assign(loads.dirichlet.size(), {0.0, 0.0, 0.0});
   setup_planes();
   setup_loads(mesh);

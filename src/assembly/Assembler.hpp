@@ -94,6 +94,8 @@ class Assembler {
   // Dirichlet flag of each owned dof (on `normal` planes: the dofs that carry the planes'
   // constraint rows, plane_normals()).
   bool is_dirichlet(la::LO owned_dof) const;
+  // ... by a Cartesian set only (not a plane's constraint row): the dof keeps its value.
+  bool is_cartesian_dirichlet(la::LO owned_dof) const { return owned_cartesian_flag_[static_cast<std::size_t>(owned_dof)] != 0; }
   // An owned node on `normal` Dirichlet sets (planes at any angle): the number m of its
   // orthonormal constraint directions e[0..m-1] (the planes' normals with the Cartesian-
   // prescribed components removed, Gram-Schmidt); 0 elsewhere. Its rows: m of them
@@ -101,6 +103,13 @@ class Assembler {
   // projected on the planes, (I - sum e_i e_i^T) r (PlaneConstraints.cpp).
   // j: the components whose rows carry the constraints.
   int plane_normals(la::LO owned_node, double e[3][3], int j[3]) const;
+  // v less its components along the planes' normals at the nodes on `normal` planes (an
+  // initial velocity).
+  void project_on_planes(la::Vector& v) const;
+  // The rows of the plane nodes of M (owned rows in fill, the tangent's graph: the mass
+  // matrix) and of the right-hand side b made the tangent's: the projection on the planes
+  // and the constraint rows e_i . x = 0 (TimeIntegrator::solve_mass).
+  void constrain_planes(la::CrsMatrix& M, la::Vector& b) const;
 
   const la::RCP<la::CrsMatrix>& matrix() const { return K_; }
 
@@ -217,7 +226,7 @@ class Assembler {
   la::RCP<la::Vector> u_overlap_, u0_overlap_, r_overlap_, rext_overlap_;
   la::RCP<la::Vector> r_static_, f_ext_, work_;  // owned
   la::RCP<la::CrsMatrix> M_;
-  std::vector<char> owned_dirichlet_flag_;
+  std::vector<char> owned_dirichlet_flag_, owned_cartesian_flag_;
   std::vector<double> dirichlet_r_;  // full residual at owned constrained dofs, last assemble()
   Kokkos::View<int*, la::ExecSpace> dirichlet_flag_;   // per overlap dof
   Kokkos::View<int*, la::ExecSpace> failures_;
@@ -249,6 +258,8 @@ class Assembler {
   // Reactions along e into loc (3 per set), the projection of r; the tangent's rows.
   void project_plane_rows(la::Vector& r, std::vector<double>& loc);
   void project_plane_matrix();
+  static void project_plane_rows_of(const Kokkos::View<PlaneNode*, la::ExecSpace>& planes, int dim,
+                                    const la::CrsMatrix::local_matrix_device_type& Kl);
 
   // Dead loads (traction, body force): assembled once for a unit ramp, scaled each step.
   struct DeadLoad {

@@ -161,9 +161,11 @@ void Assembler::project_plane_rows(la::Vector& r, std::vector<double>& loc) {
 
 void Assembler::project_plane_matrix() {
   if (planes_.empty()) return;
-  auto Kl = K_->getLocalMatrixDevice();
-  auto planes = planes_dev_;
-  const int dim = dim_;
+  project_plane_rows_of(planes_dev_, dim_, K_->getLocalMatrixDevice());
+}
+
+void Assembler::project_plane_rows_of(const Kokkos::View<PlaneNode*, la::ExecSpace>& planes, int dim,
+                                      const la::CrsMatrix::local_matrix_device_type& Kl) {
   Kokkos::parallel_for(
       "stentor::plane_rows", Kokkos::RangePolicy<la::ExecSpace>(0, planes.extent(0)), KOKKOS_LAMBDA(const int i) {
         const PlaneNode& p = planes(i);
@@ -185,6 +187,33 @@ void Assembler::project_plane_matrix() {
         }
       });
   Kokkos::fence();
+}
+
+void Assembler::project_on_planes(la::Vector& v) const {
+  if (planes_.empty()) return;
+  auto vh = v.getLocalViewHost(Tpetra::Access::ReadWrite);
+  for (const PlaneNode& p : planes_)
+    for (int i = 0; i < p.m; ++i) {
+      double a = 0.0;
+      for (int c = 0; c < dim_; ++c) a += p.e[i][c] * vh(p.lid * dim_ + c, 0);
+      for (int c = 0; c < dim_; ++c) vh(p.lid * dim_ + c, 0) -= a * p.e[i][c];
+    }
+}
+
+void Assembler::constrain_planes(la::CrsMatrix& M, la::Vector& b) const {
+  if (planes_.empty()) return;
+  if (M.getNodeNumEntries() != K_->getNodeNumEntries() || !M.getColMap()->isSameAs(*K_->getColMap()))
+    throw std::logic_error("Assembler::constrain_planes: the matrix does not have the tangent's graph");
+  project_plane_rows_of(planes_dev_, dim_, M.getLocalMatrixDevice());
+  auto bh = b.getLocalViewHost(Tpetra::Access::ReadWrite);
+  for (const PlaneNode& p : planes_) {
+    for (int i = 0; i < p.m; ++i) {
+      double a = 0.0;
+      for (int c = 0; c < dim_; ++c) a += p.e[i][c] * bh(p.lid * dim_ + c, 0);
+      for (int c = 0; c < dim_; ++c) bh(p.lid * dim_ + c, 0) -= a * p.e[i][c];
+    }
+    for (int i = 0; i < p.m; ++i) bh(p.lid * dim_ + p.j[i], 0) = 0.0;
+  }
 }
 
 }  // namespace stentor

@@ -180,9 +180,6 @@ Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
         d.field = lc.field;
         d.ramp = lc.ramp;
         if (lc.normal) {
-          if (cfg.any_dynamic())
-            throw InputError(where + "->components: 'normal' is implemented for static analyses; this deck has a dynamic stage "
-                             "(constrain the Cartesian components x, y, z instead)");
           d.normal = true;
           d.normal_value = lc.value;
           d.components = {true, true, mesh.dim == 3};

@@ -453,7 +453,7 @@ std::vector<ListSpec> build_schema() {
                     str("components", "all",
                         "Constrained displacement components. `normal`: the displacement along the boundary's unit "
                         "outward normal only (a roller or symmetry plane at any angle: the boundary must be planar); "
-                        "the node slides freely in the plane, and the reaction is normal to it. Static analyses.")
+                        "the node slides freely in the plane, and the reaction is normal to it.")
                         .allowed("`x`, `y`, `z` separated by spaces or commas, or `all`, or `normal`"),
                     arr("values", "Displacement [length] of each listed component, in the order listed.")
                         .len(1, 3)

@@ -122,7 +122,7 @@ EnergyAudit TimeIntegrator::initialize(la::Vector& u0, double end_time) {
       const auto& d = disp_of[i] >= 0 ? cfg_.bodies[static_cast<std::size_t>(disp_of[i])].displacement : ic.displacement;
       for (int c = 0; c < dim; ++c) {
         const la::LO r = n * dim + c;
-        if (assembler_.is_dirichlet(r)) {
+        if (assembler_.is_cartesian_dirichlet(r)) {  // on `normal` planes: projected below
           vh(r, 0) = 0.0;
         } else {
           uh(r, 0) = d[static_cast<std::size_t>(c)];
@@ -131,6 +131,10 @@ EnergyAudit TimeIntegrator::initialize(la::Vector& u0, double end_time) {
       }
     }
   }
+  // Nodes on `normal` planes: u0 on the planes (the initial displacement's normal part
+  // removed, as a Cartesian Dirichlet dof keeps its prescribed value), v0 along them.
+  assembler_.apply_dirichlet(u0, 0.0, end_time);
+  assembler_.project_on_planes(*v_);
   a_->putScalar(0.0);
   const double strain0 = assemble_state(u0, 0.0, end_time);
   if (!midpoint_family()) initial_acceleration();
@@ -156,7 +160,7 @@ void TimeIntegrator::solve_mass(la::Vector& rhs, la::Vector& x) {
   {
     auto rh = rhs.getLocalViewHost(Tpetra::Access::ReadWrite);
     for (la::LO i = 0; i < static_cast<la::LO>(rhs.getLocalLength()); ++i) {
-      if (!assembler_.is_dirichlet(i)) continue;
+      if (!assembler_.is_cartesian_dirichlet(i)) continue;  // rows on `normal` planes: constrain_planes
       rh(i, 0) = 0.0;
       la::CrsMatrix::nonconst_local_inds_host_view_type cols("cols", Mc->getNumEntriesInLocalRow(i));
       la::CrsMatrix::nonconst_values_host_view_type vals("vals", cols.extent(0));
@@ -167,6 +171,7 @@ void TimeIntegrator::solve_mass(la::Vector& rhs, la::Vector& x) {
       Mc->replaceLocalValues(i, cols, vals);
     }
   }
+  assembler_.constrain_planes(*Mc, rhs);  // rows of nodes on `normal` planes: as the tangent's
   Mc->fillComplete(dist_.owned_map(), dist_.owned_map());
   // The deck's solver and preconditioner, with the node coordinates multigrid needs
   // (without them MueLu refused the mass matrix: "dimension must be 2 or 3 (got 0)").
