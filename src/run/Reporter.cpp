@@ -20,6 +20,7 @@
 #include "parallel/Agreement.hpp"
 #include "mesh/MeshComm.hpp"
 #include "run/OutputRows.hpp"
+#include "stentor/format.hpp"
 
 namespace stentor {
 
@@ -182,6 +183,16 @@ void Reporter::print_model() {
   for (std::size_t b = 0; b < mesh.volumes.size(); ++b)
     out_ << (b ? ", " : "") << mesh.volumes[b].name << ": " << mesh.block_cells(b) << " " << cell_name(mesh.volumes[b].type);
   out_ << ")\n";
+  const StentConfig& st = cfg_.mesh.stent;
+  if (cfg_.mesh.generator == "stent" && (st.sector != "full" || st.half_length)) {
+    std::ostringstream os;
+    os << "  model    ";
+    if (st.sector != "full") os << "sector 0 <= theta <= " << std::setprecision(6) << st.sector_angle() * 180.0 / kPi << " deg";
+    if (st.half_length) os << (st.sector != "full" ? " of " : "") << "half the length";
+    os << ": 1/" << st.symmetry_copies() << " of the stent (its symmetry planes are to be held; the metrics count it "
+       << st.symmetry_copies() << " times)\n";
+    out_ << os.str();
+  }
   if (cfg_.problem.axisymmetric())
     out_ << "  kinematics axisymmetric: x = r, y = z; forces, reactions and energies of the full revolution (2 pi r), "
             "u_r = 0 on the axis, stress zz = hoop\n";
