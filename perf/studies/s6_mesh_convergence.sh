@@ -12,7 +12,9 @@
 # and the extrapolated value f3 + (f3 - f2) h3^p / (h2^p - h3^p).
 # A run that fails or runs past TIMEOUT (seconds, env; none by default) gives its metrics
 # up to where it stopped: the peak's columns, "-" for the end's. TECH=f-bar (env) runs the
-# stent with `element technology` = f-bar instead of the fully integrated hex8.
+# stent with `element technology` = f-bar instead of the fully integrated hex8. DECK (env, a
+# deck of inputs/; default s6_ring_quarter.xml) studies another generated stent, e.g.
+# DECK=s6_stent.xml (the 6-ring stent's sector), which adds the dogboning at the peak.
 # Usage: perf/studies/s6_mesh_convergence.sh [STENTOR] [N ...]
 #   STENTOR defaults to build/stentor; output folders in a temporary directory (KEEP=1 keeps it).
 set -euo pipefail
@@ -23,12 +25,15 @@ meshes=("$@")
 [ ${#meshes[@]} -eq 0 ] && meshes=(3 4 5)
 tmp=$(mktemp -d)
 [ "${KEEP:-0}" = 1 ] || trap 'rm -rf "$tmp"' EXIT
+deck=$here/inputs/${DECK:-s6_ring_quarter.xml}
+base=$(sed -n 's|.*name="basename" type="string" value="\([^"]*\)".*|\1|p' "$deck")
+[ -n "$base" ] || { echo "no Output->basename in $deck"; exit 1; }
 for n in "${meshes[@]}"; do
   sed -e "s|\"elements through width\" type=\"int\" value=\"3\"|\"elements through width\" type=\"int\" value=\"$n\"|" \
       -e "s|\"elements through thickness\" type=\"int\" value=\"3\"|\"elements through thickness\" type=\"int\" value=\"$n\"|" \
       -e 's|"every" type="int" value="5"|"every" type="int" value="40"|' \
       -e "s|<Parameter name=\"material\" type=\"string\" value=\"steel\"/>|&${TECH:+<Parameter name=\"element technology\" type=\"string\" value=\"$TECH\"/>}|" \
-      "$here/inputs/s6_ring_quarter.xml" > "$tmp/n$n.xml"
+      "$deck" > "$tmp/n$n.xml"
   start=$(date +%s.%N)
   OMP_NUM_THREADS=1 ${TIMEOUT:+timeout $TIMEOUT} "$stentor" --output "$tmp/out$n" "$tmp/n$n.xml" > "$tmp/log$n.txt" 2>&1 \
     || { tail -3 "$tmp/log$n.txt"; echo "N = $n stopped (exit status $?): its metrics up to there (the partial folder)"; }
@@ -37,9 +42,9 @@ for n in "${meshes[@]}"; do
   echo "$n $(echo "$end - $start" | bc)" >> "$tmp/times.txt"
   echo "N = $n done: $(grep -m1 '^Summary' "$tmp/log$n.txt")"
 done
-python3 - "$tmp" "${meshes[@]}" <<'PY'
+python3 - "$tmp" "$base" "${meshes[@]}" <<'PY'
 import csv, math, re, sys
-tmp, meshes = sys.argv[1], [int(n) for n in sys.argv[2:]]
+tmp, base, meshes = sys.argv[1], sys.argv[2], [int(n) for n in sys.argv[3:]]
 times = dict(l.split() for l in open(f"{tmp}/times.txt"))
 rows = {}
 for n in meshes:
@@ -47,7 +52,7 @@ for n in meshes:
     cells = re.search(r"(\d+) cells", log)
     summ = re.search(r"Summary: (\d+) steps, (\d+) cut-backs, (\d+) Newton", log)
     done = summ is not None and "FAILED" not in log
-    with open(f"{tmp}/out{n}/s6_ring_quarter_metrics.csv") as f:
+    with open(f"{tmp}/out{n}/{base}_metrics.csv") as f:
         data = list(csv.DictReader(f))
     D = [float(r["D_mean [mm]"]) for r in data]
     ip = max(range(len(D)), key=lambda i: D[i])
@@ -58,6 +63,8 @@ for n in meshes:
          "D end [mm]": D[-1] if done else nan, "radial recoil %": 100 * float(end["radial_recoil [-]"]) if done else nan,
          "foreshortening end %": 100 * float(end["foreshortening [-]"]) if done else nan,
          "longitudinal recoil %": 100 * float(end["longitudinal_recoil [-]"]) if done else nan}
+    if "dogboning [-]" in peak:
+        m["dogboning at peak %"] = 100 * float(peak["dogboning [-]"])
     rows[n] = m
     print(f"N = {n}: {cells.group(1) if cells else '?'} cells, {float(times[str(n)]):.0f} s wall, "
           + (f"{summ.group(1)} steps, {summ.group(2)} cut-backs, {summ.group(3)} Newton iterations" if done else
