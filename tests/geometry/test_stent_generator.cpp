@@ -185,6 +185,41 @@ TEST(StentGenerator, QuarterIsAQuarterWithExactSymmetryPlanes) {
   }
 }
 
+// sector = period: one strut (0 <= theta <= pi / crowns), a sixteenth of the 8-crown ring,
+// cut on y = 0 and on the oblique plane theta = pi / 8 through crowns (sections w x t);
+// with 8 peak-to-peak links on 3 rings, the same sector; with 4, none.
+TEST(StentGenerator, PeriodSectorIsOneStrutBetweenItsPlanes) {
+  StentConfig s = base();
+  const double full = volume(generate_stent(s, 1e6, "test"));
+  s.sector = "period";
+  EXPECT_EQ(s.sector_half_pitches(), 1);
+  EXPECT_DOUBLE_EQ(s.symmetry_copies(), 16.0);
+  const Mesh q = generate_stent(s, 1e6, "test");
+  EXPECT_EQ(count_inverted_cells(q), 0u);
+  EXPECT_NEAR(volume(q) / full, 1.0 / 16.0, 1e-12);
+  const double th = kPi / s.crowns, ro = s.outer_radius();
+  ASSERT_NE(group(q, "symmetry_y"), nullptr);
+  ASSERT_NE(group(q, "symmetry_sector"), nullptr);
+  for (GId n : group(q, "symmetry_y")->conn) EXPECT_EQ(q.coord(n)[1], 0.0);
+  for (GId n : group(q, "symmetry_sector")->conn)
+    EXPECT_NEAR(std::sin(th) * q.coord(n)[0] - std::cos(th) * q.coord(n)[1], 0.0, 1e-14 * ro);
+  for (const char* g : {"symmetry_y", "symmetry_sector"}) EXPECT_NEAR(area(q, g), s.strut_width * s.thickness, 1e-12) << g;
+  for (std::size_t n = 0; n < q.num_nodes(); ++n) {
+    const double* x = q.coord(static_cast<GId>(n));
+    EXPECT_GE(x[1], 0.0);
+    EXPECT_GE(std::sin(th) * x[0] - std::cos(th) * x[1], -1e-14 * ro);
+  }
+  EXPECT_EQ(group(q, "symmetry_x"), nullptr);
+  s.rings = 3;
+  s.gap = 0.3;
+  s.links_per_ring = 8;
+  EXPECT_EQ(s.sector_half_pitches(), 1);
+  EXPECT_EQ(stent_config_error(s), "");
+  s.links_per_ring = 4;
+  EXPECT_EQ(s.sector_half_pitches(), 0);
+  EXPECT_NE(stent_config_error(s).find("'Mesh->Stent->sector' = period"), std::string::npos);
+}
+
 TEST(StentGenerator, LinksJoinRingsAndAddTheirArea) {
   for (const std::string links : {"peak-to-peak", "peak-to-valley"}) {
     StentConfig s = base();
