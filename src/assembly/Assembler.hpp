@@ -7,7 +7,9 @@
 //
 // Dirichlet dofs: their values are imposed on u before each solve; their residual rows
 // are zeroed and their matrix rows replaced by the identity, so Newton increments
-// vanish there. Reactions are read from those rows before zeroing.
+// vanish there. Reactions are read from those rows before zeroing. Nodes on `normal`
+// sets (planes at any angle) keep u on their planes; their rows are projected on the
+// planes with one constraint row per plane (PlaneConstraints.cpp).
 //
 // Threads: element kernels run in Kokkos' default execution space (OpenMP threads on an
 // OpenMP build). Two cells on different threads may sum into the same rows; by default
@@ -88,8 +90,9 @@ class Assembler {
   // support supplies exactly the force r_i = (f_int + M a - f_ext)_i that the free rows
   // balance to zero, so this is the work the Dirichlet reactions did on the body over a step
   // whose increment is du (summing r.du over all rows gives the scheme's identity
-  // dE + D - W_ext = W_sup). Until session 6 the sign was reversed: invisible with fixed
-  // supports (du = 0), a balance error of 2 W_sup with moving ones.
+  // dE + D - W_ext = W_sup; with the opposite sign, invisible with fixed supports, a moving
+  // one would show a balance error of 2 W_sup). A node on `normal` planes adds
+  // sum_i (e_i . r)(e_i . du): zero for a fixed plane.
   double support_work(const la::Vector& du) const;
   // Dirichlet flag of each owned dof (on `normal` planes: the dofs that carry the planes'
   // constraint rows, plane_normals()).

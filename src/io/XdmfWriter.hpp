@@ -43,8 +43,8 @@
 //   collection with one Uniform grid per step: <Time>, the whole mesh (Topology on
 //   /mesh/topology, Geometry on /mesh/coordinates), the cell attribute "cell_block", then
 //   the step's fields, each a plain HDF DataItem on its whole dataset.
-//   Why one Uniform grid per step, not a Spatial collection of one grid per block (before
-//   issue 13): meshio's TimeSeriesReader reads the mesh from one Uniform grid and takes a
+//   Why one Uniform grid per step, not a Spatial collection of one grid per block (as
+//   written before): meshio's TimeSeriesReader reads the mesh from one Uniform grid and takes a
 //   step's Attributes only from the step's own element (Attributes of nested grids are
 //   skipped, HyperSlab DataItems are not understood): it failed with "Unknown section
 //   'Grid'" or found no data. (meshio.read() reads single-grid files only, no time series

@@ -1,4 +1,4 @@
-// Gauss-point state interface for materials with internal variables (issue 11).
+// Gauss-point state interface for materials with internal variables (docs/plasticity.md).
 //
 // A material with state is a small value type (copied into Kokkos kernels, like
 // CiarletGeymonat) that declares a flat array of history variables per Gauss point and

@@ -1,5 +1,5 @@
 // Finite-strain multiplicative plasticity on an isotropic hyperelastic law: the
-// Ciarlet–Geymonat law of the talk (mission.md, model item 6; issue 11;
+// Ciarlet–Geymonat law of the talk (mission.md, model item 6;
 // docs/plasticity.md) and the neo-Hookean law. A stateless value type with a Gauss-point
 // history (MaterialState.hpp): update(C_{n+1}, h_n, h_{n+1}) -> S, CC = 2 dS/dC, Psi, D.
 // MultiplicativePlasticity<Elastic> needs of Elastic the tensor functions of a

@@ -1,4 +1,4 @@
-// Checkpoints and restart (issue 12).
+// Checkpoints and restart (docs/deck.md, "Checkpoints and restart").
 //
 // A checkpoint holds everything the next step depends on, so that a restarted run takes
 // the same steps as the run that wrote it: time, step and attempt counters, stage, the
