@@ -1,5 +1,7 @@
 #include "run/Supports.hpp"
 
+#include <cmath>
+
 #include "mesh/MeshQuery.hpp"
 
 #include <algorithm>
@@ -91,8 +93,12 @@ ConnectedBodies connected_bodies(const Config& cfg, const Mesh& mesh, const Load
       const int b = cb.body(mesh, g);
       if (b < 0) continue;
       const auto k = static_cast<std::size_t>(b);
+      // A plane (`normal`) counts as holding the axes its normal has a part along, so a body
+      // held by planes alone is not warned about when an axis is free; a free direction
+      // oblique to the axes (a plane at 45 deg to x and y) is not reported at all.
       for (int c = 0; c < mesh.dim; ++c)
-        if (d.components[static_cast<std::size_t>(c)]) held[3 * k + static_cast<std::size_t>(c)] = 1;
+        if (d.normal ? std::abs(d.n[static_cast<std::size_t>(c)]) > 1e-6 : d.components[static_cast<std::size_t>(c)])
+          held[3 * k + static_cast<std::size_t>(c)] = 1;
       lo[k] = std::min(lo[k], static_cast<long long>(g));
       hi[k] = std::max(hi[k], static_cast<long long>(g));
     }
