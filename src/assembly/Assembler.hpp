@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "bc/Loads.hpp"
+#include "bc/PlaneDirections.hpp"
 #include "deck/Config.hpp"
 #include "assembly/HyperelasticElement.hpp"
 #include "material/MaterialRegistry.hpp"
@@ -106,6 +107,9 @@ class Assembler {
   // projected on the planes, (I - sum e_i e_i^T) r (PlaneConstraints.cpp).
   // j: the components whose rows carry the constraints.
   int plane_normals(la::LO owned_node, double e[3][3], int j[3]) const;
+  // Nodes on `normal` planes only: u moved to the closest point of their planes at time t
+  // (apply_dirichlet does this and sets the Cartesian dofs too).
+  void apply_planes(la::Vector& u, double t, double end_time) const;
   // v less its components along the planes' normals at the nodes on `normal` planes (an
   // initial velocity).
   void project_on_planes(la::Vector& v) const;
@@ -244,20 +248,15 @@ class Assembler {
 
   // Owned nodes on `normal` Dirichlet sets (PlaneConstraints.cpp). The residual and tangent
   // rows of such a node are projected after assembly; apply_dirichlet keeps u on its planes.
-  struct PlaneNode {
+  // PlaneDirections' m, e, j, set, n: the node's constraint directions and planes.
+  struct PlaneNode : PlaneDirections {
     la::LO lid = 0;                 // owned node
-    int m = 0;                      // constraint directions
-    double e[3][3] = {};            // orthonormal, orthogonal to the node's Cartesian-prescribed axes
-    int j[3] = {0, 0, 0};           // the components whose rows carry e_i . du = 0
-    int set[3] = {0, 0, 0};         // the sets (planes) that constrain it, m of them
-    double n[3][3] = {};            // their unit normals (all components)
     la::LO self[3] = {-1, -1, -1};  // K_'s local columns of the node's own dofs
   };
   std::vector<PlaneNode> planes_;
   Kokkos::View<PlaneNode*, la::ExecSpace> planes_dev_;
   std::vector<std::array<double, 3>> plane_r_;  // e_i . r per plane node at the last assemble()
   void setup_planes();
-  void apply_planes(la::Vector& u, double t, double end_time) const;
   // Reactions along e into loc (3 per set), the projection of r; the tangent's rows.
   void project_plane_rows(la::Vector& r, std::vector<double>& loc);
   void project_plane_matrix();

@@ -70,12 +70,8 @@ void Assembler::setup_planes() {
     const PlaneDirections d = plane_directions(loads_, g, fixed, dim_);
     if (d.m == 0) continue;
     PlaneNode p;
+    static_cast<PlaneDirections&>(p) = d;
     p.lid = l;
-    p.m = d.m;
-    for (int i = 0; i < 3; ++i) {
-      p.j[i] = d.j[i], p.set[i] = d.set[i];
-      for (int c = 0; c < 3; ++c) p.e[i][c] = d.e[i][c], p.n[i][c] = d.n[i][c];
-    }
     for (int c = 0; c < dim_; ++c) p.self[c] = K_->getColMap()->getLocalElement(dist_.owned_map()->getGlobalElement(l * dim_ + c));
     for (int i = 0; i < p.m; ++i) owned_dirichlet_flag_[static_cast<std::size_t>(l * dim_ + p.j[i])] = 1;
     planes_.push_back(p);
@@ -192,12 +188,12 @@ void Assembler::project_plane_rows_of(const Kokkos::View<PlaneNode*, la::ExecSpa
 void Assembler::project_on_planes(la::Vector& v) const {
   if (planes_.empty()) return;
   auto vh = v.getLocalViewHost(Tpetra::Access::ReadWrite);
-  for (const PlaneNode& p : planes_)
-    for (int i = 0; i < p.m; ++i) {
-      double a = 0.0;
-      for (int c = 0; c < dim_; ++c) a += p.e[i][c] * vh(p.lid * dim_ + c, 0);
-      for (int c = 0; c < dim_; ++c) vh(p.lid * dim_ + c, 0) -= a * p.e[i][c];
-    }
+  for (const PlaneNode& p : planes_) {
+    double w[3] = {0, 0, 0};
+    for (int c = 0; c < dim_; ++c) w[c] = vh(p.lid * dim_ + c, 0);
+    stentor::project_on_planes(p, dim_, w);
+    for (int c = 0; c < dim_; ++c) vh(p.lid * dim_ + c, 0) = w[c];
+  }
 }
 
 void Assembler::constrain_planes(la::CrsMatrix& M, la::Vector& b) const {
@@ -205,15 +201,10 @@ void Assembler::constrain_planes(la::CrsMatrix& M, la::Vector& b) const {
   if (M.getNodeNumEntries() != K_->getNodeNumEntries() || !M.getColMap()->isSameAs(*K_->getColMap()))
     throw std::logic_error("Assembler::constrain_planes: the matrix does not have the tangent's graph");
   project_plane_rows_of(planes_dev_, dim_, M.getLocalMatrixDevice());
+  project_on_planes(b);
   auto bh = b.getLocalViewHost(Tpetra::Access::ReadWrite);
-  for (const PlaneNode& p : planes_) {
-    for (int i = 0; i < p.m; ++i) {
-      double a = 0.0;
-      for (int c = 0; c < dim_; ++c) a += p.e[i][c] * bh(p.lid * dim_ + c, 0);
-      for (int c = 0; c < dim_; ++c) bh(p.lid * dim_ + c, 0) -= a * p.e[i][c];
-    }
+  for (const PlaneNode& p : planes_)
     for (int i = 0; i < p.m; ++i) bh(p.lid * dim_ + p.j[i], 0) = 0.0;
-  }
 }
 
 }  // namespace stentor

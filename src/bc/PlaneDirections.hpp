@@ -21,4 +21,13 @@ struct PlaneDirections {
 // maximise |det e_i(j_l)|.
 PlaneDirections plane_directions(const Loads& loads, GId g, const bool fixed[3], int dim);
 
+// v (dim values) less its parts along the directions e_i: its projection on the planes.
+inline void project_on_planes(const PlaneDirections& p, int dim, double* v) {
+  for (int i = 0; i < p.m; ++i) {
+    double a = 0.0;
+    for (int c = 0; c < dim; ++c) a += p.e[i][c] * v[c];
+    for (int c = 0; c < dim; ++c) v[c] -= a * p.e[i][c];
+  }
+}
+
 }  // namespace stentor

@@ -230,13 +230,7 @@ void Contact::setup_master_planes(const Assembler& assembler) {
 
 void Contact::project_on_master_planes(int pos, double* v) const {
   const auto it = master_plane_.find(pos);
-  if (it == master_plane_.end()) return;
-  const PlaneDirections& d = it->second;
-  for (int i = 0; i < d.m; ++i) {
-    double a = 0.0;
-    for (int c = 0; c < dim_; ++c) a += d.e[i][c] * v[c];
-    for (int c = 0; c < dim_; ++c) v[c] -= a * d.e[i][c];
-  }
+  if (it != master_plane_.end()) project_on_planes(it->second, dim_, v);
 }
 
 // The surface nodes' numbering (master_pos), reference positions, prescribed dofs,

@@ -35,21 +35,13 @@ struct Curve {
     }
     return sum * (u1 - u0) / (3.0 * n);
   }
-  // u in [u0, u1] at arc length `target` from u0.
-  double u_at_arc(double u0, double u1, double target) const {
+  // u in [u0, u1] at arc length `target` from u0 (from_end: back from u1), by bisection.
+  double u_at_arc(double u0, double u1, double target, bool from_end = false) const {
     double lo = u0, hi = u1;
     for (int it = 0; it < 60; ++it) {
       const double mid = 0.5 * (lo + hi);
-      (arc(u0, mid) < target ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-  }
-  // ... at arc length `target` back from u1.
-  double u_at_arc_from_end(double u0, double u1, double target) const {
-    double lo = u0, hi = u1;
-    for (int it = 0; it < 60; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (arc(mid, u1) < target ? hi : lo) = mid;
+      const bool short_of = (from_end ? arc(mid, u1) : arc(u0, mid)) < target;
+      (short_of != from_end ? lo : hi) = mid;
     }
     return 0.5 * (lo + hi);
   }
@@ -120,7 +112,7 @@ RingPlan plan_ring(const Plan& p, int k) {
       // from crown to crown) gets mirror-symmetric nodes, up to round-off (Simpson's error in
       // the partial arcs is ~1e-10 of a strut, and a sector's symmetry planes would see it).
       for (int i = 0; i < n; ++i)
-        r.u.push_back(i == 0 ? start : 2 * i <= n ? r.c.u_at_arc(start, end, len * i / n) : r.c.u_at_arc_from_end(start, end, len * (n - i) / n));
+        r.u.push_back(i == 0 ? start : 2 * i <= n ? r.c.u_at_arc(start, end, len * i / n) : r.c.u_at_arc(start, end, len * (n - i) / n, true));
       start = end;
     }
   }

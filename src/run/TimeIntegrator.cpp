@@ -133,7 +133,7 @@ EnergyAudit TimeIntegrator::initialize(la::Vector& u0, double end_time) {
   }
   // Nodes on `normal` planes: u0 on the planes (the initial displacement's normal part
   // removed, as a Cartesian Dirichlet dof keeps its prescribed value), v0 along them.
-  assembler_.apply_dirichlet(u0, 0.0, end_time);
+  assembler_.apply_planes(u0, 0.0, end_time);
   assembler_.project_on_planes(*v_);
   a_->putScalar(0.0);
   const double strain0 = assemble_state(u0, 0.0, end_time);

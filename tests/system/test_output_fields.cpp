@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "BlockDeck.hpp"
 #include "CsvSeries.hpp"
 #include "H5Results.hpp"
 #include "deck/Config.hpp"
@@ -48,37 +49,15 @@ double uniaxial_P11(double lam) {
   return lam * 2.0 * (kC1 + 2 * kC2 * b + kD * b * b - K / a);
 }
 
-std::string dirichlet(const std::string& name, const std::string& comps, const std::string& values = "") {
-  std::string s = R"X(<ParameterList name=")X" + name + R"X("><Parameter name="type" type="string" value="Dirichlet"/>
-      <Parameter name="boundary" type="string" value=")X" + name + R"X("/><Parameter name="components" type="string" value=")X" +
-                  comps + R"X("/>)X";
-  if (!values.empty()) s += R"X(<Parameter name="values" type="Array(double)" value=")X" + values + R"X("/>)X";
-  return s + "</ParameterList>\n";
-}
-
 // The uniaxial block deck with `output` (parameters of Output) and `stages` (a Stages
 // sublist replacing Stepping).
 std::string block_deck(const std::string& output, const std::string& stages = "") {
-  const std::string stepping =
-      stages.empty() ? R"X(<ParameterList name="Stepping"><Parameter name="steps" type="int" value="2"/></ParameterList>)X" : stages;
+  using stentor::testing::dirichlet_xml;
+  const std::string bcs = dirichlet_xml("left", "left", "x") + dirichlet_xml("front", "front", "y") +
+                          dirichlet_xml("bottom", "bottom", "z") + dirichlet_xml("right", "right", "x", "{0.2}");
   const std::string geo = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
-  return R"X(<ParameterList name="stentor">
-  <ParameterList name="Mesh"><Parameter name="file" type="string" value=")X" + geo + R"X("/>
-    <Parameter name="size" type="double" value="0.5"/></ParameterList>
-  <ParameterList name="Materials"><ParameterList name="rubber">
-    <Parameter name="C1" type="double" value="0.5e6"/><Parameter name="C2" type="double" value="0.005e6"/>
-    <Parameter name="D" type="double" value="0.35e6"/></ParameterList></ParameterList>
-  <ParameterList name="Bodies"><ParameterList name="block">
-    <Parameter name="material" type="string" value="rubber"/></ParameterList></ParameterList>
-  <ParameterList name="Boundary Conditions">
-)X" + dirichlet("left", "x") + dirichlet("front", "y") + dirichlet("bottom", "z") + dirichlet("right", "x", "{0.2}") + R"X(
-  </ParameterList>
-  )X" + stepping + R"X(
-  <ParameterList name="Linear Solver"><Parameter name="method" type="string" value="direct"/></ParameterList>
-  <ParameterList name="Output"><Parameter name="basename" type="string" value="block"/>
-)X" + output + R"X(</ParameterList>
-</ParameterList>
-)X";
+  return stages.empty() ? stentor::testing::block_deck_xml(geo, bcs, "block", output)
+                        : stentor::testing::block_deck_xml(geo, bcs, "block", output, stages);
 }
 
 // Runs `deck` in system_tests/output_fields/<name>; returns the output folder.

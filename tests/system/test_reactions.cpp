@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "BlockDeck.hpp"
 #include "CsvSeries.hpp"
 #include "deck/Config.hpp"
 #include "run/Simulation.hpp"
@@ -37,14 +38,7 @@ double uniaxial_P11(double lam) {
   return lam * 2.0 * (kC1 + 2 * kC2 * b + kD * b * b - K / a);
 }
 
-std::string dirichlet(const std::string& name, const std::string& group, const std::string& comps,
-                      const std::string& values = "") {
-  std::string s = R"X(<ParameterList name=")X" + name + R"X("><Parameter name="type" type="string" value="Dirichlet"/>
-      <Parameter name="boundary" type="string" value=")X" + group + R"X("/><Parameter name="components" type="string" value=")X" +
-                  comps + R"X("/>)X";
-  if (!values.empty()) s += R"X(<Parameter name="values" type="Array(double)" value=")X" + values + R"X("/>)X";
-  return s + "</ParameterList>\n";
-}
+using stentor::testing::dirichlet_xml;
 
 }  // namespace
 
@@ -53,24 +47,12 @@ TEST(Reactions, UniaxialBlockPerConstrainedComponent) {
   fs::create_directories(dir);
   const std::string geo = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
   // left_again constrains what left does (same nodes, x): its reaction is 0, left's the whole.
-  const std::string deck = R"X(<ParameterList name="stentor">
-  <ParameterList name="Mesh"><Parameter name="file" type="string" value=")X" + geo + R"X("/>
-    <Parameter name="size" type="double" value="0.5"/></ParameterList>
-  <ParameterList name="Materials"><ParameterList name="rubber">
-    <Parameter name="C1" type="double" value="0.5e6"/><Parameter name="C2" type="double" value="0.005e6"/>
-    <Parameter name="D" type="double" value="0.35e6"/></ParameterList></ParameterList>
-  <ParameterList name="Bodies"><ParameterList name="block">
-    <Parameter name="material" type="string" value="rubber"/></ParameterList></ParameterList>
-  <ParameterList name="Boundary Conditions">
-)X" + dirichlet("left", "left", "x") + dirichlet("front", "front", "y") + dirichlet("bottom", "bottom", "z") +
-                           dirichlet("pull", "right", "x", "{0.2}") + dirichlet("left_again", "left", "x") + R"X(
-  </ParameterList>
-  <ParameterList name="Stepping"><Parameter name="steps" type="int" value="2"/></ParameterList>
-  <ParameterList name="Linear Solver"><Parameter name="method" type="string" value="direct"/></ParameterList>
-  <ParameterList name="Output"><Parameter name="basename" type="string" value="uniaxial"/>
-    <Parameter name="fields" type="bool" value="false"/></ParameterList>
-</ParameterList>
-)X";
+  const std::string deck =
+      stentor::testing::block_deck_xml(geo,
+                                       dirichlet_xml("left", "left", "x") + dirichlet_xml("front", "front", "y") +
+                                           dirichlet_xml("bottom", "bottom", "z") + dirichlet_xml("pull", "right", "x", "{0.2}") +
+                                           dirichlet_xml("left_again", "left", "x"),
+                                       "uniaxial");
   const fs::path p = dir / "uniaxial.xml";
   std::ofstream(p) << deck;
   const Config cfg = read_deck(p.string());

@@ -29,6 +29,7 @@
 //     two values for one normal are refused naming the parameter.
 #include <gtest/gtest.h>
 
+#include "BlockDeck.hpp"
 #include "CsvSeries.hpp"
 
 #include <cmath>
@@ -52,29 +53,11 @@ namespace {
 const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "symmetry_planes";
 
 std::string roller(const std::string& name, const std::string& group, const std::string& comps, const std::string& values = "") {
-  std::string s = R"X(<ParameterList name=")X" + name + R"X("><Parameter name="type" type="string" value="Dirichlet"/>
-      <Parameter name="boundary" type="string" value=")X" + group + R"X("/><Parameter name="components" type="string" value=")X" + comps +
-                  R"X("/>)X";
-  if (!values.empty()) s += R"X(<Parameter name="values" type="Array(double)" value=")X" + values + R"X("/>)X";
-  return s + "</ParameterList>\n";
+  return stentor::testing::dirichlet_xml(name, group, comps, values);
 }
 
-std::string block_deck(const std::string& geo, const std::string& bcs, const std::string& base) {
-  return R"X(<ParameterList name="stentor">
-  <ParameterList name="Mesh"><Parameter name="file" type="string" value=")X" + geo + R"X("/>
-    <Parameter name="size" type="double" value="0.5"/></ParameterList>
-  <ParameterList name="Materials"><ParameterList name="rubber">
-    <Parameter name="C1" type="double" value="0.5e6"/><Parameter name="C2" type="double" value="0.005e6"/>
-    <Parameter name="D" type="double" value="0.35e6"/></ParameterList></ParameterList>
-  <ParameterList name="Bodies"><ParameterList name="block">
-    <Parameter name="material" type="string" value="rubber"/></ParameterList></ParameterList>
-  <ParameterList name="Boundary Conditions">)X" + bcs + R"X(</ParameterList>
-  <ParameterList name="Stepping"><Parameter name="steps" type="int" value="2"/></ParameterList>
-  <ParameterList name="Linear Solver"><Parameter name="method" type="string" value="direct"/></ParameterList>
-  <ParameterList name="Output"><Parameter name="basename" type="string" value=")X" + base + R"X("/>
-    <Parameter name="fields" type="bool" value="false"/></ParameterList>
-</ParameterList>
-)X";
+std::string block_deck(const std::string& mesh, const std::string& bcs, const std::string& base) {
+  return stentor::testing::block_deck_xml(mesh, bcs, base);
 }
 
 RunResult run(const std::string& text, const std::string& name) {
