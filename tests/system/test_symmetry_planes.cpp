@@ -25,10 +25,14 @@
 //     constant body force (Newmark's initial acceleration solves M a0 = f(0)), vibrates
 //     with the aligned block's energies to 1e-9 at every step (measured 2e-13), and with
 //     Gonzalez closes its energy balance per step to 1e-12 of E0 (the rollers do no work);
-//  5. bad input: a curved group (the stent's inner surface) is refused naming the group;
+//  5. the projected tangent against central differences of the projected residual
+//     (the rotated block with a follower pressure on the pulled face, at a non-homogeneous
+//     state on the planes, along a direction on them);
+//  6. bad input: a curved group (the stent's inner surface) is refused naming the group;
 //     two values for one normal are refused naming the parameter.
 #include <gtest/gtest.h>
 
+#include "AssemblerFixture.hpp"
 #include "BlockDeck.hpp"
 #include "CsvSeries.hpp"
 
@@ -275,6 +279,43 @@ TEST(SymmetryPlanes, RotatedBlockVibratesLikeTheAlignedOne) {
     for (std::size_t i = 0; i < er.rows(); ++i) balance = std::max(balance, std::abs(er["balance_residual"][i]));
     if (scheme == "gonzalez") EXPECT_LT(balance, 1e-12 * E0) << "the energy balance per step";
   }
+}
+
+TEST(SymmetryPlanes, ProjectedTangentAgainstFiniteDifferences) {
+  fs::create_directories(kDir);
+  MeshConfig mc;
+  mc.file = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
+  mc.size = 0.5;
+  const fs::path msh = rotated_msh(read_mesh(mc), "block_rotated_fd");
+  const std::string press =
+      R"X(<ParameterList name="p"><Parameter name="type" type="string" value="pressure"/>
+      <Parameter name="boundary" type="string" value="right"/><Parameter name="pressure" type="double" value="1e5"/></ParameterList>)X";
+  const fs::path deck = kDir / "block_fd.xml";
+  std::ofstream(deck) << block_deck(msh.string(), roller("left", "left", "normal") + roller("front", "front", "normal") +
+                                                      roller("bottom", "bottom", "normal") + press,
+                                    "fd");
+  const stentor::testing::AssemblerFixture f(read_deck(deck.string()));
+  const auto map = f.dist->owned_map();
+  // A non-homogeneous state on the planes, and a direction on them.
+  la::Vector u(map), v(map), up(map), um(map), r(map), rp(map), rm(map), Kv(map);
+  f.fill(u, 1.0);
+  f.as->apply_dirichlet(u, 1.0, 1.0);
+  f.fill(v, 1.0, 0.7);
+  f.as->project_on_planes(v);
+  f.as->assemble(u, 1.0, 1.0, r, true);
+  f.as->matrix()->apply(v, Kv);
+  const double h = 1e-6;
+  up.update(1.0, u, h, v, 0.0);
+  um.update(1.0, u, -h, v, 0.0);
+  f.as->assemble(up, 1.0, 1.0, rp, false);
+  f.as->assemble(um, 1.0, 1.0, rm, false);
+  rp.update(-1.0, rm, 1.0);
+  rp.scale(0.5 / h);
+  rp.update(-1.0, Kv, 1.0);
+  const double rel = rp.norm2() / Kv.norm2();
+  std::printf("[ planes ] projected tangent: |K v - FD| / |K v| = %.2e (|K v| %.3e)\n", rel, Kv.norm2());
+  EXPECT_GT(Kv.norm2(), 0.0);
+  EXPECT_LT(rel, 1e-7);
 }
 
 TEST(SymmetryPlanes, CurvedGroupAndExtraValuesAreRefusedNamingThem) {
