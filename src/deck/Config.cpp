@@ -302,6 +302,7 @@ class DeckReader {
   void read_mesh(const ParameterList& pl);
   void read_stent(const ParameterList& pl);
   void read_artery(const ParameterList& pl);
+  void read_balloon(const ParameterList& pl);
   void check_stent_plastic() const;
   void read_materials(const ParameterList& pl);
   void read_elastic_constants(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
@@ -795,6 +796,8 @@ void DeckReader::read_mesh(const ParameterList& pl) {
     fail("'Mesh->write mesh' applies to 'Mesh->generator', not to a mesh file");
   if (pl.isSublist("Stent") && m.generator != "stent") fail("'Mesh->Stent' needs 'Mesh->generator' = stent");
   if (pl.isSublist("Artery") && m.generator != "artery") fail("'Mesh->Artery' needs 'Mesh->generator' = artery");
+  if (pl.isSublist("Balloon") && m.generator != "stent")
+    fail("'Mesh->Balloon' needs 'Mesh->generator' = stent (the balloon is mounted in the generated stent)");
   if (pl.isSublist("Parameters") && !m.generator.empty())
     fail("'Mesh->Parameters' sets the parameters of a .geo 'Mesh->file', not of 'Mesh->generator'");
   m.max_cells = get_double(pl, ls, "max cells");
@@ -803,9 +806,10 @@ void DeckReader::read_mesh(const ParameterList& pl) {
       if (pl.isParameter(p)) fail(quoted(std::string("Mesh->") + p) + " applies to a mesh file, not to 'Mesh->generator'");
     const std::string sub = m.generator == "stent" ? "Stent" : "Artery";
     if (!pl.isSublist(sub)) fail("missing required sublist 'Mesh->" + sub + "' ('Mesh->generator' = " + m.generator + ")");
-    if (m.generator == "stent")
+    if (m.generator == "stent") {
       read_stent(pl.sublist("Stent"));
-    else
+      if (pl.isSublist("Balloon")) read_balloon(pl.sublist("Balloon"));
+    } else
       read_artery(pl.sublist("Artery"));
     m.write_mesh = get_bool(pl, ls, "write mesh");
     m.dimension = 3;
@@ -858,6 +862,21 @@ void DeckReader::read_stent(const ParameterList& pl) {
   s.sector = lower(get_string(pl, ls, "sector"));
   s.half_length = get_bool(pl, ls, "half length");
   const std::string why = stent_config_error(s);
+  if (!why.empty()) fail(why);
+}
+
+void DeckReader::read_balloon(const ParameterList& pl) {
+  const ListSpec& ls = deck_list_spec("Mesh/Balloon");
+  check_list(pl, "Mesh->Balloon", {&ls});
+  require(pl, "Mesh->Balloon", {&ls});
+  BalloonConfig& b = cfg_.mesh.balloon;
+  b.enabled = true;
+  b.outer_diameter = get_double(pl, ls, "outer diameter");
+  b.thickness = get_double(pl, ls, "thickness");
+  b.length = get_double(pl, ls, "length");
+  b.elements_thickness = get_int(pl, ls, "elements through thickness");
+  b.element_length = get_double(pl, ls, "element length");
+  const std::string why = balloon_config_error(b, cfg_.mesh.stent);
   if (!why.empty()) fail(why);
 }
 

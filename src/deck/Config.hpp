@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "deck/ArteryConfig.hpp"
+#include "deck/BalloonConfig.hpp"
 #include "deck/StentConfig.hpp"
 
 namespace stentor {
@@ -62,6 +63,7 @@ struct MeshConfig {
   double time_limit = 600; // "Mesh"->"time limit" [s]: gmsh's process (reading + meshing) is stopped after it
   std::string generator;   // "Mesh"->"generator": "" (read `file`), "stent" (from `stent`) or "artery" (from `artery`)
   StentConfig stent;       // "Mesh"->"Stent" (with generator "stent")
+  BalloonConfig balloon;   // "Mesh"->"Balloon" (with generator "stent"; enabled when given)
   ArteryConfig artery;     // "Mesh"->"Artery" (with generator "artery")
   bool write_mesh = false; // "Mesh"->"write mesh": the generated mesh as <basename>_mesh.msh in the output folder
   // "Mesh"->"Parameters": (ONELAB name, value) for the .geo's DefineNumber parameters, in deck order.

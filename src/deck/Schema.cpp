@@ -144,7 +144,7 @@ std::vector<ListSpec> build_schema() {
            "them it is stopped and the deck refused (a loop in the `.geo`, a mesh far too fine); raise it for a "
            "slow mesh on purpose.")
            .gt(0.0)});
-    l.sublists = {"Stent", "Artery", "Parameters"};
+    l.sublists = {"Stent", "Balloon", "Artery", "Parameters"};
     s.push_back(l);
   }
   {
@@ -211,6 +211,24 @@ std::vector<ListSpec> build_schema() {
        boolean("half length", false,
                "Only the proximal half, z <= total length / 2, cut on the symmetry plane `symmetry_z` (an even "
                "number of rings with `links` = `peak-to-peak`).")}));
+
+  s.push_back(list(
+      "Mesh/Balloon", "Mesh->Balloon",
+      "A deformable balloon mounted in the generated stent (`generator` = `stent`; docs/stent.md, \"The deformable "
+      "balloon\"): a tube of hex8 cells on the stent's axis, centred on the stent, longer than it, meshed with the "
+      "stent's `sector` and `half length`. Volume group `balloon`; facet groups `balloon_inner` (for the inflation "
+      "`pressure`), `balloon_outer` (the contact surface the stent's `inner` lies on), `balloon_ends` (the end rings "
+      "bonded to the catheter, to hold); its facets on the cut planes join the stent's `symmetry_*` groups.",
+      {dbl("outer diameter", 0.0, "Outer diameter as mounted [length], below the stent's inner diameter.")
+           .req()
+           .gt(0.0),
+       dbl("thickness", 0.0, "Wall thickness [length], below the outer radius.").req().gt(0.0),
+       dbl("length", 0.0, "Length of the whole balloon [length], longer than the stent (centred on it).").req().gt(0.0),
+       integer("elements through thickness", 2, "Hex8 cells through the wall.").ge(1).le(100),
+       dbl("element length", 0.0,
+           "Target cell size around (at the outer radius) and along [length], at most 50 wall thicknesses.")
+           .ge(0.0)
+           .dflt_doc("the stent's `strut width`")}));
 
   s.push_back(list(
       "Mesh/Artery", "Mesh->Artery",

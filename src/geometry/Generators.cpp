@@ -3,12 +3,17 @@
 #include <stdexcept>
 
 #include "geometry/ArteryGenerator.hpp"
+#include "geometry/BalloonGenerator.hpp"
 #include "geometry/StentGenerator.hpp"
 
 namespace stentor {
 
 Mesh generate_mesh(const MeshConfig& cfg) {
-  if (cfg.generator == "stent") return generate_stent(cfg.stent, cfg.max_cells, cfg.file + " (Mesh->Stent)");
+  if (cfg.generator == "stent") {
+    Mesh m = generate_stent(cfg.stent, cfg.max_cells, cfg.file + " (Mesh->Stent)");
+    if (cfg.balloon.enabled) add_balloon(cfg.balloon, cfg.stent, cfg.max_cells, cfg.file + " (Mesh->Balloon)", m);
+    return m;
+  }
   if (cfg.generator == "artery") return generate_artery(cfg.artery, cfg.max_cells, cfg.file + " (Mesh->Artery)");
   throw std::logic_error("generate_mesh: unknown generator '" + cfg.generator + "'");
 }

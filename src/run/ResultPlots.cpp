@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iostream>
 #include <limits>
+#include <map>
 
 #include "io/Plot.hpp"
 #include "io/Units.hpp"
@@ -234,6 +235,33 @@ void diameter_plot(const Model& m, const std::string& stem, const UnitLabels& u,
   if (plot_png(t, stem + "_diameters.png", d, marks)) made.push_back(stem + "_diameters.png");
 }
 
+// A generated stent expanded by a pressure load (a deformable balloon's inflation): its
+// outer diameters against the pressure, loading and unloading (the compliance chart).
+void pressure_diameter_plots(const Model& m, const std::string& stem, const UnitLabels& u, const std::vector<std::string>& cols,
+                             std::vector<std::string>& made) {
+  PlotTable h;
+  if (cols.empty() || !read_csv_table(stem + "_history.csv", h) || h.find("step") < 0) return;
+  for (const LoadConfig& l : m.cfg.loads) {
+    const int pc = h.find("pressure_" + l.name);
+    PlotTable t;
+    if (l.type != LoadConfig::Type::Pressure || pc < 0 || !read_csv_table(stem + "_metrics.csv", t) || t.find("step") < 0) continue;
+    std::map<long, double> at_step{{0L, l.value * l.ramp(0.0, m.cfg.stepping.end_time)}};
+    const auto& hs = h.columns[static_cast<std::size_t>(h.find("step"))];
+    for (std::size_t r = 0; r < hs.size(); ++r) at_step[std::lround(hs[r])] = h.columns[static_cast<std::size_t>(pc)][r];
+    std::vector<double> p;
+    for (double s : t.columns[static_cast<std::size_t>(t.find("step"))]) {
+      const auto it = at_step.find(std::lround(s));
+      p.push_back(it == at_step.end() ? std::nan("") : it->second);
+    }
+    t.add("pressure", std::move(p));
+    PlotSpec d{"Pressure-diameter curve of '" + l.name + "': stent outer diameters against the pressure",
+               with_unit("pressure", u.stress), with_unit("outer diameter", u.length), "pressure", {}, true};
+    for (const auto& c : cols) d.curves.push_back({c, metric_legend(c), ""});
+    const std::string png = stem + "_pressure_diameter_" + file_part(l.name) + ".png";
+    if (plot_png(t, png, d)) made.push_back(png);
+  }
+}
+
 }  // namespace
 
 bool deck_at_rest_unloaded(const Model& m) {
@@ -275,6 +303,7 @@ std::vector<std::string> write_result_plots(const Model& m, const std::string& s
   if (m.any_dynamic) energy_plots(m, stem, u, made);
   metrics_plots(m, stem, u, radius_columns, stress_columns, made);
   diameter_plot(m, stem, u, diameter_columns, made);
+  pressure_diameter_plots(m, stem, u, diameter_columns, made);
   return made;
 }
 

@@ -93,7 +93,7 @@ RingMetrics::RingMetrics(const Model& model) : m_(model) {
     }
   if (m_.assembler && m_.assembler->has_history()) eps_name_ = "equivalent_plastic_strain";
   for (std::size_t b = 0; b < mesh.volumes.size(); ++b)
-    if (m_.block_mat.size() > b && m_.block_mat[b] >= 0)
+    if (mesh.volumes[b].name == "stent" && m_.block_mat.size() > b && m_.block_mat[b] >= 0)
       density_ = std::max(density_, m_.cfg.materials[static_cast<std::size_t>(m_.block_mat[b])].density);
 }
 
@@ -198,7 +198,9 @@ void RingMetrics::plastic(const la::Vector& u, std::vector<double>& out) {
   for (const LocalBlock& lb : m_.dist->blocks()) {
     const CellBlock& mb = mesh.volumes[static_cast<std::size_t>(lb.volume_block)];
     const auto npc = static_cast<std::size_t>(mb.nodes_per_cell);
+    const bool metal = mb.name == "stent";  // not the balloon's cells
     for (std::size_t i = 0; i < lb.cell_ids.size(); ++i, ++c) {
+      if (!metal) continue;
       const double v = e == cf.extra_names.end() ? 0.0 : cf.extra[nx * c + ie];
       const int r = cell_ring_[c];
       double& slot = loc[r >= 0 ? static_cast<std::size_t>(r) : loc.size() - 1];
@@ -301,7 +303,12 @@ std::vector<double> RingMetrics::evaluate(const la::Vector& u, double t) {
   if (volume_ == 0.0) {
     const Assembler::CellFields cf = m_.assembler->cell_fields(u);
     double vl = 0.0;
-    for (double c : cf.volume) vl += c;
+    std::size_t c = 0;
+    for (const LocalBlock& lb : m_.dist->blocks()) {
+      const bool metal = m_.mesh.volumes[static_cast<std::size_t>(lb.volume_block)].name == "stent";  // not the balloon
+      for (std::size_t i = 0; i < lb.cell_ids.size(); ++i, ++c)
+        if (metal) vl += cf.volume[c];
+    }
     Teuchos::reduceAll(*m_.comm, Teuchos::REDUCE_SUM, 1, &vl, &volume_);
     volume_ *= sym_area_;
   }

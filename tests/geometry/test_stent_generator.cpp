@@ -14,6 +14,7 @@
 #include "deck/Config.hpp"
 #include "geometry/StentGenerator.hpp"
 #include "mesh/MeshCheck.hpp"
+#include "MeshMeasures.hpp"
 
 using namespace stentor;
 
@@ -34,27 +35,8 @@ StentConfig base() {
   return s;
 }
 
-// Trilinear hex volume, 2x2x2 Gauss (exact for the trilinear map's det J).
-double hex_volume(const Mesh& m, const GId* c) {
-  const double sx[8] = {-1, 1, 1, -1, -1, 1, 1, -1}, sy[8] = {-1, -1, 1, 1, -1, -1, 1, 1},
-               sz[8] = {-1, -1, -1, -1, 1, 1, 1, 1};
-  const double g = 1.0 / std::sqrt(3.0);
-  double v = 0.0;
-  for (int a = 0; a < 8; ++a) {
-    const double xi = sx[a] * g, eta = sy[a] * g, zeta = sz[a] * g;
-    double J[3][3] = {};
-    for (int n = 0; n < 8; ++n) {
-      const double d[3] = {sx[n] * (1 + sy[n] * eta) * (1 + sz[n] * zeta) / 8, sy[n] * (1 + sx[n] * xi) * (1 + sz[n] * zeta) / 8,
-                           sz[n] * (1 + sx[n] * xi) * (1 + sy[n] * eta) / 8};
-      const double* X = m.coord(c[n]);
-      for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) J[i][j] += X[i] * d[j];
-    }
-    v += J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) - J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
-         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
-  }
-  return v;
-}
+using test::duplicate_nodes;
+using test::hex_volume;
 
 double volume(const Mesh& m) {
   double v = 0.0;
@@ -93,15 +75,6 @@ double area(const Mesh& m, const std::string& name) {
 }
 
 double radius(const Mesh& m, GId n) { return std::hypot(m.coord(n)[0], m.coord(n)[1]); }
-
-std::size_t duplicate_nodes(const Mesh& m) {
-  std::set<std::tuple<long long, long long, long long>> seen;
-  for (std::size_t n = 0; n < m.num_nodes(); ++n) {
-    const double* X = m.coord(static_cast<GId>(n));
-    seen.insert({std::llround(X[0] * 1e7), std::llround(X[1] * 1e7), std::llround(X[2] * 1e7)});
-  }
-  return m.num_nodes() - seen.size();
-}
 
 }  // namespace
 

@@ -1,0 +1,145 @@
+#include "geometry/BalloonGenerator.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "deck/Config.hpp"
+#include "stentor/format.hpp"
+
+namespace stentor {
+namespace {
+
+struct Tube {
+  int ct, cz, cr;  // cells around, along, through
+  bool periodic;
+  GId base;        // the first node's global id
+  int nt() const { return periodic ? ct : ct + 1; }
+  GId node(int i, int j, int k) const {
+    if (periodic) i %= ct;
+    return base + (static_cast<GId>(j) * nt() + i) * (cr + 1) + k;
+  }
+  void hex(int i, int j, int k, GId* h) const {
+    const GId v[8] = {node(i, j, k),         node(i + 1, j, k),         node(i + 1, j + 1, k),
+                      node(i, j + 1, k),     node(i, j, k + 1),         node(i + 1, j, k + 1),
+                      node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
+    std::copy(v, v + 8, h);
+  }
+};
+
+// The hex's faces (zeta-, zeta+, eta-, eta+, xi-, xi+), each with its normal out of the cell.
+const int kFace[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 4, 7, 3}, {1, 2, 6, 5}};
+
+// (cos, sin) of theta, exact on the planes y = 0 and x = 0.
+void direction(double theta, double& c, double& s) {
+  if (theta == 0.0) { c = 1.0, s = 0.0; return; }
+  if (std::abs(theta - 0.5 * kPi) < 1e-14) { c = 0.0, s = 1.0; return; }
+  c = std::cos(theta), s = std::sin(theta);
+}
+
+void add_nodes(const BalloonConfig& b, const StentConfig& s, const Tube& t, Mesh& m) {
+  const double th = s.sector_angle(), z0 = b.z_begin(s), z1 = b.z_end(s);
+  const double ri = b.inner_radius(), ro = b.outer_radius();
+  for (int j = 0; j <= t.cz; ++j)
+    for (int i = 0; i < t.nt(); ++i) {
+      double c, sn;
+      direction(i == t.ct ? th : th * i / t.ct, c, sn);
+      const double z = j == t.cz ? z1 : z0 + (z1 - z0) * j / t.cz;
+      for (int k = 0; k <= t.cr; ++k) {
+        const double r = k == t.cr ? ro : ri + (ro - ri) * k / t.cr;
+        m.x.insert(m.x.end(), {r * c, r * sn, z});
+      }
+    }
+}
+
+// The facet ids continue after the largest one in m.
+GId next_facet_id(const Mesh& m) {
+  GId next = 0;
+  for (const CellBlock& c : m.boundaries)
+    for (GId id : c.cell_id) next = std::max(next, id + 1);
+  return next;
+}
+
+int next_tag(const Mesh& m) {
+  int tag = 0;
+  for (const CellBlock& c : m.volumes) tag = std::max(tag, c.physical_tag);
+  for (const CellBlock& c : m.boundaries) tag = std::max(tag, c.physical_tag);
+  return tag + 1;
+}
+
+void add_facets(const StentConfig& s, const Tube& t, Mesh& m) {
+  std::map<std::string, std::vector<GId>> f;
+  std::vector<std::string> order = {"balloon_inner", "balloon_outer", "balloon_ends"};
+  auto add = [&](const std::string& name, int i, int j, int k, int face) {
+    GId h[8];
+    t.hex(i, j, k, h);
+    for (int v = 0; v < 4; ++v) f[name].push_back(h[kFace[face][v]]);
+  };
+  for (int j = 0; j < t.cz; ++j)
+    for (int i = 0; i < t.ct; ++i) add("balloon_inner", i, j, 0, 0), add("balloon_outer", i, j, t.cr - 1, 1);
+  for (int i = 0; i < t.ct; ++i)
+    for (int k = 0; k < t.cr; ++k) {
+      add("balloon_ends", i, 0, k, 2);
+      add(s.half_length ? "symmetry_z" : "balloon_ends", i, t.cz - 1, k, 3);
+    }
+  if (!t.periodic)
+    for (int j = 0; j < t.cz; ++j)
+      for (int k = 0; k < t.cr; ++k) {
+        add("symmetry_y", 0, j, k, 4);
+        add(s.sector == "quarter" ? "symmetry_x" : "symmetry_sector", t.ct - 1, j, k, 5);
+      }
+  GId id = next_facet_id(m);
+  int tag = next_tag(m);
+  for (auto& [name, conn] : f) {
+    auto it = std::find_if(m.boundaries.begin(), m.boundaries.end(),
+                           [&](const CellBlock& c) { return c.name == name && c.type == CellType::Quad4; });
+    if (it == m.boundaries.end()) {
+      CellBlock c;
+      c.name = name;
+      c.physical_tag = tag++;
+      c.type = CellType::Quad4;
+      c.nodes_per_cell = 4;
+      m.boundaries.push_back(std::move(c));
+      it = m.boundaries.end() - 1;
+    }
+    for (std::size_t q = 0; q < conn.size() / 4; ++q) it->cell_id.push_back(id++);
+    it->conn.insert(it->conn.end(), conn.begin(), conn.end());
+  }
+}
+
+}  // namespace
+
+void add_balloon(const BalloonConfig& b, const StentConfig& s, double max_cells, const std::string& source, Mesh& m) {
+  const std::string why = balloon_config_error(b, s);
+  if (!why.empty()) throw InputError(source + ": " + why);
+  const double cells = b.cells(s) + static_cast<double>(m.num_volume_cells());
+  if (cells > max_cells)
+    throw InputError(source + ": the stent and the balloon would have " + format_number(cells) +
+                     " cells, more than 'Mesh->max cells' = " + format_number(max_cells) +
+                     "; use a larger 'Mesh->Balloon->element length' or fewer 'elements through thickness', or raise "
+                     "'Mesh->max cells' to mesh this fine on purpose");
+  const Tube t{b.cells_around(s), b.cells_along(s), b.elements_thickness, s.sector == "full",
+               static_cast<GId>(m.x.size() / 3)};
+  add_nodes(b, s, t, m);
+  CellBlock v;
+  v.name = "balloon";
+  v.physical_tag = next_tag(m);
+  v.type = CellType::Hex8;
+  v.nodes_per_cell = 8;
+  GId id = 0;
+  for (const CellBlock& c : m.volumes) id += static_cast<GId>(c.num_cells());
+  for (int j = 0; j < t.cz; ++j)
+    for (int i = 0; i < t.ct; ++i)
+      for (int k = 0; k < t.cr; ++k) {
+        GId h[8];
+        t.hex(i, j, k, h);
+        v.conn.insert(v.conn.end(), h, h + 8);
+        v.cell_id.push_back(id++);
+      }
+  m.volumes.push_back(std::move(v));
+  add_facets(s, t, m);
+}
+
+}  // namespace stentor
