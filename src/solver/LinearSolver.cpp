@@ -298,7 +298,11 @@ void LinearSolver::setup_once(const la::RCP<la::CrsMatrix>& A) {
 #ifdef STENTOR_HAVE_MUELU
     // Built once per matrix; later Newton iterations recompute it for the new values
     // through MueLu's reuse path (same graph), which skips parsing and setup of the factories.
-    if (!same || m.mg.is_null())
+    // Not on several ranks: there the coarse levels are repartitioned, and a recompute could
+    // move a level's rows while keeping its smoother, which then failed on one rank only
+    // (Ifpack2's "numRows == m_offsets.extent(0)", the other ranks waiting in a collective;
+    // the S6 stent's sector on 2 ranks at its first contact, perf/scaling/s6_weak.sh).
+    if (!same || m.mg.is_null() || m.comm->getSize() > 1)
       m.mg = make_muelu_preconditioner(A, m.dim, m.coords, m.cfg.muelu_xml);
     else
       recompute_muelu_preconditioner(A, m.mg);
