@@ -164,8 +164,8 @@ std::vector<ListSpec> build_schema() {
       "Mesh/Stent", "Mesh->Stent",
       "The parametric stent of `generator` = `stent` (docs/stent.md): `rings` rings of sinusoidal struts along z, "
       "hex8 cells. Lengths in the deck's length unit. Volume group `stent`; facet groups `inner`, `outer`, "
-      "`end_proximal`, `end_distal`, `symmetry_x`, `symmetry_y`, `symmetry_z` (reductions), `ring_<k>`, `links`; "
-      "point `anchor`.",
+      "`end_proximal`, `end_distal`, `symmetry_x`, `symmetry_y`, `symmetry_z` (reductions), `ring_<k>`, `links`, "
+      "`sides` (the struts' side faces), `inner_and_sides` (the surface a balloon wraps); point `anchor`.",
       {integer("rings", 1, "Number of rings, along z.").ge(1).le(1000),
        integer("crowns", 8, "Crowns per ring: periods of the strut's sinusoidal centreline around the circumference.")
            .ge(2)

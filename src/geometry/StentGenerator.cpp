@@ -294,6 +294,8 @@ void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh
   const double th = s.sector_angle(), ct = std::cos(th), st = std::sin(th);
   for (int k = 0; k < s.rings; ++k) order.push_back("ring_" + std::to_string(k));
   order.push_back("links");
+  order.push_back("sides");
+  order.push_back("inner_and_sides");
   std::map<std::string, std::vector<GId>> groups;
   for (const auto& [key, cf] : seen) {
     if (count[key] != 1) continue;
@@ -319,6 +321,18 @@ void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh
     if (f >= 2 && s.sector != "full" && on[1]) add("symmetry_y");
     if (f >= 2 && s.sector == "period" && on[3]) add("symmetry_sector");
     if (f >= 2 && s.half_length && on[2]) add("symmetry_z");
+    if ((f == 2 || f == 3) && !(on[0] || on[1] || on[2] || on[3])) {
+      add("sides");
+      // The balloon's surface: the side faces of the wall's inner half only, so that no node
+      // of `outer` (a crimper's slave) is also a master node of the balloon's pair.
+      bool inner_half = true;
+      for (int v = 0; v < 4; ++v) {
+        const GId n = raw.cells[c][kFace[f][v]];
+        inner_half = inner_half && std::hypot(raw.x[3 * n], raw.x[3 * n + 1]) <= s.mid_radius() + tol;
+      }
+      if (inner_half) add("inner_and_sides");
+    }
+    if (f == 0) add("inner_and_sides");
     if (f == 2 && part == 0) add("end_proximal");
     if (f == 3 && part == s.rings - 1 && !s.half_length) add("end_distal");
   }

@@ -26,7 +26,10 @@
 //   the last ring, not with `half length`), `symmetry_x` / `symmetry_y` (on x = 0 /
 //   y = 0, quarter only), `symmetry_z` (on z = total length / 2, half length only),
 //   `ring_<k>` (the outer facets of ring k) and `links` (the outer facets of the links,
-//   when there are links); point `anchor`: the inner node of ring 0's strut edge at
+//   when there are links), `sides` (the rings' side faces (their free edges too), through the
+//   thickness, off the cut planes) and `inner_and_sides` (`inner` and the side faces of
+//   the wall's inner half, r <= Rm: the surface a balloon wraps, to name as a contact
+//   master; no node of `outer` is on it); point `anchor`: the inner node of ring 0's strut edge at
 //   theta = 0, z = 0 side (one node: the place to hold the axial rigid motion).
 #pragma once
 #include <string>
