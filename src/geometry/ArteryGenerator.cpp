@@ -6,20 +6,11 @@
 #include <vector>
 
 #include "deck/Config.hpp"
+#include "geometry/TubeGrid.hpp"
 #include "stentor/format.hpp"
 
 namespace stentor {
 namespace {
-
-// The structured grid: nt nodes around (periodic for the full tube), nz along, nr through.
-struct Grid {
-  int cells_t, cells_z, cells_r, nt, nz, nr;
-  bool periodic;
-  GId node(int i, int j, int k) const {
-    if (periodic) i %= cells_t;
-    return (static_cast<GId>(j) * nt + i) * nr + k;
-  }
-};
 
 // (cos, sin) of theta = 2 pi i / N, exact on the axes.
 void unit_circle(int i, int N, double& c, double& s) {
@@ -48,19 +39,19 @@ std::vector<double> radii(const ArteryConfig& a, double h) {
   return r;
 }
 
-double z_of(const ArteryConfig& a, const Grid& g, int j) {
+double z_of(const ArteryConfig& a, const TubeGrid& g, int j) {
   return j == g.cells_z ? a.modelled_length() : a.modelled_length() * j / g.cells_z;
 }
 
-std::vector<double> nodes(const ArteryConfig& a, const Grid& g) {
-  std::vector<double> x(3 * static_cast<std::size_t>(g.nt) * g.nz * g.nr);
-  for (int j = 0; j < g.nz; ++j)
-    for (int i = 0; i < g.nt; ++i) {
+std::vector<double> nodes(const ArteryConfig& a, const TubeGrid& g) {
+  std::vector<double> x(3 * static_cast<std::size_t>(g.nt()) * (g.cells_z + 1) * (g.cells_r + 1));
+  for (int j = 0; j <= g.cells_z; ++j)
+    for (int i = 0; i < g.nt(); ++i) {
       double c, s;
       unit_circle(i, a.elements_around, c, s);
       const double z = z_of(a, g, j);
       const std::vector<double> r = radii(a, a.plaque_thickness(2.0 * kPi * i / a.elements_around, z));
-      for (int k = 0; k < g.nr; ++k) {
+      for (int k = 0; k <= g.cells_r; ++k) {
         const GId n = g.node(i, j, k);
         x[3 * n] = r[k] * c;
         x[3 * n + 1] = r[k] * s;
@@ -68,17 +59,6 @@ std::vector<double> nodes(const ArteryConfig& a, const Grid& g) {
       }
     }
   return x;
-}
-
-// Facet nodes of cell (i, j, k), face f of the hex's local faces (zeta-, zeta+, eta-, eta+, xi-, xi+),
-// ordered so that the normal points out of the cell.
-const int kFace[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 4, 7, 3}, {1, 2, 6, 5}};
-
-void hex(const Grid& g, int i, int j, int k, GId* h) {
-  const GId v[8] = {g.node(i, j, k),         g.node(i + 1, j, k),         g.node(i + 1, j + 1, k),
-                    g.node(i, j + 1, k),     g.node(i, j, k + 1),         g.node(i + 1, j, k + 1),
-                    g.node(i + 1, j + 1, k + 1), g.node(i, j + 1, k + 1)};
-  for (int n = 0; n < 8; ++n) h[n] = v[n];
 }
 
 CellBlock hex_block(const std::string& name, int tag) {
@@ -106,13 +86,9 @@ CellBlock quads(const std::string& name, std::vector<GId> conn) {
   return b;
 }
 
-void boundaries(const ArteryConfig& a, const Grid& g, Mesh& m) {
+void boundaries(const ArteryConfig& a, const TubeGrid& g, Mesh& m) {
   std::map<std::string, std::vector<GId>> f;
-  auto add = [&](const char* name, int i, int j, int k, int face) {
-    GId h[8];
-    hex(g, i, j, k, h);
-    for (int v = 0; v < 4; ++v) f[name].push_back(h[kFace[face][v]]);
-  };
+  auto add = [&](const char* name, int i, int j, int k, int face) { g.face(i, j, k, face, f[name]); };
   for (int j = 0; j < g.cells_z; ++j)
     for (int i = 0; i < g.cells_t; ++i) {
       add("lumen", i, j, 0, 0);
@@ -153,7 +129,7 @@ Mesh generate_artery(const ArteryConfig& a, double max_cells, const std::string&
                      "through the layers, or raise 'Mesh->max cells' to mesh this fine on purpose");
   const bool periodic = a.sector == "full";
   const int ct = a.cells_around(), cz = a.cells_along(), cr = a.cells_through();
-  const Grid g{ct, cz, cr, periodic ? ct : ct + 1, cz + 1, cr + 1, periodic};
+  const TubeGrid g{ct, cz, cr, periodic};
   Mesh m;
   m.dim = 3;
   m.source = source;
@@ -168,7 +144,7 @@ Mesh generate_artery(const ArteryConfig& a, double max_cells, const std::string&
       for (int i = 0; i < ct; ++i)
         for (int k = k0; k < k0 + n; ++k) {
           GId h[8];
-          hex(g, i, j, k, h);
+          g.hex(i, j, k, h);
           // Cells of the innermost layer inside the healthy lumen (centroid r < Ri) are plaque.
           CellBlock& into = l == 0 && a.has_plaque() && centroid_radius(m.x, h) < a.inner_radius() ? plaque : b;
           into.conn.insert(into.conn.end(), h, h + 8);

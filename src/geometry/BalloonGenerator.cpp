@@ -7,30 +7,11 @@
 #include <vector>
 
 #include "deck/Config.hpp"
+#include "geometry/TubeGrid.hpp"
 #include "stentor/format.hpp"
 
 namespace stentor {
 namespace {
-
-struct Tube {
-  int ct, cz, cr;  // cells around, along, through
-  bool periodic;
-  GId base;        // the first node's global id
-  int nt() const { return periodic ? ct : ct + 1; }
-  GId node(int i, int j, int k) const {
-    if (periodic) i %= ct;
-    return base + (static_cast<GId>(j) * nt() + i) * (cr + 1) + k;
-  }
-  void hex(int i, int j, int k, GId* h) const {
-    const GId v[8] = {node(i, j, k),         node(i + 1, j, k),         node(i + 1, j + 1, k),
-                      node(i, j + 1, k),     node(i, j, k + 1),         node(i + 1, j, k + 1),
-                      node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)};
-    std::copy(v, v + 8, h);
-  }
-};
-
-// The hex's faces (zeta-, zeta+, eta-, eta+, xi-, xi+), each with its normal out of the cell.
-const int kFace[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 4, 7, 3}, {1, 2, 6, 5}};
 
 // (cos, sin) of theta, exact on the planes y = 0 and x = 0.
 void direction(double theta, double& c, double& s) {
@@ -39,16 +20,16 @@ void direction(double theta, double& c, double& s) {
   c = std::cos(theta), s = std::sin(theta);
 }
 
-void add_nodes(const BalloonConfig& b, const StentConfig& s, const Tube& t, Mesh& m) {
+void add_nodes(const BalloonConfig& b, const StentConfig& s, const TubeGrid& t, Mesh& m) {
   const double th = s.sector_angle(), z0 = b.z_begin(s), z1 = b.z_end(s);
   const double ri = b.inner_radius(), ro = b.outer_radius();
-  for (int j = 0; j <= t.cz; ++j)
+  for (int j = 0; j <= t.cells_z; ++j)
     for (int i = 0; i < t.nt(); ++i) {
       double c, sn;
-      direction(i == t.ct ? th : th * i / t.ct, c, sn);
-      const double z = j == t.cz ? z1 : z0 + (z1 - z0) * j / t.cz;
-      for (int k = 0; k <= t.cr; ++k) {
-        const double r = k == t.cr ? ro : ri + (ro - ri) * k / t.cr;
+      direction(i == t.cells_t ? th : th * i / t.cells_t, c, sn);
+      const double z = j == t.cells_z ? z1 : z0 + (z1 - z0) * j / t.cells_z;
+      for (int k = 0; k <= t.cells_r; ++k) {
+        const double r = k == t.cells_r ? ro : ri + (ro - ri) * k / t.cells_r;
         m.x.insert(m.x.end(), {r * c, r * sn, z});
       }
     }
@@ -69,26 +50,22 @@ int next_tag(const Mesh& m) {
   return tag + 1;
 }
 
-void add_facets(const StentConfig& s, const Tube& t, Mesh& m) {
+void add_facets(const StentConfig& s, const TubeGrid& t, Mesh& m) {
   std::map<std::string, std::vector<GId>> f;
   std::vector<std::string> order = {"balloon_inner", "balloon_outer", "balloon_ends"};
-  auto add = [&](const std::string& name, int i, int j, int k, int face) {
-    GId h[8];
-    t.hex(i, j, k, h);
-    for (int v = 0; v < 4; ++v) f[name].push_back(h[kFace[face][v]]);
-  };
-  for (int j = 0; j < t.cz; ++j)
-    for (int i = 0; i < t.ct; ++i) add("balloon_inner", i, j, 0, 0), add("balloon_outer", i, j, t.cr - 1, 1);
-  for (int i = 0; i < t.ct; ++i)
-    for (int k = 0; k < t.cr; ++k) {
+  auto add = [&](const std::string& name, int i, int j, int k, int face) { t.face(i, j, k, face, f[name]); };
+  for (int j = 0; j < t.cells_z; ++j)
+    for (int i = 0; i < t.cells_t; ++i) add("balloon_inner", i, j, 0, 0), add("balloon_outer", i, j, t.cells_r - 1, 1);
+  for (int i = 0; i < t.cells_t; ++i)
+    for (int k = 0; k < t.cells_r; ++k) {
       add("balloon_ends", i, 0, k, 2);
-      add(s.half_length ? "symmetry_z" : "balloon_ends", i, t.cz - 1, k, 3);
+      add(s.half_length ? "symmetry_z" : "balloon_ends", i, t.cells_z - 1, k, 3);
     }
   if (!t.periodic)
-    for (int j = 0; j < t.cz; ++j)
-      for (int k = 0; k < t.cr; ++k) {
+    for (int j = 0; j < t.cells_z; ++j)
+      for (int k = 0; k < t.cells_r; ++k) {
         add("symmetry_y", 0, j, k, 4);
-        add(s.sector == "quarter" ? "symmetry_x" : "symmetry_sector", t.ct - 1, j, k, 5);
+        add(s.sector == "quarter" ? "symmetry_x" : "symmetry_sector", t.cells_t - 1, j, k, 5);
       }
   GId id = next_facet_id(m);
   int tag = next_tag(m);
@@ -120,8 +97,8 @@ void add_balloon(const BalloonConfig& b, const StentConfig& s, double max_cells,
                      " cells, more than 'Mesh->max cells' = " + format_number(max_cells) +
                      "; use a larger 'Mesh->Balloon->element length' or fewer 'elements through thickness', or raise "
                      "'Mesh->max cells' to mesh this fine on purpose");
-  const Tube t{b.cells_around(s), b.cells_along(s), b.elements_thickness, s.sector == "full",
-               static_cast<GId>(m.x.size() / 3)};
+  const TubeGrid t{b.cells_around(s), b.cells_along(s), b.elements_thickness, s.sector == "full",
+                   static_cast<GId>(m.x.size() / 3)};
   add_nodes(b, s, t, m);
   CellBlock v;
   v.name = "balloon";
@@ -130,9 +107,9 @@ void add_balloon(const BalloonConfig& b, const StentConfig& s, double max_cells,
   v.nodes_per_cell = 8;
   GId id = 0;
   for (const CellBlock& c : m.volumes) id += static_cast<GId>(c.num_cells());
-  for (int j = 0; j < t.cz; ++j)
-    for (int i = 0; i < t.ct; ++i)
-      for (int k = 0; k < t.cr; ++k) {
+  for (int j = 0; j < t.cells_z; ++j)
+    for (int i = 0; i < t.cells_t; ++i)
+      for (int k = 0; k < t.cells_r; ++k) {
         GId h[8];
         t.hex(i, j, k, h);
         v.conn.insert(v.conn.end(), h, h + 8);

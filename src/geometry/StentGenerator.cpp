@@ -9,6 +9,7 @@
 
 #include "deck/Config.hpp"
 #include "mesh/MeshCheck.hpp"
+#include "geometry/TubeGrid.hpp"
 #include "stentor/format.hpp"
 
 namespace stentor {
@@ -273,17 +274,13 @@ Kept reduce(const StentConfig& s, const Raw& raw) {
   return k;
 }
 
-// The hex's six faces, each ordered so that its normal points out of the cell:
-// zeta-, zeta+, eta-, eta+, xi-, xi+.
-const int kFace[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 7, 6, 2}, {0, 4, 7, 3}, {1, 2, 6, 5}};
-
 void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh& m) {
   std::map<std::array<GId, 4>, std::pair<std::size_t, int>> seen;  // sorted nodes -> (cell, face)
   std::map<std::array<GId, 4>, int> count;
   for (std::size_t c : kept.cells)
     for (int f = 0; f < 6; ++f) {
       std::array<GId, 4> key;
-      for (int v = 0; v < 4; ++v) key[v] = kept.new_id[raw.cells[c][kFace[f][v]]];
+      for (int v = 0; v < 4; ++v) key[v] = kept.new_id[raw.cells[c][kHexFace[f][v]]];
       std::sort(key.begin(), key.end());
       seen.emplace(key, std::make_pair(c, f));
       ++count[key];
@@ -303,7 +300,7 @@ void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh
     std::vector<GId> q;
     bool on[4] = {true, true, true, true};  // x = 0, y = 0, z = middle, theta = Theta
     for (int v = 0; v < 4; ++v) {
-      const GId n = raw.cells[c][kFace[f][v]];
+      const GId n = raw.cells[c][kHexFace[f][v]];
       q.push_back(kept.new_id[n]);
       on[0] = on[0] && std::abs(raw.x[3 * n]) <= tol;
       on[1] = on[1] && std::abs(raw.x[3 * n + 1]) <= tol;
@@ -327,7 +324,7 @@ void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh
       // of `outer` (a crimper's slave) is also a master node of the balloon's pair.
       bool inner_half = true;
       for (int v = 0; v < 4; ++v) {
-        const GId n = raw.cells[c][kFace[f][v]];
+        const GId n = raw.cells[c][kHexFace[f][v]];
         inner_half = inner_half && std::hypot(raw.x[3 * n], raw.x[3 * n + 1]) <= s.mid_radius() + tol;
       }
       if (inner_half) add("inner_and_sides");
