@@ -14,6 +14,7 @@
 #include "geometry/StentGenerator.hpp"
 #include "mesh/MeshCheck.hpp"
 #include "MeshMeasures.hpp"
+#include "StentFixtures.hpp"
 
 using namespace stentor;
 using test::block;
@@ -24,14 +25,8 @@ const double kPi = 3.14159265358979323846;
 
 // Two rings of the S6 stent (OD 3 mm, struts 0.1 x 0.1, links at every crown).
 StentConfig stent() {
-  StentConfig s;
+  StentConfig s = test::s6_ring_as_cut();
   s.rings = 2;
-  s.crowns = 8;
-  s.outer_diameter = 3.0;
-  s.thickness = 0.1;
-  s.strut_width = 0.1;
-  s.ring_length = 1.0;
-  s.gap = 0.3;
   s.links_per_ring = 8;
   return s;
 }

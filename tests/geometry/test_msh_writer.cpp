@@ -11,18 +11,14 @@
 #include "geometry/MshWriter.hpp"
 #include "geometry/StentGenerator.hpp"
 #include "mesh/GmshReader.hpp"
+#include "StentFixtures.hpp"
 
 using namespace stentor;
 
 TEST(MshWriter, GmshReadsTheStentBackUnchanged) {
-  StentConfig s;
+  StentConfig s = test::s6_ring_as_cut();
   s.rings = 2;
-  s.crowns = 8;
-  s.outer_diameter = 3.0;
-  s.thickness = 0.1;
-  s.strut_width = 0.1;
   s.ring_length = 0.9;
-  s.gap = 0.3;
   s.links_per_ring = 4;
   s.sector = "quarter";
   const Mesh m = generate_stent(s, 1e6, "test");

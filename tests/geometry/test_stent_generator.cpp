@@ -15,6 +15,7 @@
 #include "geometry/StentGenerator.hpp"
 #include "mesh/MeshCheck.hpp"
 #include "MeshMeasures.hpp"
+#include "StentFixtures.hpp"
 
 using namespace stentor;
 
@@ -23,17 +24,7 @@ namespace {
 const double kPi = 3.14159265358979323846;
 
 // A balloon-expandable stent as cut, in mm: OD 3, strut 0.1 x 0.1, 8 crowns.
-StentConfig base() {
-  StentConfig s;
-  s.rings = 1;
-  s.crowns = 8;
-  s.outer_diameter = 3.0;
-  s.thickness = 0.1;
-  s.strut_width = 0.1;
-  s.ring_length = 1.0;
-  s.gap = 0.3;
-  return s;
-}
+StentConfig base() { return test::s6_ring_as_cut(); }
 
 using test::duplicate_nodes;
 using test::hex_volume;
