@@ -44,6 +44,10 @@ void prepend_initial_row(PlotTable& h, const Model& m, const InitialState& init)
                        (n.rfind("contact_", 0) == 0 && (n.find("_force_") != std::string::npos || n.find("_normal_force") != std::string::npos));
     if (force && init.known && init.at_rest_unloaded) row[c] = 0.0;
   }
+  for (const LoadConfig& l : m.cfg.loads) {  // a pressure's value at t = 0 is the deck's
+    const int c = h.find("pressure_" + l.name);
+    if (l.type == LoadConfig::Type::Pressure && c >= 0) row[static_cast<std::size_t>(c)] = l.value * l.ramp(0.0, m.cfg.stepping.end_time);
+  }
   for (std::size_t p = 0; init.known && p < m.cfg.output.probes.size() && 3 * p + 2 < init.probes.size(); ++p)
     for (int k = 0; k < m.dim; ++k) {
       const int c = h.find("u_" + m.cfg.output.probes[p].name + "_" + kAxes[k]);
@@ -236,18 +240,19 @@ void diameter_plot(const Model& m, const std::string& stem, const UnitLabels& u,
 }
 
 // A generated stent expanded by a pressure load (a deformable balloon's inflation): its
-// outer diameters against the pressure, loading and unloading (the compliance chart).
-void pressure_diameter_plots(const Model& m, const std::string& stem, const UnitLabels& u, const std::vector<std::string>& cols,
-                             std::vector<std::string>& made) {
-  PlotTable h;
-  if (cols.empty() || !read_csv_table(stem + "_history.csv", h) || h.find("step") < 0) return;
+// outer diameters against the pressure (history column pressure_<load>, matched by step;
+// `h` with its t = 0 row), loading and unloading (the compliance chart).
+void pressure_diameter_plots(const Model& m, const PlotTable& h, const std::string& stem, const UnitLabels& u,
+                             const std::vector<std::string>& cols, std::vector<std::string>& made) {
+  PlotTable metrics;
+  if (cols.empty() || h.find("step") < 0 || !read_csv_table(stem + "_metrics.csv", metrics) || metrics.find("step") < 0) return;
+  const auto& hs = h.columns[static_cast<std::size_t>(h.find("step"))];
   for (const LoadConfig& l : m.cfg.loads) {
     const int pc = h.find("pressure_" + l.name);
-    PlotTable t;
-    if (l.type != LoadConfig::Type::Pressure || pc < 0 || !read_csv_table(stem + "_metrics.csv", t) || t.find("step") < 0) continue;
-    std::map<long, double> at_step{{0L, l.value * l.ramp(0.0, m.cfg.stepping.end_time)}};
-    const auto& hs = h.columns[static_cast<std::size_t>(h.find("step"))];
+    if (l.type != LoadConfig::Type::Pressure || pc < 0) continue;
+    std::map<long, double> at_step;
     for (std::size_t r = 0; r < hs.size(); ++r) at_step[std::lround(hs[r])] = h.columns[static_cast<std::size_t>(pc)][r];
+    PlotTable t = metrics;
     std::vector<double> p;
     for (double s : t.columns[static_cast<std::size_t>(t.find("step"))]) {
       const auto it = at_step.find(std::lround(s));
@@ -303,7 +308,7 @@ std::vector<std::string> write_result_plots(const Model& m, const std::string& s
   if (m.any_dynamic) energy_plots(m, stem, u, made);
   metrics_plots(m, stem, u, radius_columns, stress_columns, made);
   diameter_plot(m, stem, u, diameter_columns, made);
-  pressure_diameter_plots(m, stem, u, diameter_columns, made);
+  pressure_diameter_plots(m, h, stem, u, diameter_columns, made);
   return made;
 }
 

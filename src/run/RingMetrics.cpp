@@ -14,6 +14,9 @@ namespace stentor {
 
 namespace {
 
+// The generator's metal: its volume group `stent` (a deck's `Mesh->Balloon` adds another).
+bool metal(const CellBlock& b) { return b.name == "stent"; }
+
 // The model's rings: a half length keeps the first half of them.
 int model_rings(const StentConfig& s) { return s.half_length ? s.rings / 2 : s.rings; }
 bool has_links(const StentConfig& s) { return s.rings > 1 && s.links_per_ring > 0; }
@@ -93,7 +96,7 @@ RingMetrics::RingMetrics(const Model& model) : m_(model) {
     }
   if (m_.assembler && m_.assembler->has_history()) eps_name_ = "equivalent_plastic_strain";
   for (std::size_t b = 0; b < mesh.volumes.size(); ++b)
-    if (mesh.volumes[b].name == "stent" && m_.block_mat.size() > b && m_.block_mat[b] >= 0)
+    if (metal(mesh.volumes[b]) && m_.block_mat.size() > b && m_.block_mat[b] >= 0)
       density_ = std::max(density_, m_.cfg.materials[static_cast<std::size_t>(m_.block_mat[b])].density);
 }
 
@@ -198,9 +201,8 @@ void RingMetrics::plastic(const la::Vector& u, std::vector<double>& out) {
   for (const LocalBlock& lb : m_.dist->blocks()) {
     const CellBlock& mb = mesh.volumes[static_cast<std::size_t>(lb.volume_block)];
     const auto npc = static_cast<std::size_t>(mb.nodes_per_cell);
-    const bool metal = mb.name == "stent";  // not the balloon's cells
     for (std::size_t i = 0; i < lb.cell_ids.size(); ++i, ++c) {
-      if (!metal) continue;
+      if (!metal(mb)) continue;
       const double v = e == cf.extra_names.end() ? 0.0 : cf.extra[nx * c + ie];
       const int r = cell_ring_[c];
       double& slot = loc[r >= 0 ? static_cast<std::size_t>(r) : loc.size() - 1];
@@ -305,9 +307,9 @@ std::vector<double> RingMetrics::evaluate(const la::Vector& u, double t) {
     double vl = 0.0;
     std::size_t c = 0;
     for (const LocalBlock& lb : m_.dist->blocks()) {
-      const bool metal = m_.mesh.volumes[static_cast<std::size_t>(lb.volume_block)].name == "stent";  // not the balloon
+      const bool in_metal = metal(m_.mesh.volumes[static_cast<std::size_t>(lb.volume_block)]);
       for (std::size_t i = 0; i < lb.cell_ids.size(); ++i, ++c)
-        if (metal) vl += cf.volume[c];
+        if (in_metal) vl += cf.volume[c];
     }
     Teuchos::reduceAll(*m_.comm, Teuchos::REDUCE_SUM, 1, &vl, &volume_);
     volume_ *= sym_area_;
