@@ -52,7 +52,6 @@ int next_tag(const Mesh& m) {
 
 void add_facets(const StentConfig& s, const TubeGrid& t, Mesh& m) {
   std::map<std::string, std::vector<GId>> f;
-  std::vector<std::string> order = {"balloon_inner", "balloon_outer", "balloon_ends"};
   auto add = [&](const std::string& name, int i, int j, int k, int face) { t.face(i, j, k, face, f[name]); };
   for (int j = 0; j < t.cells_z; ++j)
     for (int i = 0; i < t.cells_t; ++i) add("balloon_inner", i, j, 0, 0), add("balloon_outer", i, j, t.cells_r - 1, 1);
