@@ -87,7 +87,7 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
   mixed_analysis_ = cfg.any_dynamic() && cfg.any_static();
   dynamic_ = cfg.dynamic_in(0);
 
-  // Master surfaces first: their nodes may not be slaves of any pair.
+  // Master surfaces first: their nodes may not be slaves of a pair active with them.
   // Node sets below are sorted lists of the surfaces' nodes, not flags per mesh node: a
   // rank holds only its part of the mesh (mesh/Mesh.hpp).
   std::vector<GId> master_set;
@@ -129,8 +129,19 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
   }
 }
 
+namespace {
+// Whether some stage activates pairs a and b together (without stages, every pair is active
+// throughout).
+bool pairs_meet(const Config& cfg, std::size_t a, std::size_t b) {
+  if (cfg.stages.empty()) return true;
+  for (const StageConfig& st : cfg.stages)
+    if (st.contact_active[a] && st.contact_active[b]) return true;
+  return false;
+}
+}  // namespace
+
 // Pair ip's slave nodes owned here (checks: the mesh dimension of an obstacle, a node in
-// one pair only and not on a master surface, at least one usable node over all ranks).
+// one pair only and not on the master surface of a pair active with it, at least one usable node over all ranks).
 void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, const Assembler& assembler, const std::vector<GId>& master_set,
                            std::map<GId, int>& slave_of) {
   const Distribution& dist = dist_;
@@ -156,12 +167,20 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
   long excluded = 0, partial = 0, planar = 0;
   for (GId g : nodes) {
     if (std::binary_search(master_set.begin(), master_set.end(), g)) {
-      std::string of;  // the pairs whose master surface holds the node
-      for (const Pair& q : pairs_)
-        if (q.master && std::binary_search(q.master->nodes().begin(), q.master->nodes().end(), g))
+      // A node may be a slave of one pair and a master node of another only when no stage
+      // activates both (a stent's outer edge: the crimper's slave while crimping, the
+      // balloon's master while expanding): an active slave's residual row is its condition,
+      // which holds no other pair's reaction.
+      std::string of;  // the pairs active with this one whose master surface holds the node
+      for (std::size_t iq = 0; iq < pairs_.size(); ++iq) {
+        const Pair& q = pairs_[iq];
+        if (q.master && pairs_meet(cfg, ip, iq) && std::binary_search(q.master->nodes().begin(), q.master->nodes().end(), g))
           of += std::string(of.empty() ? "" : ", ") + "'Contact->" + q.cfg.name + "->master' = '" + q.cfg.master + "'";
-      throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' also lies on the master surface of " + of +
-                       "; a node may be a slave or a master node, not both (two-pass and self-contact are not implemented)");
+      }
+      if (!of.empty())
+        throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' also lies on the master surface of " + of +
+                         ", active in the same stage; a node may be a slave and a master node only of pairs that no stage "
+                         "activates together (two-pass and self-contact are not implemented)");
     }
     const auto [at, fresh] = slave_of.emplace(g, static_cast<int>(ip));
     if (!fresh)

@@ -299,7 +299,6 @@ void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh
     const auto [c, f] = cf;
     std::vector<GId> q;
     bool on[4] = {true, true, true, true};  // x = 0, y = 0, z = middle, theta = Theta
-    bool inner_half = true;                 // every node at r <= Rm
     for (int v = 0; v < 4; ++v) {
       const GId n = raw.cells[c][kHexFace[f][v]];
       q.push_back(kept.new_id[n]);
@@ -307,7 +306,6 @@ void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh
       on[1] = on[1] && std::abs(raw.x[3 * n + 1]) <= tol;
       on[2] = on[2] && std::abs(raw.x[3 * n + 2] - zmid) <= tol;
       on[3] = on[3] && std::abs(st * raw.x[3 * n] - ct * raw.x[3 * n + 1]) <= tol && ct * raw.x[3 * n] + st * raw.x[3 * n + 1] > 0.0;
-      inner_half = inner_half && std::hypot(raw.x[3 * n], raw.x[3 * n + 1]) <= s.mid_radius() + tol;
     }
     const int part = raw.part[c];
     auto add = [&](const std::string& g) { groups[g].insert(groups[g].end(), q.begin(), q.end()); };
@@ -322,9 +320,7 @@ void classify_faces(const StentConfig& s, const Raw& raw, const Kept& kept, Mesh
     if (f >= 2 && s.half_length && on[2]) add("symmetry_z");
     if ((f == 2 || f == 3) && !(on[0] || on[1] || on[2] || on[3])) {
       add("sides");
-      // The balloon's surface: the side faces of the wall's inner half only, so that no node
-      // of `outer` (a crimper's slave) is also a master node of the balloon's pair.
-      if (inner_half) add("inner_and_sides");
+      add("inner_and_sides");
     }
     if (f == 0) add("inner_and_sides");
     if (f == 2 && part == 0) add("end_proximal");

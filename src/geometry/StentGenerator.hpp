@@ -27,9 +27,9 @@
 //   y = 0, quarter only), `symmetry_z` (on z = total length / 2, half length only),
 //   `ring_<k>` (the outer facets of ring k) and `links` (the outer facets of the links,
 //   when there are links), `sides` (the rings' side faces (their free edges too), through the
-//   thickness, off the cut planes) and `inner_and_sides` (`inner` and the side faces of
-//   the wall's inner half, r <= Rm: the surface a balloon wraps, to name as a contact
-//   master; no node of `outer` is on it); point `anchor`: the inner node of ring 0's strut edge at
+//   thickness, off the cut planes) and `inner_and_sides` (`inner` and `sides`: the surface a
+//   balloon wraps, to name as a contact master; its outer edges are nodes of `outer`, so a
+//   crimper on `outer` and the balloon may not be active in the same stage); point `anchor`: the inner node of ring 0's strut edge at
 //   theta = 0, z = 0 side (one node: the place to hold the axial rigid motion).
 #pragma once
 #include <string>
