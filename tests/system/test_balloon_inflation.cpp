@@ -307,7 +307,8 @@ TEST(BalloonInflation, AxiallyHeldBalloonMatchesTheRadialSolution) {
 // it shows (the axial spacing of its node planes) and, for the size of this end effect,
 // the same solution at lambda_z = 1. Pressures to 0.08 MPa: the held tube has a limit
 // point near 0.09-0.1 MPa (the middle lengthens and opens at a pressure that no longer
-// rises: a 6.6 mm balloon stalled at 0.098 MPa, the 13.2 mm one with h = 0.1 at 0.089).
+// rises: a 6.6 mm balloon stalled at 0.098 MPa with h = 0.1, 0.109 with h = 0.2; a 13.4 mm
+// one with h = 0.1 was cutting back at 0.089).
 TEST(BalloonInflation, HeldEndsStretchTheMiddleOfALongBalloonAxially) {
   const Config cfg = deck(Balloon{}, kPressure, "read_held");
   const MaterialConfig& m = cfg.material("balloon wall");
