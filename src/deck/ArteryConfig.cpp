@@ -79,4 +79,44 @@ std::string artery_config_error(const ArteryConfig& a) {
   return plaque_error(a);
 }
 
+int cells_around_stent(const ArteryConfig& a, const StentConfig& s) {
+  return static_cast<int>(static_cast<long long>(a.elements_around) * s.sector_half_pitches() / (2LL * s.crowns));
+}
+
+double z_begin_around_stent(const ArteryConfig& a, const StentConfig& s) { return 0.5 * (s.total_length() - a.length); }
+
+ArteryConfig with_stent_reductions(const ArteryConfig& a, const StentConfig& s) {
+  ArteryConfig b = a;
+  b.sector = "full";  // the cells around come from cells_around_stent()
+  b.half_length = s.half_length;
+  return b;
+}
+
+std::string artery_around_stent_error(const ArteryConfig& a, const StentConfig& s) {
+  if (s.half_length && a.elements_along % 2)
+    return par("elements along") + " = " + std::to_string(a.elements_along) +
+           " must be even ('Mesh->Stent->half length' = true: the stent's middle plane is a node plane of the artery)";
+  const std::string why = artery_config_error(with_stent_reductions(a, s));
+  if (!why.empty()) return why;
+  if (s.sector_half_pitches() == 0) return stent_config_error(s);  // no sector repeats the stent
+  const int copies = 2 * s.crowns / s.sector_half_pitches();  // the kept sector's copies around
+  if (a.elements_around % copies)
+    return par("elements around") + " = " + std::to_string(a.elements_around) + " must be divisible by " +
+           std::to_string(copies) + " ('Mesh->Stent->sector' = " + s.sector + " keeps 1/" + std::to_string(copies) +
+           " of the circumference: its cut planes are node planes of the artery)";
+  if (!(a.length > s.total_length()))
+    return par("length") + " = " + format_number(a.length) + " must exceed the stent's length " +
+           format_number(s.total_length()) + ": the artery holds the whole stent, centred on it";
+  const double chord = std::cos(kPi / a.elements_around), lumen = (a.inner_radius() - a.plaque_peak()) * chord;
+  if (!(lumen > s.outer_radius()))
+    return par("inner diameter") + " = " + format_number(a.inner_diameter) +
+           (a.has_plaque() ? " less the plaque's 2 h_max = " + format_number(2.0 * a.plaque_peak()) : std::string()) +
+           " puts the lumen's facets at the radius " + format_number(lumen) + " (the nodes' times cos(pi / " +
+           std::to_string(a.elements_around) + "), the chords of 'elements around'), not outside the stent's outer radius " +
+           format_number(s.outer_radius()) + " ('Mesh->Stent->outer diameter' / 2): the stent must lie inside the lumen";
+  if (a.plaque_shape == "eccentric" && a.has_plaque() && s.sector != "full")
+    return par("plaque shape") + " = eccentric is symmetric about y = 0 only: use 'Mesh->Stent->sector' = full";
+  return "";
+}
+
 }  // namespace stentor

@@ -1,12 +1,19 @@
 // The parametric artery of `Mesh->Artery` (docs/artery.md): a straight circular tube of
 // three concentric layers (intima, media, adventitia) along z, its axis the z axis,
 // z from 0 to `length`. Plain data, Teuchos-free; src/geometry/ArteryGenerator.hpp meshes it.
+//
+// In a stent deck (`Mesh->generator` = stent, `around_stent`) the same tube is put around
+// the generated stent: centred on it (its z from the stent's middle - length / 2), with the
+// stent's sector and half length instead of its own `sector` and `half length`.
 #pragma once
 #include <string>
+
+#include "deck/StentConfig.hpp"
 
 namespace stentor {
 
 struct ArteryConfig {
+  bool around_stent = false;          // `Mesh->Artery` in a stent deck (the artery around the stent)
   double inner_diameter = 0.0;        // "inner diameter": the lumen's diameter
   double length = 0.0;                // "length" (axial)
   double thickness[3] = {0, 0, 0};    // "intima thickness", "media thickness", "adventitia thickness"
@@ -48,10 +55,25 @@ struct ArteryConfig {
   double cells() const { return static_cast<double>(cells_around()) * cells_through() * cells_along(); }
 };
 
+// The artery around the stent s (around_stent): cells around the stent's kept sector
+// (`elements around` over the whole circumference), the z of its proximal end (the stent's
+// middle - length / 2), and the configuration with the stent's `half length` (what the
+// generator meshes: cells_along(), modelled_length(), the plaque's checks).
+int cells_around_stent(const ArteryConfig& a, const StentConfig& s);
+double z_begin_around_stent(const ArteryConfig& a, const StentConfig& s);
+ArteryConfig with_stent_reductions(const ArteryConfig& a, const StentConfig& s);
+
 extern const char* const kArteryLayer[3];  // "intima", "media", "adventitia"
 
 // "" when the artery can be built, else the message (naming the parameter, as
 // 'Mesh->Artery-><name>', what was given and what is needed).
 std::string artery_config_error(const ArteryConfig& a);
+
+// The same for the artery around the stent s: artery_config_error() of
+// with_stent_reductions(a, s), and the fit to the stent: `elements around` cutting on the
+// stent's sector planes, `length` beyond the stent's, the lumen's facets (chords at
+// (Ri - h_max) cos(pi / N), N = `elements around`) clear of the stent's outer radius, an
+// eccentric plaque only around a full stent.
+std::string artery_around_stent_error(const ArteryConfig& a, const StentConfig& s);
 
 }  // namespace stentor

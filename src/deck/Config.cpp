@@ -301,7 +301,7 @@ class DeckReader {
   void read_problem(const ParameterList& pl);
   void read_mesh(const ParameterList& pl);
   void read_stent(const ParameterList& pl);
-  void read_artery(const ParameterList& pl);
+  void read_artery(const ParameterList& pl, bool around_stent);
   void read_balloon(const ParameterList& pl);
   void check_stent_plastic() const;
   void read_materials(const ParameterList& pl);
@@ -795,7 +795,8 @@ void DeckReader::read_mesh(const ParameterList& pl) {
   if (m.generator.empty() && pl.isParameter("write mesh"))
     fail("'Mesh->write mesh' applies to 'Mesh->generator', not to a mesh file");
   if (pl.isSublist("Stent") && m.generator != "stent") fail("'Mesh->Stent' needs 'Mesh->generator' = stent");
-  if (pl.isSublist("Artery") && m.generator != "artery") fail("'Mesh->Artery' needs 'Mesh->generator' = artery");
+  if (pl.isSublist("Artery") && m.generator != "artery" && m.generator != "stent")
+    fail("'Mesh->Artery' needs 'Mesh->generator' = artery (or stent: the artery around the stent)");
   if (pl.isSublist("Balloon") && m.generator != "stent")
     fail("'Mesh->Balloon' needs 'Mesh->generator' = stent (the balloon is mounted in the generated stent)");
   if (pl.isSublist("Parameters") && !m.generator.empty())
@@ -809,8 +810,9 @@ void DeckReader::read_mesh(const ParameterList& pl) {
     if (m.generator == "stent") {
       read_stent(pl.sublist("Stent"));
       if (pl.isSublist("Balloon")) read_balloon(pl.sublist("Balloon"));
+      if (pl.isSublist("Artery")) read_artery(pl.sublist("Artery"), true);
     } else
-      read_artery(pl.sublist("Artery"));
+      read_artery(pl.sublist("Artery"), false);
     m.write_mesh = get_bool(pl, ls, "write mesh");
     m.dimension = 3;
     m.file = cfg_.deck_path;  // messages about the mesh name the deck
@@ -880,11 +882,19 @@ void DeckReader::read_balloon(const ParameterList& pl) {
   if (!why.empty()) fail(why);
 }
 
-void DeckReader::read_artery(const ParameterList& pl) {
+// around_stent: `Mesh->Artery` in a stent deck, the artery around the stent, which takes
+// the stent's sector and half length (its own are refused).
+void DeckReader::read_artery(const ParameterList& pl, bool around_stent) {
   const ListSpec& ls = deck_list_spec("Mesh/Artery");
   check_list(pl, "Mesh->Artery", {&ls});
   require(pl, "Mesh->Artery", {&ls});
   ArteryConfig& a = cfg_.mesh.artery;
+  a.around_stent = around_stent;
+  if (around_stent)
+    for (const char* p : {"sector", "half length"})
+      if (pl.isParameter(p))
+        fail(quoted(std::string("Mesh->Artery->") + p) + " does not apply with 'Mesh->generator' = stent: the artery around "
+             "the stent takes the stent's " + quoted(std::string("Mesh->Stent->") + p) + "; remove it");
   a.inner_diameter = get_double(pl, ls, "inner diameter");
   a.length = get_double(pl, ls, "length");
   for (int l = 0; l < 3; ++l) {
@@ -900,7 +910,7 @@ void DeckReader::read_artery(const ParameterList& pl) {
   a.plaque_centre = get_double(pl, ls, "plaque centre");
   a.plaque_shape = lower(get_string(pl, ls, "plaque shape"));
   a.elements_plaque = get_int(pl, ls, "elements through plaque");
-  const std::string why = artery_config_error(a);
+  const std::string why = around_stent ? artery_around_stent_error(a, cfg_.mesh.stent) : artery_config_error(a);
   if (!why.empty()) fail(why);
 }
 

@@ -123,8 +123,8 @@ std::vector<ListSpec> build_schema() {
            .allowed("existing `.msh` or `.geo` file"),
        str("generator", "none",
            "A mesh generated at run time instead of read from `file`: `stent`, the parametric stent of the `Stent` "
-           "sublist (docs/stent.md); `artery`, the layered artery of the `Artery` sublist (docs/artery.md); `none`: "
-           "read `file`.")
+           "sublist (docs/stent.md), with the `Balloon` and `Artery` sublists a balloon inside it and an artery around "
+           "it; `artery`, the layered artery of the `Artery` sublist (docs/artery.md); `none`: read `file`.")
            .one_of({"none", "stent", "artery"}),
        boolean("write mesh", false,
                "With `generator`: write the generated mesh into the output folder as `<basename>_mesh.msh` (gmsh "
@@ -235,9 +235,16 @@ std::vector<ListSpec> build_schema() {
       "The parametric artery of `generator` = `artery` (docs/artery.md): a straight tube along z (0 <= z <= "
       "`length`, axis the z axis) of three concentric layers, structured hex8 cells. Lengths in the deck's length "
       "unit. Volume groups `intima`, `media`, `adventitia` (and `plaque`); facet groups `lumen`, `outer`, `end_proximal`, "
-      "`end_distal`, `symmetry_x`, `symmetry_y`, `symmetry_z` (reductions).",
-      {dbl("inner diameter", 0.0, "Diameter of the lumen [length].").req().gt(0.0),
-       dbl("length", 0.0, "Axial length of the tube [length].").req().gt(0.0),
+      "`end_distal`, `symmetry_x`, `symmetry_y`, `symmetry_z` (reductions). With `generator` = `stent` the artery "
+      "around the generated stent (docs/artery.md, \"Stent and artery in one model\"): centred on the stent, over "
+      "its `sector` and `half length` (not given here); facet groups `lumen`, `artery_outer`, `artery_end_proximal`, "
+      "`artery_end_distal`, its cut planes in the stent's `symmetry_*` groups.",
+      {dbl("inner diameter", 0.0,
+           "Diameter of the lumen [length]. Around a stent the lumen's facets, at (inner diameter / 2 - plaque "
+           "h_max) cos(180 deg / `elements around`), must lie outside the stent's outer radius.")
+           .req()
+           .gt(0.0),
+       dbl("length", 0.0, "Axial length of the tube [length]; around a stent longer than the stent.").req().gt(0.0),
        dbl("intima thickness", 0.0, "Radial thickness of the intima, the innermost layer [length].").req().gt(0.0),
        dbl("media thickness", 0.0, "Radial thickness of the media, the middle layer [length].").req().gt(0.0),
        dbl("adventitia thickness", 0.0, "Radial thickness of the adventitia, the outer layer [length].").req().gt(0.0),
@@ -245,15 +252,19 @@ std::vector<ListSpec> build_schema() {
        integer("elements through media", 2, "Hex8 cells through the media's thickness.").ge(1).le(100),
        integer("elements through adventitia", 1, "Hex8 cells through the adventitia's thickness.").ge(1).le(100),
        integer("elements around", 32,
-               "Hex8 cells around the whole circumference (divisible by 4 for `sector` = quarter, by 2 for half).")
+               "Hex8 cells around the whole circumference (divisible by 4 for `sector` = quarter, by 2 for half; "
+               "around a stent by the number of the stent's sectors around, 2 `crowns` / the sector's half pitches).")
            .ge(4)
            .le(100000),
        integer("elements along", 8, "Hex8 cells along the whole `length` (even with `half length`).").ge(1).le(100000),
        str("sector", "full",
            "`full`: the whole circumference; `half`: 0 <= theta <= 180 deg (y >= 0), cut on `symmetry_y`; "
-           "`quarter`: 0 <= theta <= 90 deg, cut on `symmetry_x` (x = 0) and `symmetry_y` (y = 0).")
+           "`quarter`: 0 <= theta <= 90 deg, cut on `symmetry_x` (x = 0) and `symmetry_y` (y = 0). Not with "
+           "`generator` = `stent` (the stent's `sector`).")
            .one_of({"full", "half", "quarter"}),
-       boolean("half length", false, "Only 0 <= z <= `length` / 2, cut on the symmetry plane `symmetry_z`."),
+       boolean("half length", false,
+               "Only 0 <= z <= `length` / 2, cut on the symmetry plane `symmetry_z`. Not with `generator` = `stent` "
+               "(the stent's `half length`)."),
        dbl("plaque stenosis", 0.0,
            "Diameter stenosis S of a plaque (0: none): the lumen's diameter through the plaque's peak, along x, is "
            "(1 - S) times the healthy one. The lumen is narrowed by h = h_max s(z) e(theta), a raised-cosine profile "
@@ -263,10 +274,13 @@ std::vector<ListSpec> build_schema() {
            .ge(0.0)
            .lt(1.0),
        dbl("plaque length", 0.0, "Axial length of the plaque's profile [length] (required with a plaque).").ge(0.0),
-       dbl("plaque centre", -1.0, "z of the plaque's peak [length]; the middle of `length` by default.")
+       dbl("plaque centre", -1.0,
+           "z of the plaque's peak [length], from the tube's proximal end (around a stent: the stent's middle - "
+           "`length` / 2); the middle of `length` by default.")
            .dflt_doc("`length` / 2"),
        str("plaque shape", "concentric",
-           "`concentric` or `eccentric` (the plaque on the +x side; not with `sector` = quarter).")
+           "`concentric` or `eccentric` (the plaque on the +x side; not with `sector` = quarter, around a stent "
+           "only with the stent's `sector` = full).")
            .one_of({"concentric", "eccentric"}),
        integer("elements through plaque", 2,
                "Hex8 cells added through the innermost layer when there is a plaque (it then spans Ri - h .. Ri + "

@@ -19,6 +19,18 @@
 // `outer` (the adventitia's outer surface), `end_proximal` (z = 0), `end_distal`
 // (z = length, not with `half length`), `symmetry_x` (x = 0, quarter), `symmetry_y`
 // (y = 0, half and quarter), `symmetry_z` (z = length / 2, half length).
+//
+// Around a generated stent (add_artery: `Mesh->Artery` in a stent deck, docs/artery.md
+// "Stent and artery in one model"): the same tube, its z from z0 = the stent's middle -
+// length / 2 (the artery's own z = z - z0: the plaque's centre is measured from its
+// proximal end), over the stent's kept sector 0 <= theta <= Theta (`elements around` /
+// (2 pi / Theta) cells) and, with the stent's `half length`, up to its middle plane. Its
+// nodes, cells, facets and physical tags are numbered after the mesh's. Groups: volumes
+// `intima`, `media`, `adventitia` (`plaque`); facets `lumen`, `artery_outer`,
+// `artery_end_proximal`, `artery_end_distal` (prefixed: the stent has `outer`,
+// `end_proximal`, `end_distal`), and on the cut planes the stent's groups `symmetry_y`
+// (theta = 0), `symmetry_x` (x = 0, a quarter) or `symmetry_sector` (theta = Theta, a
+// period), `symmetry_z` (half length).
 #pragma once
 #include <string>
 
@@ -31,5 +43,11 @@ namespace stentor {
 // the cells would number more than max_cells ('Mesh->max cells'), before anything is
 // built. `source` names the mesh in messages (Mesh::source).
 Mesh generate_artery(const ArteryConfig& a, double max_cells, const std::string& source);
+
+// Appends the artery around the stent s to m, the generated stent's mesh (with its balloon,
+// if any). Throws InputError naming the parameter when artery_around_stent_error() says
+// so, or when all the cells together would number more than max_cells, before the artery
+// is built.
+void add_artery(const ArteryConfig& a, const StentConfig& s, double max_cells, const std::string& source, Mesh& m);
 
 }  // namespace stentor

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "deck/Config.hpp"
+#include "geometry/AppendGroups.hpp"
 #include "geometry/TubeGrid.hpp"
 #include "stentor/format.hpp"
 
@@ -35,21 +36,6 @@ void add_nodes(const BalloonConfig& b, const StentConfig& s, const TubeGrid& t, 
     }
 }
 
-// The facet ids continue after the largest one in m.
-GId next_facet_id(const Mesh& m) {
-  GId next = 0;
-  for (const CellBlock& c : m.boundaries)
-    for (GId id : c.cell_id) next = std::max(next, id + 1);
-  return next;
-}
-
-int next_tag(const Mesh& m) {
-  int tag = 0;
-  for (const CellBlock& c : m.volumes) tag = std::max(tag, c.physical_tag);
-  for (const CellBlock& c : m.boundaries) tag = std::max(tag, c.physical_tag);
-  return tag + 1;
-}
-
 void add_facets(const StentConfig& s, const TubeGrid& t, Mesh& m) {
   std::map<std::string, std::vector<GId>> f;
   auto add = [&](const std::string& name, int i, int j, int k, int face) { t.face(i, j, k, face, f[name]); };
@@ -66,23 +52,7 @@ void add_facets(const StentConfig& s, const TubeGrid& t, Mesh& m) {
         add("symmetry_y", 0, j, k, 4);
         add(s.sector == "quarter" ? "symmetry_x" : "symmetry_sector", t.cells_t - 1, j, k, 5);
       }
-  GId id = next_facet_id(m);
-  int tag = next_tag(m);
-  for (auto& [name, conn] : f) {
-    auto it = std::find_if(m.boundaries.begin(), m.boundaries.end(),
-                           [&](const CellBlock& c) { return c.name == name && c.type == CellType::Quad4; });
-    if (it == m.boundaries.end()) {
-      CellBlock c;
-      c.name = name;
-      c.physical_tag = tag++;
-      c.type = CellType::Quad4;
-      c.nodes_per_cell = 4;
-      m.boundaries.push_back(std::move(c));
-      it = m.boundaries.end() - 1;
-    }
-    for (std::size_t q = 0; q < conn.size() / 4; ++q) it->cell_id.push_back(id++);
-    it->conn.insert(it->conn.end(), conn.begin(), conn.end());
-  }
+  append_quads({f.begin(), f.end()}, next_tag(m), m);
 }
 
 }  // namespace
@@ -104,8 +74,7 @@ void add_balloon(const BalloonConfig& b, const StentConfig& s, double max_cells,
   v.physical_tag = next_tag(m);
   v.type = CellType::Hex8;
   v.nodes_per_cell = 8;
-  GId id = 0;
-  for (const CellBlock& c : m.volumes) id += static_cast<GId>(c.num_cells());
+  GId id = next_cell_id(m);
   for (int j = 0; j < t.cells_z; ++j)
     for (int i = 0; i < t.cells_t; ++i)
       for (int k = 0; k < t.cells_r; ++k) {

@@ -6,8 +6,10 @@
 
 namespace stentor {
 
-// cfg.generator: "stent" (geometry/StentGenerator.hpp) or "artery" (geometry/ArteryGenerator.hpp). Throws InputError on bad
-// parameters, std::logic_error for an unknown generator.
+// cfg.generator: "stent" (geometry/StentGenerator.hpp; then the balloon of
+// geometry/BalloonGenerator.hpp and the artery of geometry/ArteryGenerator.hpp's
+// add_artery(), when the deck has them) or "artery" (geometry/ArteryGenerator.hpp). Throws
+// InputError on bad parameters, std::logic_error for an unknown generator.
 Mesh generate_mesh(const MeshConfig& cfg);
 
 }  // namespace stentor

@@ -106,3 +106,46 @@ TEST_F(StentDeck, OneMeshSource) {
                 .find("'Mesh->Stent' needs 'Mesh->generator' = stent"),
             std::string::npos);
 }
+
+// `Mesh->Artery` in a stent deck: the artery around the stent (around_stent), its
+// parameters those of the artery generator less `sector` and `half length` (the stent's),
+// checked against the stent at read.
+TEST_F(StentDeck, ArteryAroundTheStent) {
+  auto artery = [](const std::string& extra) {
+    return std::string(kStent) + R"XML(<ParameterList name="Artery">
+      <Parameter name="inner diameter" type="double" value="3.6"/>
+      <Parameter name="length" type="double" value="5.0"/>
+      <Parameter name="intima thickness" type="double" value="0.27"/>
+      <Parameter name="media thickness" type="double" value="0.21"/>
+      <Parameter name="adventitia thickness" type="double" value="0.34"/>
+      <Parameter name="elements around" type="int" value="48"/>)XML" + extra + "</ParameterList>";
+  };
+  const Config c = read_deck(write(deck(artery(""))));
+  const ArteryConfig& a = c.mesh.artery;
+  EXPECT_EQ(c.mesh.generator, "stent");
+  EXPECT_TRUE(a.around_stent);
+  EXPECT_EQ(a.inner_diameter, 3.6);
+  EXPECT_EQ(a.length, 5.0);
+  EXPECT_EQ(a.elements_around, 48);
+  EXPECT_EQ(cells_around_stent(a, c.mesh.stent), 12);  // the stent's quarter
+  EXPECT_FALSE(read_deck(write(deck(kStent))).mesh.artery.around_stent);
+  for (const char* p : {"sector", "half length"}) {
+    const std::string given = std::string(R"XML(<Parameter name=")XML") + p +
+                              (std::string(p) == "sector" ? R"XML(" type="string" value="quarter"/>)XML"
+                                                          : R"XML(" type="bool" value="true"/>)XML");
+    const std::string e = error(deck(artery(given)));
+    EXPECT_NE(e.find(std::string("'Mesh->Artery->") + p + "' does not apply with 'Mesh->generator' = stent"), std::string::npos) << e;
+    EXPECT_NE(e.find(std::string("'Mesh->Stent->") + p + "'"), std::string::npos) << e;
+  }
+  std::string narrow = artery("");
+  narrow.replace(narrow.find("value=\"3.6\""), 11, "value=\"3.2\"");
+  EXPECT_NE(error(deck(narrow)).find("'Mesh->Artery->inner diameter' = 3.2 puts the lumen's facets"), std::string::npos)
+      << error(deck(narrow));
+  std::string odd = artery("");
+  odd.replace(odd.find("value=\"48\""), 10, "value=\"50\"");
+  EXPECT_NE(error(deck(odd)).find("'Mesh->Artery->elements around' = 50 must be divisible by 4"), std::string::npos)
+      << error(deck(odd));
+  EXPECT_NE(error(deck(R"XML(<Parameter name="file" type="string" value="x.msh"/><ParameterList name="Artery"/>)XML"))
+                .find("'Mesh->Artery' needs 'Mesh->generator' = artery (or stent"),
+            std::string::npos);
+}
