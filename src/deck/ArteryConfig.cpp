@@ -111,8 +111,8 @@ std::string artery_around_stent_error(const ArteryConfig& a, const StentConfig& 
   if (!(lumen > s.outer_radius()))
     return par("inner diameter") + " = " + format_number(a.inner_diameter) +
            (a.has_plaque() ? " less the plaque's 2 h_max = " + format_number(2.0 * a.plaque_peak()) : std::string()) +
-           " puts the lumen's facets at the radius " + format_number(lumen) + " (the nodes' times cos(pi / " +
-           std::to_string(a.elements_around) + "), the chords of 'elements around'), not outside the stent's outer radius " +
+           " puts the lumen's facets at the radius " + format_number(lumen) + " (the middle of a chord between lumen nodes " +
+           "360 / 'elements around' = " + format_number(360.0 / a.elements_around) + " deg apart), not outside the stent's outer radius " +
            format_number(s.outer_radius()) + " ('Mesh->Stent->outer diameter' / 2): the stent must lie inside the lumen";
   if (a.plaque_shape == "eccentric" && a.has_plaque() && s.sector != "full")
     return par("plaque shape") + " = eccentric is symmetric about y = 0 only: use 'Mesh->Stent->sector' = full";

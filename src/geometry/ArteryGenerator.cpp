@@ -90,15 +90,6 @@ double centroid_radius(const std::vector<double>& x, const GId* h) {
   return r;
 }
 
-CellBlock quads(const std::string& name, std::vector<GId> conn) {
-  CellBlock b;
-  b.name = name;
-  b.type = CellType::Quad4;
-  b.nodes_per_cell = 4;
-  b.conn = std::move(conn);
-  return b;
-}
-
 void boundaries(const ArteryConfig& a, const TubeGrid& g, const Frame& fr, int first_tag, Mesh& m) {
   std::map<std::string, std::vector<GId>> f;
   auto add = [&](const std::string& name, int i, int j, int k, int face) { g.face(i, j, k, face, f[name]); };

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# A crimped ring in the layered artery of `Mesh->Artery`, one generated mesh
+# (tests/cli/decks/stent_artery_ring.xml): the stent's period sector (22.5 deg) with the
+# artery's cut faces in its symmetry_y / symmetry_sector groups (held along their normals),
+# luminal pressure to 16 kPa, the stent inside the lumen without contact.
+# Checks: the run ends at t = 1; the written mesh has both bodies' groups (the artery's
+# prefixed where the stent has the name); at 16 kPa the lumen's and the outer radius are the
+# standalone artery's (docs/artery.md's table, 32 x 6: 2.717329 and 3.241825 mm; the sector
+# holds the same cells, so the same discrete answer); the stent's crown does not move.
+# usage: stent_artery.sh STENTOR WORKDIR DECK
+set -u
+. "$(dirname "$0")/lib.sh"
+stentor=$1 work=$2 deck=$3
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || fail "cannot make $work"
+"$stentor" --output out "$deck" > log.txt 2>&1 || { tail -30 log.txt; fail "the run failed"; }
+grep -q "(stent: [0-9]* hex8, intima: 8 hex8, media: 8 hex8, adventitia: 8 hex8)" log.txt ||
+  { grep "mesh " log.txt; fail "not the stent and the artery's three layers"; }
+msh=out/stent_artery_mesh.msh
+[ -s "$msh" ] || fail "no $msh"
+for g in '3 [0-9]* "stent"' '3 [0-9]* "intima"' '3 [0-9]* "media"' '3 [0-9]* "adventitia"' '2 [0-9]* "lumen"' \
+         '2 [0-9]* "artery_outer"' '2 [0-9]* "artery_end_proximal"' '2 [0-9]* "artery_end_distal"' '2 [0-9]* "outer"' \
+         '2 [0-9]* "end_proximal"' '2 [0-9]* "symmetry_y"' '2 [0-9]* "symmetry_sector"'; do
+  grep -q "^$g\$" "$msh" || fail "no group $g in $msh"
+done
+last() {  # last() CSV COLUMN: the column's value in the last row
+  awk -F, -v c="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == c) k = i; next } { v = $k } END { print v }' "$1"
+}
+h=out/stent_artery_history.csv
+t=$(last $h time) p=$(last $h pressure_blood)
+awk -v t="$t" -v p="$p" 'BEGIN { exit !(t == 1 && p > 0.016 - 1e-15 && p < 0.016 + 1e-15) }' || fail "ended at t = $t, p = $p"
+ri=$(awk -v u="$(last $h u_lumen_x)" 'BEGIN { printf "%.7f", 1.5 + u }')
+ro=$(awk -v u="$(last $h u_outer_x)" 'BEGIN { printf "%.7f", 2.32 + u }')
+echo "lumen radius $ri mm, outer radius $ro mm at 16 kPa"
+# (the table's 6 digits, to 1.5e-6 mm)
+awk -v r="$ri" 'BEGIN { exit !(r > 2.7173275 && r < 2.7173305) }' || fail "lumen radius $ri, not 2.717329"
+awk -v r="$ro" 'BEGIN { exit !(r > 3.2418235 && r < 3.2418265) }' || fail "outer radius $ro, not 3.241825"
+for c in x y z; do
+  u=$(last $h u_crown_$c)
+  awk -v u="$u" 'BEGIN { exit !(u < 1e-12 && u > -1e-12) }' || fail "the stent's crown moved: u_$c = $u"
+done
+echo "PASS"
