@@ -79,6 +79,24 @@ std::string artery_config_error(const ArteryConfig& a) {
   return plaque_error(a);
 }
 
+namespace {
+
+// The lumen's facets are chords: between nodes 2 pi / N apart (N = `elements around`) at
+// r = Ri - h they come as close to the axis as (Ri - h) cos(pi / N). The narrowest, at the
+// plaque's peak h_max, must lie outside the stent's outer radius.
+std::string lumen_clearance_error(const ArteryConfig& a, const StentConfig& s) {
+  const double lumen = (a.inner_radius() - a.plaque_peak()) * std::cos(kPi / a.elements_around);
+  if (lumen > s.outer_radius()) return "";
+  return par("inner diameter") + " = " + format_number(a.inner_diameter) +
+         (a.has_plaque() ? " less the plaque's 2 h_max = " + format_number(2.0 * a.plaque_peak()) : std::string()) +
+         " puts the lumen's facets at the radius " + format_number(lumen) + " (the middle of a chord between lumen nodes " +
+         "360 / 'elements around' = " + format_number(360.0 / a.elements_around) + " deg apart), not outside the stent's " +
+         "outer radius " + format_number(s.outer_radius()) + " ('Mesh->Stent->outer diameter' / 2): the stent must lie "
+         "inside the lumen";
+}
+
+}  // namespace
+
 int cells_around_stent(const ArteryConfig& a, const StentConfig& s) {
   return static_cast<int>(static_cast<long long>(a.elements_around) * s.sector_half_pitches() / (2LL * s.crowns));
 }
@@ -107,13 +125,8 @@ std::string artery_around_stent_error(const ArteryConfig& a, const StentConfig& 
   if (!(a.length > s.total_length()))
     return par("length") + " = " + format_number(a.length) + " must exceed the stent's length " +
            format_number(s.total_length()) + ": the artery holds the whole stent, centred on it";
-  const double chord = std::cos(kPi / a.elements_around), lumen = (a.inner_radius() - a.plaque_peak()) * chord;
-  if (!(lumen > s.outer_radius()))
-    return par("inner diameter") + " = " + format_number(a.inner_diameter) +
-           (a.has_plaque() ? " less the plaque's 2 h_max = " + format_number(2.0 * a.plaque_peak()) : std::string()) +
-           " puts the lumen's facets at the radius " + format_number(lumen) + " (the middle of a chord between lumen nodes " +
-           "360 / 'elements around' = " + format_number(360.0 / a.elements_around) + " deg apart), not outside the stent's outer radius " +
-           format_number(s.outer_radius()) + " ('Mesh->Stent->outer diameter' / 2): the stent must lie inside the lumen";
+  const std::string clear = lumen_clearance_error(a, s);
+  if (!clear.empty()) return clear;
   if (a.plaque_shape == "eccentric" && a.has_plaque() && s.sector != "full")
     return par("plaque shape") + " = eccentric is symmetric about y = 0 only: use 'Mesh->Stent->sector' = full";
   return "";
