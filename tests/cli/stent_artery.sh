@@ -2,11 +2,14 @@
 # A crimped ring in the layered artery of `Mesh->Artery`, one generated mesh
 # (tests/cli/decks/stent_artery_ring.xml): the stent's period sector (22.5 deg) with the
 # artery's cut faces in its symmetry_y / symmetry_sector groups (held along their normals),
-# luminal pressure to 16 kPa, the stent inside the lumen without contact.
+# luminal pressure to 16 kPa, the stent inside the lumen, the contact pair stent `outer` ->
+# artery `lumen` open.
 # Checks: the run ends at t = 1; the written mesh has both bodies' groups (the artery's
 # prefixed where the stent has the name); at 16 kPa the lumen's and the outer radius are the
 # standalone artery's (docs/artery.md's table, 32 x 6: 2.717329 and 3.241825 mm; the sector
-# holds the same cells, so the same discrete answer); the stent's crown does not move.
+# holds the same cells, so the same discrete answer); the stent's crown does not move; the
+# contact pair never closes (no active node, no force; its smallest gap after the first
+# step above the 0.4928 mm it starts from, 1.5 cos(pi / 32) - 1).
 # usage: stent_artery.sh STENTOR WORKDIR DECK
 set -u
 . "$(dirname "$0")/lib.sh"
@@ -38,4 +41,8 @@ for c in x y z; do
   u=$(last $h u_crown_$c)
   awk -v u="$u" 'BEGIN { exit !(u < 1e-12 && u > -1e-12) }' || fail "the stent's crown moved: u_$c = $u"
 done
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  { if ($c["contact_wall_active"] != 0 || $c["contact_wall_normal_force"] != 0) { print "row " NR ": contact"; bad = 1 }
+    if (NR == 2 && !($c["contact_wall_min_gap"] > 0.4928)) { print "row 2: smallest gap " $c["contact_wall_min_gap"]; bad = 1 } }
+  END { exit bad }' $h || fail "the stent touched the artery"
 echo "PASS"
