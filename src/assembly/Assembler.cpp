@@ -391,6 +391,7 @@ void Assembler::setup_loads(const Mesh& mesh) {
       PressureLoad pl;
       pl.ramp = fl.ramp;
       pl.pressure = fl.pressure;
+      pl.cavity = fl.cavity;
       pl.type = fl.facet_type;
       pl.nn = nn;
       pl.conn = Kokkos::View<int**, Kokkos::LayoutRight, la::ExecSpace>("pconn", mine.size(), nn);
@@ -436,6 +437,14 @@ void Assembler::setup_loads(const Mesh& mesh) {
     dead_.push_back(dl);
   }
   (void)mesh;
+  for (const FluidCavitySpec& spec : loads_.cavities) cavities_.push_back(Cavity{spec});
+  for (std::size_t k = 0; k < cavities_.size(); ++k) {
+    cavities_[k].V0 = cavity_volume(k, true);
+    if (!(cavities_[k].V0 > 0.0))
+      throw InputError("'Boundary Conditions->" + cavities_[k].spec.name + "': the cavity enclosed by group '" + cavities_[k].spec.group +
+                       "' about its axis has volume " + std::to_string(cavities_[k].V0) +
+                       " in the mesh (expected > 0: is the axis inside the wall, and does the group bound the cavity?)");
+  }
 }
 
 void Assembler::apply_dirichlet(la::Vector& u, double t, double end_time) const {
@@ -534,6 +543,7 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
   r_overlap_->putScalar(0.0);
   rext_overlap_->putScalar(0.0);
   Kokkos::deep_copy(failures_, 0);
+  update_cavities(in);
   const int dim = dim_;
   const Kinematics kin = kin_;
   auto flags = dirichlet_flag_;
@@ -658,7 +668,7 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
     // assembly/PressureElement.hpp.
     const double theta = has_old ? in.pressure_theta : 1.0;
     for (const auto& pl : pressures_) {
-      const double p = pl.pressure * pl.ramp(in.load_time, in.end_time);
+      const double p = pl.cavity >= 0 ? cavities_[static_cast<std::size_t>(pl.cavity)].p : pl.pressure * pl.ramp(in.load_time, in.end_time);
       const std::size_t nf = pl.conn.extent(0);
       if (nf == 0 || p == 0.0) continue;
       const QuadRule q = make_rule(pl.type, 2 * cell_order(pl.type) + 1);
@@ -782,6 +792,7 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
     }
     project_plane_matrix();
     K_->fillComplete(dist_.owned_map(), dist_.owned_map());
+    update_cavity_gradients();
   }
   return st;
 }

@@ -120,6 +120,20 @@ class Assembler {
 
   const la::RCP<la::CrsMatrix>& matrix() const { return K_; }
 
+  // Fluid cavities (bc/Loads.hpp, assembly/FluidCavity.hpp), as at the last assemble(): on
+  // (the load active at its time), the volume V (V0 in the mesh), the pressure p; after one
+  // with the tangent, the rank-one term c left right^T that matrix() leaves out of dr/du:
+  // c = K / V, right = dV/du (owned rows; 0 on Cartesian Dirichlet rows), left = right with
+  // the rows of Dirichlet and plane constraints made those of matrix() (zero, projected).
+  struct Cavity {
+    FluidCavitySpec spec;
+    double V0 = 0.0, V = 0.0, p = 0.0, c = 0.0;
+    bool on = false;
+    double tangent_c = 0.0;  // c at the last assemble() with the tangent (0: off then)
+    la::RCP<la::Vector> left, right;
+  };
+  const std::vector<Cavity>& cavities() const { return cavities_; }
+
   // Colours of the largest local block when Problem->assembly = coloring (0: atomic sums).
   int num_colors() const;
   // Colour of each cell of local block b (Distribution::blocks() order); empty with atomics.
@@ -193,6 +207,13 @@ class Assembler {
  private:
   void build_graph();
   void setup_loads(const Mesh& mesh);
+  // FluidCavity.cpp: the volume of cavity k at u_overlap_ (or at u = 0), summed over the
+  // ranks; the pressures at the start of assemble(); the rank-one terms at its end.
+  double cavity_volume(std::size_t k, bool reference) const;
+  void update_cavities(const StepInput& in);
+  void update_cavity_gradients();
+  // project_plane_rows' projection of rows on a vector, without its reactions.
+  void project_plane_vector(la::Vector& v) const;
   void color_cells();
 
   const Distribution& dist_;
@@ -273,12 +294,14 @@ class Assembler {
   struct PressureLoad {
     Ramp ramp;
     double pressure;
+    int cavity;  // FluidCavity: index into cavities_ (whose p replaces pressure x ramp); else -1
     CellType type;
     int nn;
     Kokkos::View<int**, Kokkos::LayoutRight, la::ExecSpace> conn;
     Kokkos::View<double*, la::ExecSpace> orientation;
   };
   std::vector<PressureLoad> pressures_;
+  std::vector<Cavity> cavities_;
   std::vector<std::array<double, 3>> reactions_;
 };
 

@@ -155,6 +155,19 @@ void Assembler::project_plane_rows(la::Vector& r, std::vector<double>& loc) {
   }
 }
 
+void Assembler::project_plane_vector(la::Vector& v) const {
+  if (planes_.empty()) return;
+  auto vh = v.getLocalViewHost(Tpetra::Access::ReadWrite);
+  for (const PlaneNode& p : planes_) {
+    double rho[3] = {0, 0, 0};
+    for (int i = 0; i < p.m; ++i)
+      for (int c = 0; c < dim_; ++c) rho[i] += p.e[i][c] * vh(p.lid * dim_ + c, 0);
+    for (int i = 0; i < p.m; ++i)
+      for (int c = 0; c < dim_; ++c) vh(p.lid * dim_ + c, 0) -= rho[i] * p.e[i][c];
+    for (int i = 0; i < p.m; ++i) vh(p.lid * dim_ + p.j[i], 0) = 0.0;
+  }
+}
+
 void Assembler::project_plane_matrix() {
   if (planes_.empty()) return;
   project_plane_rows_of(planes_dev_, dim_, K_->getLocalMatrixDevice());

@@ -163,6 +163,43 @@ std::vector<int> block_materials(const Config& cfg, const Mesh& mesh) {
   return mat;
 }
 
+namespace {
+
+// A fluid cavity's wall ends on planes normal to its axis (its ends) and planes through it
+// (symmetry cuts), or the volume of assembly/FluidCavity.hpp is not the cavity's: every
+// edge of the wall that only one of its facets has must lie at one axial coordinate or be
+// coplanar with the axis, (x_a - x0) . ((x_b - x_a) x a) = 0. (An edge parallel to the axis
+// passes either way: which plane through it closes the cavity is the deck's `axis point`.)
+void check_cavity_rim(const FluidCavitySpec& c, const Mesh& mesh, const std::vector<OrientedFacets>& facets, const std::string& where) {
+  std::map<std::pair<GId, GId>, int> edges;
+  for (const OrientedFacets& of : facets) {
+    const int corners = (of.type == CellType::Tri3 || of.type == CellType::Tri6) ? 3 : 4;
+    for (std::size_t f = 0; f < of.num_facets(); ++f)
+      for (int k = 0; k < corners; ++k) {
+        GId a = of.conn[f * static_cast<std::size_t>(of.nodes_per_facet) + static_cast<std::size_t>(k)];
+        GId b = of.conn[f * static_cast<std::size_t>(of.nodes_per_facet) + static_cast<std::size_t>((k + 1) % corners)];
+        ++edges[{std::min(a, b), std::max(a, b)}];
+      }
+  }
+  const double L = mesh.bounding_box().diagonal(), tol = 1e-8 * L;
+  const double* ax = c.axis.data();
+  for (const auto& [e, n] : edges) {
+    if (n != 1) continue;
+    const double *xa = mesh.coord(e.first), *xb = mesh.coord(e.second);
+    double y[3], d[3];
+    for (int k = 0; k < 3; ++k) y[k] = xa[k] - c.point[static_cast<std::size_t>(k)], d[k] = xb[k] - xa[k];
+    const double dxa[3] = {d[1] * ax[2] - d[2] * ax[1], d[2] * ax[0] - d[0] * ax[2], d[0] * ax[1] - d[1] * ax[0]};
+    const bool end_plane = std::abs(d[0] * ax[0] + d[1] * ax[1] + d[2] * ax[2]) <= tol;
+    const bool cut_plane = std::abs(y[0] * dxa[0] + y[1] * dxa[1] + y[2] * dxa[2]) <= tol * L;
+    if (!end_plane && !cut_plane)
+      throw InputError(where + ": the cavity's wall '" + c.group + "' ends at the edge of nodes " + std::to_string(e.first) + " and " +
+                       std::to_string(e.second) + ", which lies neither on a plane normal to the axis nor on a plane through it "
+                       "('axis point', 'axis'); the cavity must be closed by such planes (its ends, symmetry cuts)");
+  }
+}
+
+}  // namespace
+
 Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
   Loads loads;
   for (const auto& lc : cfg.loads) {
@@ -192,7 +229,15 @@ Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
         break;
       }
       case LoadConfig::Type::Traction:
-      case LoadConfig::Type::Pressure: {
+      case LoadConfig::Type::Pressure:
+      case LoadConfig::Type::FluidCavity: {
+        int cavity = -1;
+        if (lc.type == LoadConfig::Type::FluidCavity) {
+          if (mesh.dim != 3) throw InputError(where + ": a fluid cavity needs a 3D mesh (the mesh is " + std::to_string(mesh.dim) + "D)");
+          cavity = static_cast<int>(loads.cavities.size());
+          loads.cavities.push_back({lc.name, lc.group, lc.volume_ratio, lc.bulk_modulus, lc.axis_point, lc.axis, lc.ramp});
+          check_cavity_rim(loads.cavities.back(), mesh, oriented_facets(mesh, lc.group, where + "->boundary"), where);
+        }
         for (OrientedFacets& of : oriented_facets(mesh, lc.group, where + "->boundary")) {
           FacetLoad fl;
           fl.type = lc.type;
@@ -205,6 +250,7 @@ Loads resolve_loads(const Config& cfg, const Mesh& mesh) {
           fl.adjacent_cell = std::move(of.adjacent_cell);
           fl.traction = lc.vector;
           fl.pressure = lc.value;
+          fl.cavity = cavity;
           fl.ramp = lc.ramp;
           loads.facet_loads.push_back(std::move(fl));
         }

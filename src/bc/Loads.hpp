@@ -38,6 +38,7 @@ struct FacetLoad {
   std::vector<GId> adjacent_cell;    // global id of the volume cell the facet bounds (decides which rank integrates it)
   std::array<double, 3> traction{};    // Traction: force per reference area
   double pressure = 0.0;               // Pressure: acts along -n (current configuration)
+  int cavity = -1;                     // FluidCavity: index into Loads::cavities (its pressure is the cavity's)
   Ramp ramp;
   std::size_t num_facets() const { return nodes_per_facet ? conn.size() / nodes_per_facet : 0; }
 };
@@ -50,8 +51,17 @@ struct BodyForce {
   Ramp ramp;
 };
 
+// A fluid cavity's law (LoadConfig::FluidCavity); its wall is the FacetLoads with `cavity` = its index.
+struct FluidCavitySpec {
+  std::string name, group;
+  double volume_ratio = 1.0, bulk_modulus = 0.0;
+  std::array<double, 3> point{}, axis{0.0, 0.0, 1.0};
+  Ramp ramp;
+};
+
 struct Loads {
   std::vector<DirichletSet> dirichlet;
+  std::vector<FluidCavitySpec> cavities;
   std::vector<FacetLoad> facet_loads;
   std::vector<BodyForce> body_forces;
 };

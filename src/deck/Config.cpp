@@ -68,6 +68,12 @@ double Ramp::operator()(double t, double end_time) const {
   return ramp_value(p->kind, p->times, p->factors, t - p->start, p->end - p->start);
 }
 
+bool Ramp::on(double t) const {
+  for (const auto& q : stages)
+    if (t <= q.end + 1e-9 * (q.end - q.start)) return q.mode != Piece::Mode::Off;
+  return stages.empty() || stages.back().mode != Piece::Mode::Off;
+}
+
 bool OutputConfig::wants(const std::string& field) const {
   return fields && std::find(field_names.begin(), field_names.end(), field) != field_names.end();
 }
@@ -311,6 +317,7 @@ class DeckReader {
   void read_hardening(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) const;
   void read_bodies(const ParameterList& pl);
   void read_loads(const ParameterList& pl);
+  void read_fluid_cavity(const ParameterList& sub, const ListSpec& ls, const std::string& path, LoadConfig& lc);
   void read_stepping(const ParameterList& pl);
   void read_initial(const ParameterList& pl);
   void read_time(const ParameterList& pl);
@@ -1366,6 +1373,20 @@ void DeckReader::read_contact(const ParameterList& pl) {
   if (cfg_.contact.empty()) fail("'Contact' defines no contact pair; add one sublist per pair or remove 'Contact'");
 }
 
+// A fluid cavity (LoadConfig::FluidCavity): 3D only (checked with the mesh, bc/Loads.cpp) and
+// static stages only (check_analysis).
+void DeckReader::read_fluid_cavity(const ParameterList& sub, const ListSpec& ls, const std::string& path, LoadConfig& lc) {
+  lc.type = LoadConfig::Type::FluidCavity;
+  lc.group = get_string(sub, ls, "boundary");
+  lc.volume_ratio = get_double(sub, ls, "volume ratio");
+  lc.bulk_modulus = get_double(sub, ls, "bulk modulus");
+  const auto point = get_array(sub, ls, "axis point"), axis = get_array(sub, ls, "axis");
+  if (point.size() != 3) fail(quoted(path + "->axis point") + " must have 3 values (a fluid cavity is 3D), got " + std::to_string(point.size()));
+  if (axis.size() != 3) fail(quoted(path + "->axis") + " must have 3 values (a fluid cavity is 3D), got " + std::to_string(axis.size()));
+  for (std::size_t c = 0; c < 3; ++c) lc.axis_point[c] = point[c], lc.axis[c] = axis[c];
+  unit_direction(lc.axis, path + "->axis");
+}
+
 void DeckReader::read_loads(const ParameterList& pl) {
   const ListSpec& top = deck_list_spec("Boundary Conditions");
   const ListSpec& common = deck_list_spec("Boundary Conditions/*");
@@ -1480,6 +1501,8 @@ void DeckReader::read_loads(const ParameterList& pl) {
       lc.type = LoadConfig::Type::Pressure;
       lc.group = get_string(sub, typed, "boundary");
       lc.value = get_double(sub, typed, "pressure");
+    } else if (type == "fluid cavity") {
+      read_fluid_cavity(sub, typed, path, lc);
     } else {  // body force
       lc.type = LoadConfig::Type::BodyForce;
       const auto v = get_array(sub, typed, "force");
@@ -1888,6 +1911,15 @@ void DeckReader::check_analysis(bool initial_conditions, bool time_integration) 
       if (!(m.density > 0.0))
         fail("'Materials->" + m.name + "->density' must be > 0 in a dynamic analysis (" +
              (staged ? std::string("a stage has 'analysis' = dynamic") : std::string("'Problem->analysis' = dynamic")) + ")");
+  }
+  for (int k = 0; k < cfg_.interval_count(); ++k) {
+    if (!cfg_.dynamic_in(k)) continue;
+    for (std::size_t i = 0; i < cfg_.loads.size(); ++i)
+      if (cfg_.loads[i].type == LoadConfig::Type::FluidCavity && (!staged || cfg_.stages[static_cast<std::size_t>(k)].load_active[i]))
+        fail(quoted("Boundary Conditions->" + cfg_.loads[i].name) + ": a fluid cavity is for static analysis only, and " +
+             (staged ? "the dynamic stage " + quoted("Stages->" + cfg_.stages[static_cast<std::size_t>(k)].name) + " activates it"
+                     : std::string("'Problem->analysis' = dynamic")) +
+             " (its work is not in the energy audit); use a `pressure` load there, or a static stage");
   }
   if (!cfg_.dynamic_in(0))
     for (const auto& b : cfg_.bodies)

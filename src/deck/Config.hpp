@@ -39,6 +39,8 @@ struct Ramp {
   };
   std::vector<Piece> stages;
   double operator()(double t, double end_time) const;  // defined in deck/Config.cpp
+  // False in a stage that switches the load off (Piece::Mode::Off); true without stages.
+  bool on(double t) const;
 };
 
 struct ProblemConfig {
@@ -127,15 +129,23 @@ struct BodyConfig {
 
 // One entry of "Boundary Conditions" (sublist name = name).
 struct LoadConfig {
-  enum class Type { Dirichlet, Traction, Pressure, BodyForce } type = Type::Dirichlet;
+  enum class Type { Dirichlet, Traction, Pressure, BodyForce, FluidCavity } type = Type::Dirichlet;
   std::string name;
-  std::string group;                   // "boundary" (Dirichlet/Traction/Pressure) or "body" (BodyForce, "" = all)
+  std::string group;                   // "boundary" (Dirichlet/Traction/Pressure/FluidCavity) or "body" (BodyForce, "" = all)
   std::array<bool, 3> components{};    // Dirichlet: "components", e.g. "x y" or "x" or "all"
   bool all_components = false;         // Dirichlet "all": components = {x, y, z}; z is to be dropped in 2D
   bool normal = false;                 // Dirichlet "normal": the displacement along the (planar) boundary's normal; value in `value`
   std::array<double, 3> vector{};      // Dirichlet "values" / Traction "traction" / BodyForce "force": per component
   double value = 0.0;                  // Pressure "pressure" [Pa] (against the current outward normal); Dirichlet "normal": its value
   Ramp ramp;                           // "ramp" (+ "ramp times", "ramp factors" for "table")
+  // FluidCavity: the cavity between `group`, its end planes normal to the axis and planes
+  // through the axis, filled with a fluid of bulk modulus K whose volume at zero pressure is
+  // V0 (1 + ramp(t) (volume_ratio - 1)), V0 the cavity's reference volume; its pressure is
+  // p = K ln(V_fluid / V) (assembly/FluidCavity.hpp).
+  double volume_ratio = 1.0;           // "volume ratio" > 0
+  double bulk_modulus = 0.0;           // "bulk modulus" [stress] > 0
+  std::array<double, 3> axis_point{};  // "axis point"
+  std::array<double, 3> axis{0.0, 0.0, 1.0};  // "axis" (normalised)
   // Programmatic only (tests, API users; no deck syntax): when set, replaces `vector` by a
   // function of the reference position X (3 coordinates): the prescribed displacement for
   // Dirichlet, the force density for a body force. Still multiplied by the ramp.

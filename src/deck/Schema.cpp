@@ -470,7 +470,7 @@ std::vector<ListSpec> build_schema() {
       "Parameters of every load. The load is multiplied by the ramp factor at time t.",
       {str("type", "", "Kind of load (case-insensitive).")
            .req()
-           .one_of({"Dirichlet", "traction", "pressure", "body force"}),
+           .one_of({"Dirichlet", "traction", "pressure", "body force", "fluid cavity"}),
        str("ramp", "linear", "Time function: `linear` (t / end time), `constant` (1), `table`.")
            .one_of({"linear", "constant", "table"}),
        arr("ramp times", "`table` ramp: strictly increasing times [time].")
@@ -499,6 +499,20 @@ std::vector<ListSpec> build_schema() {
                    "Follower pressure: acts against the current outward normal.",
                    {str("boundary", "", "Mesh physical group of the loaded boundary.").req().allowed("physical group name"),
                     dbl("pressure", 0.0, "Pressure [stress]; positive pushes into the body.").req()}));
+  s.push_back(list(
+      "Boundary Conditions/*/fluid cavity", "Boundary Conditions-><load> (type = fluid cavity)",
+      "Volume control of a balloon (3D, static stages): the cavity enclosed by `boundary`, by planes normal to the "
+      "axis (its ends) and by planes through the axis (symmetry cuts) holds a fluid of bulk modulus K. Its volume "
+      "at zero pressure is V0 (1 + ramp(t) (`volume ratio` - 1)), V0 the cavity's volume in the mesh; the "
+      "pressure on `boundary` is p = K ln(V_fluid / V), V the cavity's current volume, so a large K prescribes "
+      "V (a plateau of the pressure is passed). The ratio is the same for a symmetry sector as for the whole "
+      "balloon. The history has `pressure_<load>` and `volume_ratio_<load>` (V / V0).",
+      {str("boundary", "", "Mesh physical group of the cavity's wall, facets oriented out of the body (e.g. "
+                           "`balloon_inner`).").req().allowed("physical group name"),
+       dbl("volume ratio", 1.0, "V_fluid / V0 at ramp factor 1.").req().gt(0.0),
+       dbl("bulk modulus", 0.0, "The fluid's bulk modulus K [stress] (water: 2.2 GPa).").req().gt(0.0),
+       arr("axis point", "A point of the cavity's axis [length].").req().len(3, 3),
+       arr("axis", "The cavity's axis direction.").req().len(3, 3)}));
   s.push_back(list("Boundary Conditions/*/body force", "Boundary Conditions-><load> (type = body force)",
                    "Force per unit reference volume.",
                    {str("body", "", "A body: its `Bodies` sublist name or its physical group.").dflt_doc("all bodies"),

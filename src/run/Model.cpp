@@ -1,6 +1,7 @@
 #include "run/Model.hpp"
 
 #include <algorithm>
+#include <iterator>
 #include <climits>
 #include <cmath>
 #include <sstream>
@@ -43,10 +44,23 @@ std::vector<GId> nearest_nodes(const Mesh& mesh, const std::vector<ProbeConfig>&
 
 // Every contact pair's slave and master name a boundary group of the mesh (so that
 // `--check` finds a misspelled group as the run would).
+// A fluid cavity's wall shares no node with a contact slave surface: the slave rows that
+// contact rewrites would need the cavity's rank-one term rewritten too (Newton.hpp).
 void check_contact_groups(const Config& cfg, const Mesh& mesh) {
   for (const auto& c : cfg.contact) {
     require_group(mesh, c.slave, true, "Contact->" + c.name + "->slave");
     if (!c.master.empty()) require_group(mesh, c.master, true, "Contact->" + c.name + "->master");
+    for (const auto& l : cfg.loads) {
+      if (l.type != LoadConfig::Type::FluidCavity) continue;
+      const std::vector<GId> wall = boundary_nodes(mesh, l.group), slaves = boundary_nodes(mesh, c.slave);
+      std::vector<GId> both;
+      std::set_intersection(wall.begin(), wall.end(), slaves.begin(), slaves.end(), std::back_inserter(both));
+      if (!both.empty())
+        throw InputError(cfg.deck_path + ": 'Boundary Conditions->" + l.name + "': node " + std::to_string(both.front()) + " of the cavity's wall '" +
+                         l.group + "' is a slave node of 'Contact->" + c.name + "' (group '" + c.slave +
+                         "'); a fluid cavity's wall may not be a contact slave surface (make the other side the slave, or "
+                         "use a `pressure` load)");
+    }
   }
 }
 
@@ -93,7 +107,7 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
       std::vector<std::string> whole_groups;
       for (const auto& c : cfg.contact) whole_groups.insert(whole_groups.end(), {c.slave, c.master});
       for (const auto& l : cfg.loads)  // a plane's normal is computed from the whole group, the same on every rank
-        if (l.normal) whole_groups.push_back(l.group);
+        if (l.normal || l.type == LoadConfig::Type::FluidCavity) whole_groups.push_back(l.group);  // a cavity: checked against the slaves
       if (cfg.output.metrics.enabled && cfg.mesh.generator == "stent") {
         const auto g = RingMetrics::whole_groups(cfg);
         whole_groups.insert(whole_groups.end(), g.begin(), g.end());

@@ -240,8 +240,10 @@ void Reporter::print_solvers() {
 std::vector<std::string> Reporter::history_columns() const {
   std::vector<std::string> columns = {"step", "time", "dt", "newton_iterations", "linear_iterations", "cutbacks", "strain_energy"};
   for (const auto& c : reaction_columns()) columns.push_back(c);
-  for (const LoadConfig& l : cfg_.loads)
-    if (l.type == LoadConfig::Type::Pressure) columns.push_back("pressure_" + l.name);
+  for (const LoadConfig& l : cfg_.loads) {
+    if (l.type == LoadConfig::Type::Pressure || l.type == LoadConfig::Type::FluidCavity) columns.push_back("pressure_" + l.name);
+    if (l.type == LoadConfig::Type::FluidCavity) columns.push_back("volume_ratio_" + l.name);
+  }
   for (const auto& p : cfg_.output.probes)
     for (int k = 0; k < m_.dim; ++k) columns.push_back("u_" + p.name + "_" + kAxes[k]);
   if (m_.contact)
@@ -570,8 +572,14 @@ void Reporter::history_row(const RunState& s, const StepRecord& rec, double ener
     for (int k = 0; k < dim; ++k)
       if (m_.assembler->dirichlet_sets()[i].components[static_cast<std::size_t>(k)])
         row.push_back(m_.assembler->reactions()[i][static_cast<std::size_t>(k)]);
-  for (const LoadConfig& l : cfg_.loads)  // the pressure acting at s.t (its ramp in this stage)
+  std::size_t cavity = 0;
+  for (const LoadConfig& l : cfg_.loads) {  // the pressure acting at s.t (its ramp in this stage); a cavity's at the last evaluation
     if (l.type == LoadConfig::Type::Pressure) row.push_back(l.value * l.ramp(s.t, cfg_.stepping.end_time));
+    if (l.type != LoadConfig::Type::FluidCavity) continue;
+    const Assembler::Cavity& c = m_.assembler->cavities()[cavity++];
+    row.push_back(c.on ? c.p : 0.0);
+    row.push_back(c.on ? c.V / c.V0 : 1.0);
+  }
   for (std::size_t p = 0; p < m_.probe_node.size(); ++p)
     for (int k = 0; k < dim; ++k) row.push_back(pv[3 * p + k]);
   if (m_.contact)

@@ -47,6 +47,9 @@ void prepend_initial_row(PlotTable& h, const Model& m, const InitialState& init)
   for (const LoadConfig& l : m.cfg.loads) {  // a pressure's value at t = 0 is the deck's
     const int c = h.find("pressure_" + l.name);
     if (l.type == LoadConfig::Type::Pressure && c >= 0) row[static_cast<std::size_t>(c)] = l.value * l.ramp(0.0, m.cfg.stepping.end_time);
+    if (l.type == LoadConfig::Type::FluidCavity && c >= 0) row[static_cast<std::size_t>(c)] = 0.0;  // the mesh's volume: no pressure
+    const int v = h.find("volume_ratio_" + l.name);
+    if (l.type == LoadConfig::Type::FluidCavity && v >= 0) row[static_cast<std::size_t>(v)] = 1.0;
   }
   for (std::size_t p = 0; init.known && p < m.cfg.output.probes.size() && 3 * p + 2 < init.probes.size(); ++p)
     for (int k = 0; k < m.dim; ++k) {
@@ -249,7 +252,7 @@ void pressure_diameter_plots(const Model& m, const PlotTable& h, const std::stri
   const auto& hs = h.columns[static_cast<std::size_t>(h.find("step"))];
   for (const LoadConfig& l : m.cfg.loads) {
     const int pc = h.find("pressure_" + l.name);
-    if (l.type != LoadConfig::Type::Pressure || pc < 0) continue;
+    if ((l.type != LoadConfig::Type::Pressure && l.type != LoadConfig::Type::FluidCavity) || pc < 0) continue;
     std::map<long, double> at_step;
     for (std::size_t r = 0; r < hs.size(); ++r) at_step[std::lround(hs[r])] = h.columns[static_cast<std::size_t>(pc)][r];
     PlotTable t = metrics;

@@ -149,7 +149,7 @@ bool Stepper::lift(RunState& s, double t_new, NewtonResult& lifted) {
   LinearSolver::Result lr;
   const NewtonConfig& nc = m_.cfg.newton;
   std::string failure;  // a failed lifting only falls back to u_n
-  if (!linear_solve(*m_.linear, system_.matrix(), r, du, nc.forcing == "eisenstat-walker" ? nc.forcing_max : 0.0, lr, failure))
+  if (!linear_solve(*m_.linear, system_, r, du, nc.forcing == "eisenstat-walker" ? nc.forcing_max : 0.0, lr, failure))
     return false;
   if (!std::isfinite(du.norm2())) return false;
   s.u.update(1.0, du, 1.0);

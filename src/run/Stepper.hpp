@@ -37,6 +37,13 @@ class StepSystem : public NewtonSystem {
     if (contact) contact->set_step_length(alpha);
   }
   int verify_held(std::string& why) override { return contact ? contact->verify_held(why) : 0; }
+  // Fluid cavities' pressure-volume coupling (Assembler::Cavity).
+  std::vector<RankOne> rank_one() const override {
+    std::vector<RankOne> terms;
+    for (const auto& c : a_.cavities())
+      if (c.tangent_c > 0.0) terms.push_back({c.left.get(), c.right.get(), c.tangent_c});
+    return terms;
+  }
   // Static stabilisation (Stepping->stabilization): with xi > 0 each free dof i gets the
   // force D_i (u_i - u_n,i), D_i = xi |K_ii| from the bulk tangent of the step's first
   // evaluation (fixed for the step, so the tangent D is exact), before contact reads the

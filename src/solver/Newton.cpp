@@ -182,6 +182,52 @@ bool linear_solve(LinearSolver& lin, const la::RCP<la::CrsMatrix>& K, const la::
   }
 }
 
+bool linear_solve(LinearSolver& lin, const NewtonSystem& sys, const la::Vector& b, la::Vector& x, double tol,
+                  LinearSolver::Result& res, std::string& failure) {
+  auto K = const_cast<NewtonSystem&>(sys).matrix();
+  const std::vector<NewtonSystem::RankOne> terms = sys.rank_one();
+  if (!linear_solve(lin, K, b, x, tol, res, failure)) return false;
+  if (terms.empty()) return true;
+  // Woodbury with m terms: (C^-1 + R^T Y) z = R^T x0, x = x0 - Y z (m is the number of cavities).
+  const std::size_t m = terms.size();
+  std::vector<la::Vector> Y;
+  std::vector<double> A(m * m), z(m);
+  for (std::size_t i = 0; i < m; ++i) {
+    Y.emplace_back(x.getMap());
+    try {
+      const LinearSolver::Result ri = lin.solve(*terms[i].left, Y.back(), tol);
+      res.iterations += ri.iterations;
+      res.converged = res.converged && ri.converged;
+    } catch (const LinearSolverFailure& e) {
+      failure = "the linear solver failed: " + std::string(e.what());
+      return false;
+    }
+  }
+  for (std::size_t i = 0; i < m; ++i) {
+    z[i] = terms[i].right->dot(x);
+    for (std::size_t j = 0; j < m; ++j) A[i * m + j] = terms[i].right->dot(Y[j]) + (i == j ? 1.0 / terms[i].c : 0.0);
+  }
+  // Gaussian elimination with partial pivoting on the small dense system.
+  for (std::size_t k = 0; k < m; ++k) {
+    std::size_t piv = k;
+    for (std::size_t i = k + 1; i < m; ++i)
+      if (std::abs(A[i * m + k]) > std::abs(A[piv * m + k])) piv = i;
+    for (std::size_t j = 0; j < m; ++j) std::swap(A[k * m + j], A[piv * m + j]);
+    std::swap(z[k], z[piv]);
+    for (std::size_t i = k + 1; i < m; ++i) {
+      const double f = A[i * m + k] / A[k * m + k];
+      for (std::size_t j = k; j < m; ++j) A[i * m + j] -= f * A[k * m + j];
+      z[i] -= f * z[k];
+    }
+  }
+  for (std::size_t k = m; k-- > 0;) {
+    for (std::size_t j = k + 1; j < m; ++j) z[k] -= A[k * m + j] * z[j];
+    z[k] /= A[k * m + k];
+  }
+  for (std::size_t i = 0; i < m; ++i) x.update(-z[i], Y[i], 1.0);
+  return true;
+}
+
 namespace {
 
 // One iteration's update: the accepted trial and what the log prints about it.
@@ -274,7 +320,7 @@ class Solve {
     // preconditioner").
     if (!settled_) lin_.tangent_changed();
     r_.scale(-1.0);
-    if (!linear_solve(lin_, sys_.matrix(), r_, du_, up.eta, up.lr, res_.failure)) return false;
+    if (!linear_solve(lin_, sys_, r_, du_, up.eta, up.lr, res_.failure)) return false;
     r_.scale(-1.0);
     res_.linear_iterations += up.lr.iterations;
     if (!std::isfinite(du_.norm2())) return fail("linear solve produced a non-finite increment", false);

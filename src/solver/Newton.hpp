@@ -18,6 +18,7 @@
 #pragma once
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "deck/Config.hpp"
 #include "parallel/LinearAlgebra.hpp"
@@ -63,6 +64,16 @@ class NewtonSystem {
     (void)why;
     return 0;
   }
+  // Rank-one terms of the tangent that matrix() leaves out: dr/du = matrix() + sum_i c_i
+  // left_i right_i^T, at the last evaluate() with the tangent (a fluid cavity's pressure-
+  // volume coupling, which couples every dof of its wall: a dense block). The linear solve
+  // takes them by Sherman-Morrison-Woodbury (linear_solve below).
+  struct RankOne {
+    const la::Vector* left;
+    const la::Vector* right;
+    double c;
+  };
+  virtual std::vector<RankOne> rank_one() const { return {}; }
 };
 
 struct NewtonResult {
@@ -80,6 +91,10 @@ struct NewtonResult {
 // rank: the ranks vote, LinearSolver.hpp), returns false on every rank with `failure`
 // set, so the caller cuts the step back; InputError propagates.
 bool linear_solve(LinearSolver& lin, const la::RCP<la::CrsMatrix>& K, const la::Vector& b, la::Vector& x, double tol,
+                  LinearSolver::Result& res, std::string& failure);
+// The same with the system's rank-one terms: (K + sum_i c_i l_i r_i^T) x = b, from K x0 = b and
+// K y_i = l_i (one set-up, 1 + m solves): x = x0 - Y (C^-1 + R^T Y)^-1 R^T x0.
+bool linear_solve(LinearSolver& lin, const NewtonSystem& sys, const la::Vector& b, la::Vector& x, double tol,
                   LinearSolver::Result& res, std::string& failure);
 
 // Rounds of revisions of held contact nodes in one solve (NewtonSystem::verify_held) before

@@ -37,8 +37,12 @@
 #include <string>
 #include <vector>
 
+#include "AssemblerFixture.hpp"
+#include "CsvSeries.hpp"
 #include "H5Results.hpp"
 #include "RadialTubeReference.hpp"
+#include "geometry/Generators.hpp"
+#include "mesh/GmshReader.hpp"
 #include "run/Simulation.hpp"
 
 using namespace stentor;
@@ -55,7 +59,27 @@ struct Balloon {
   int through = 2;              // cells through the wall
   std::string ends = "z";       // components held on balloon_ends
   int steps = 4;
+  double volume_ratio = 0.0;    // > 0: a fluid cavity (bulk modulus `bulk`) instead of the pressure
+  double bulk = 2200.0;
 };
+
+// The inflation load: a follower pressure p, or the fluid cavity of b.
+std::string inflation(const Balloon& b, double p) {
+  if (b.volume_ratio <= 0.0)
+    return R"(<ParameterList name="inflation"><Parameter name="type" type="string" value="pressure"/>
+      <Parameter name="boundary" type="string" value="balloon_inner"/>
+      <Parameter name="pressure" type="double" value=")" +
+           std::to_string(p) + R"("/></ParameterList>)";
+  char buf[600];
+  std::snprintf(buf, sizeof buf, R"X(<ParameterList name="inflation"><Parameter name="type" type="string" value="fluid cavity"/>
+      <Parameter name="boundary" type="string" value="balloon_inner"/>
+      <Parameter name="volume ratio" type="double" value="%.17g"/>
+      <Parameter name="bulk modulus" type="double" value="%.17g"/>
+      <Parameter name="axis point" type="Array(double)" value="{0, 0, 0}"/>
+      <Parameter name="axis" type="Array(double)" value="{0, 0, 1}"/></ParameterList>)X",
+                b.volume_ratio, b.bulk);
+  return buf;
+}
 
 Config deck(const Balloon& b, double p, const std::string& name) {
   const std::string text = R"(<ParameterList name="stentor">
@@ -104,9 +128,7 @@ Config deck(const Balloon& b, double p, const std::string& name) {
     <ParameterList name="catheter"><Parameter name="type" type="string" value="Dirichlet"/>
       <Parameter name="boundary" type="string" value="balloon_ends"/>
       <Parameter name="components" type="string" value=")" + b.ends + R"("/></ParameterList>
-    <ParameterList name="inflation"><Parameter name="type" type="string" value="pressure"/>
-      <Parameter name="boundary" type="string" value="balloon_inner"/>
-      <Parameter name="pressure" type="double" value=")" + std::to_string(p) + R"("/></ParameterList>
+    )" + inflation(b, p) + R"(
   </ParameterList>
   <ParameterList name="Stepping"><Parameter name="end time" type="double" value="1.0"/>
     <Parameter name="steps" type="int" value=")" + std::to_string(b.steps) + R"("/></ParameterList>
@@ -374,4 +396,136 @@ TEST(BalloonInflation, HeldEndsStretchTheMiddleOfALongBalloonAxially) {
   EXPECT_GT(effect[1], 0.0);
   EXPECT_NEAR(effect[0] / effect[1], 2.0, 0.2);
   EXPECT_GT(effect[0], 5.0 * 6e-4);
+}
+
+// Volume control (`type` = fluid cavity, docs/stent.md "Volume control"): the ends held
+// axially as above, the fluid's volume at zero pressure ramped to 1.6 V0 (K = 2200 MPa). At
+// every step the cavity's volume is the fluid's at the pressure the run reports,
+// V = V_fluid exp(-p / K); the cavity of the scaled polygon (the wall's nodes all at one
+// radius, as the radial solution keeps them) is (r / Ri)^2 V0; and the radius matches the
+// radial solution at that pressure as the pressure-driven balloon does.
+TEST(BalloonInflation, FluidCavityHoldsItsVolumeAndMatchesTheRadialSolution) {
+  const Balloon b{1.2, 0.1, 2, "z", 4, 1.6, 2200.0};
+  const Config cfg = deck(b, 0.0, "cavity_read");
+  const MaterialConfig& m = cfg.material("balloon wall");
+  const double Ri = cfg.mesh.balloon.inner_radius(), Ro = cfg.mesh.balloon.outer_radius();
+  const double zmid = 0.5 * cfg.mesh.stent.total_length();
+  const std::vector<Layer> L{{cylindrical_law(m.mu, m.lambda, m.k1, m.k2, m.fibre_angle * 3.14159265358979323846 / 180.0), Ri, Ro}};
+  const std::vector<State> st = run(b, 0.0, "cavity");
+  const stentor::testing::Series h = stentor::testing::read_csv(kDir / "cavity" / "balloon_history.csv");
+  ASSERT_EQ(st.size(), 4u);
+  ASSERT_EQ(h.rows(), 4u);
+  double worst_law = 0.0, worst_poly = 0.0, worst_ref = 0.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    const double f = h["time"][i], p = h["pressure_inflation"][i], v = h["volume_ratio_inflation"][i];
+    const double fluid = 1.0 + f * (b.volume_ratio - 1.0);
+    double spread = 0.0, ri = 0.0, ro = 0.0;
+    const double fi = fe_radius(st[i], Ri, zmid, &spread);
+    reference_radii(L, p, ri, ro);
+    ASSERT_TRUE(std::isfinite(ri));
+    const double law = std::fabs(v - fluid * std::exp(-p / b.bulk)), poly = std::fabs(v - fi * fi / (Ri * Ri)) / v;
+    const double ref = std::fabs(fi - ri) / ri;
+    std::printf("[balloon] cavity step %zu: V_fluid/V0 %.4f, V/V0 %.10f, p %.6f MPa; |V - V_fluid e^(-p/K)|/V0 %.1e; "
+                "(r/Ri)^2 %.10f (rel %.1e); inner %.6f, radial solution at p %.6f (rel %.2e); spread along z %.1e\n",
+                i + 1, fluid, v, p, law, fi * fi / (Ri * Ri), poly, fi, ri, ref, spread);
+    worst_law = std::fmax(worst_law, law);
+    worst_poly = std::fmax(worst_poly, poly);
+    worst_ref = std::fmax(worst_ref, ref);
+    EXPECT_GT(p, 0.0);
+  }
+  EXPECT_LT(worst_law, 1e-12);   // the state's own relation: round-off
+  EXPECT_LT(worst_poly, 1e-10);  // the volume integral against the polygon's area
+  EXPECT_LT(worst_ref, 2.5e-4);  // the pressure-driven coarse mesh's bound above
+}
+
+// A balloon held whole at its ends has a limit point near 0.1 MPa (the pressure-driven
+// test above stops short of it): under volume control the run passes it, the pressure
+// rising to a maximum, falling as a bulge forms, and rising again as the fibres stiffen.
+TEST(BalloonInflation, FluidCavityPassesTheLimitPointOfAHeldBalloon) {
+  const Balloon b{6.6, 0.2, 2, "all", 20, 5.0, 2200.0};
+  const std::vector<State> st = run(b, 0.0, "cavity_limit");
+  const stentor::testing::Series h = stentor::testing::read_csv(kDir / "cavity_limit" / "balloon_history.csv");
+  ASSERT_GE(h.rows(), 20u);
+  const std::vector<double>& p = h["pressure_inflation"];
+  const std::size_t top = static_cast<std::size_t>(std::max_element(p.begin(), p.begin() + static_cast<long>(p.size() / 2 + 2)) - p.begin());
+  const double low = *std::min_element(p.begin() + static_cast<long>(top), p.end());
+  const std::size_t n = h.rows() - 1;
+  std::printf("[balloon] held balloon under volume control: %zu steps; the largest pressure %.5f MPa at V/V0 %.3f (step "
+              "%zu), falling to %.5f MPa, then %.5f MPa at V/V0 %.4f\n",
+              h.rows(), p[top], h["volume_ratio_inflation"][top], top + 1, low, p[n], h["volume_ratio_inflation"][n]);
+  EXPECT_GT(top, 0u);
+  EXPECT_GT(p[top], 0.09);  // measured 0.1092 (pressure control stalled at 0.098-0.109)
+  EXPECT_LT(p[top], 0.12);
+  EXPECT_LT(low, p[top] - 0.005);  // the drop: measured to 0.1009
+  EXPECT_GT(p[n], p[top]);         // and the rise: 0.1199 at V/V0 5
+  EXPECT_NEAR(h["volume_ratio_inflation"][n], 5.0 * std::exp(-p[n] / b.bulk), 1e-12);
+  EXPECT_NEAR(h["time"][n], 1.0, 1e-12);
+}
+
+// The cavity's tangent against central differences of the residual (the assembler alone):
+// dr/du v = K v + c l (r . v), K the assembled matrix (the follower pressure's part at p) and
+// c l r^T the rank-one term of Assembler::Cavity; and dV/du . v against differences of the
+// volume. At a state off the radial solution (the balloon opened by 10 % plus a smooth
+// non-homogeneous field), directions v with the constraints' rows held (zero on Dirichlet
+// dofs, in the symmetry planes), free rows compared.
+TEST(BalloonInflation, FluidCavityTangentMatchesFiniteDifferences) {
+  for (const double K : {5.0, 2200.0}) {
+    const Config cfg = deck(Balloon{1.2, 0.1, 2, "z", 4, 1.6, K}, 0.0, "cavity_fd");
+    set_mesh_generator(&generate_mesh);
+    stentor::testing::AssemblerFixture fx(cfg);
+    const auto map = fx.dist->owned_map();
+    la::Vector u(map), v(map), up(map), um(map), r(map), rp(map), rm(map), Jv(map);
+    fx.fill(u, 0.05);
+    fx.fill(v, 1.0, 0.3);
+    {
+      auto uh = u.getLocalViewHost(Tpetra::Access::ReadWrite);
+      for (la::LO l = 0; l < fx.dist->num_owned_nodes(); ++l) {
+        const double* X = fx.mesh.coord(fx.dist->global_node(l));
+        if (std::hypot(X[0], X[1]) < 0.5 * (cfg.mesh.stent.inner_radius() + cfg.mesh.balloon.outer_radius()))
+          uh(3 * l, 0) += 0.1 * X[0], uh(3 * l + 1, 0) += 0.1 * X[1];
+        else uh(3 * l, 0) = uh(3 * l + 1, 0) = uh(3 * l + 2, 0) = 0.0;  // the stent at rest (thin struts invert under the field)
+      }
+    }
+    fx.as->apply_dirichlet(u, 1.0, 1.0);
+    {
+      auto vh = v.getLocalViewHost(Tpetra::Access::ReadWrite);
+      for (la::LO i = 0; i < static_cast<la::LO>(vh.extent(0)); ++i)
+        if (fx.as->is_cartesian_dirichlet(i)) vh(i, 0) = 0.0;
+    }
+    fx.as->project_on_planes(v);
+    ASSERT_EQ(fx.as->assemble(u, 1.0, 1.0, r, true).inverted, 0) << fx.as->smallest_det_f(3);
+    const Assembler::Cavity c = fx.as->cavities().at(0);
+    ASSERT_TRUE(c.on);
+    ASSERT_GT(c.tangent_c, 0.0);
+    fx.as->matrix()->apply(v, Jv);
+    Jv.update(c.tangent_c * c.right->dot(v), *c.left, 1.0);
+    const double h = 1e-6;
+    up.update(1.0, u, h, v, 0.0);
+    um.update(1.0, u, -h, v, 0.0);
+    fx.as->assemble(up, 1.0, 1.0, rp, false);
+    const double Vp = fx.as->cavities().at(0).V;
+    fx.as->assemble(um, 1.0, 1.0, rm, false);
+    const double Vm = fx.as->cavities().at(0).V;
+    rp.update(-1.0 / (2.0 * h), rm, 1.0 / (2.0 * h));
+    double diff = 0.0, norm = 0.0;
+    {
+      auto a = Jv.getLocalViewHost(Tpetra::Access::ReadOnly);
+      auto b = rp.getLocalViewHost(Tpetra::Access::ReadOnly);
+      for (la::LO i = 0; i < static_cast<la::LO>(a.extent(0)); ++i) {
+        if (fx.as->is_dirichlet(i)) continue;
+        diff = std::fmax(diff, std::fabs(a(i, 0) - b(i, 0)));
+        norm = std::fmax(norm, std::fabs(b(i, 0)));
+      }
+    }
+    const double dV = c.right->dot(v), dV_fd = (Vp - Vm) / (2.0 * h);
+    la::Vector Kv(map);
+    fx.as->matrix()->apply(v, Kv);
+    Kv.update(-1.0, rp, 1.0);
+    std::printf("[balloon] cavity K %g MPa: p %.5f MPa, V/V0 %.5f, c = K/V %.4e; |dr/du v - FD| / |FD| %.2e (without the "
+                "rank-one term %.2e); dV/du . v %.10e, FD %.10e (rel %.1e)\n",
+                K, c.p, c.V / c.V0, c.tangent_c, diff / norm, Kv.normInf() / norm, dV, dV_fd, std::fabs(dV - dV_fd) / std::fabs(dV_fd));
+    EXPECT_LT(diff / norm, 1e-8);           // measured 5.0e-11 for both K
+    EXPECT_GT(Kv.normInf(), 1e3 * diff);    // the rank-one term matters: 1.1e-5 and 5.0e-3 without it
+    EXPECT_LT(std::fabs(dV - dV_fd), 1e-7 * std::fabs(dV_fd));  // measured 1.7e-9
+  }
 }
