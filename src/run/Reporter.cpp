@@ -608,6 +608,8 @@ void Reporter::begin_interval(double t0, double t1) {
     out_ << ", contact active/stick/slip nodes of";
     for (const ContactPairConfig& c : cfg_.contact) out_ << " '" << c.name << "'";
   }
+  for (const Assembler::Cavity& c : m_.assembler->cavities())
+    out_ << ", p pressure and V/V0 volume ratio of the fluid cavity '" << c.spec.name << "'";
   if (m_.any_dynamic) out_ << ", K kinetic and E total energy, balance E_{n+1} - E_n - (work - dissipation) of the step";
   out_ << "; [" << (cfg_.stages.empty() ? "" : "stage k/n: its time of its duration; ") << "wall time, time left]\n";
 }
@@ -627,6 +629,8 @@ void Reporter::step_line(const RunState& s, const StepRecord& rec, double energy
        << nr.iterations << "  linear " << std::setw(4) << nr.linear_iterations << "  |r| " << fmt(nr.residual, 2) << "  W "
        << fmt(energy, 6);
   if (m_.contact) out_ << m_.contact->progress(rec.contact);
+  for (const Assembler::Cavity& c : m_.assembler->cavities())
+    if (c.on) out_ << "  p " << fmt(c.p, 4) << "  V/V0 " << fmt(c.V / c.V0, 5);
   if (m_.dynamic && rec.nonfinite.empty()) {
     const EnergyAudit& au = rec.audit;
     out_ << "  K " << fmt(au.kinetic, 6) << "  E " << fmt(au.kinetic + au.strain, 9) << "  balance " << fmt(au.balance, 2);
