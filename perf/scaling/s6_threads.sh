@@ -9,14 +9,17 @@
 #   perf/scaling/s6_threads.sh [STENTOR]      # default build-openmp/stentor
 #   E=3 perf/scaling/s6_threads.sh
 #
-# Environment: E (elements through width and thickness, default 5), PREC (schwarz, the
-# default; or none), OUT (default perf/results/scaling), MPIEXEC (mpirun). Writes
+# Environment: E (elements through width and thickness, default 5), LINEAR (gmres, the
+# default, or direct: KLU2, which threads nothing and gathers the matrix on one rank),
+# PREC (schwarz, the default; or none), OUT (default perf/results/scaling), MPIEXEC
+# (mpirun). Writes
 # $OUT/s6_threads.csv. Used for docs/performance.md ("S6 stent: ranks x threads").
 set -uo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 STENTOR=${1:-$root/build-openmp/stentor}
 E=${E:-5}
 PREC=${PREC:-schwarz}
+LINEAR=${LINEAR:-gmres}
 OUT=${OUT:-$root/perf/results/scaling}
 MPIEXEC=${MPIEXEC:-mpirun}
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_WAIT_POLICY=passive
@@ -29,7 +32,7 @@ echo "case,ranks,threads,hex8,dofs,steps,cutbacks,newton_iterations,linear_itera
 deck=$work/s6_stent.xml
 sed -e "s|\"elements through width\" type=\"int\" value=\"3\"|\"elements through width\" type=\"int\" value=\"$E\"|" \
     -e "s|\"elements through thickness\" type=\"int\" value=\"3\"|\"elements through thickness\" type=\"int\" value=\"$E\"|" \
-    -e "s|\"method\" type=\"string\" value=\"direct\"|\"method\" type=\"string\" value=\"gmres\"/><Parameter name=\"preconditioner\" type=\"string\" value=\"$PREC\"|" \
+    -e "$([ "$LINEAR" = direct ] && echo 's|x|x|' || echo "s|\"method\" type=\"string\" value=\"direct\"|\"method\" type=\"string\" value=\"gmres\"/><Parameter name=\"preconditioner\" type=\"string\" value=\"$PREC\"|")" \
     -e "s|\"max iterations\" type=\"int\" value=\"30\"/>|\"max iterations\" type=\"int\" value=\"30\"/><Parameter name=\"forcing\" type=\"string\" value=\"fixed\"/>|" \
     -e "s|\"every\" type=\"int\" value=\"5\"|\"every\" type=\"int\" value=\"1000\"|" \
     "$root/inputs/s6_stent.xml" > "$deck"
@@ -61,7 +64,7 @@ run() {  # run NAME RANKS THREADS
   tail -1 "$csv"
 }
 
-echo "S6 ranks x threads: $E x $E cells through the strut, gmres + $PREC, $(getconf _NPROCESSORS_ONLN) cores"
+echo "S6 ranks x threads: $E x $E cells through the strut, $LINEAR$([ "$LINEAR" = direct ] || echo " + $PREC"), $(getconf _NPROCESSORS_ONLN) cores"
 status=0
 run r1_t1 1 1 || status=1
 run r1_t2 1 2 || status=1
