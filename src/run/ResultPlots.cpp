@@ -244,7 +244,8 @@ void diameter_plot(const Model& m, const std::string& stem, const UnitLabels& u,
 
 // A generated stent expanded by a pressure load (a deformable balloon's inflation): its
 // outer diameters against the pressure (history column pressure_<load>, matched by step;
-// `h` with its t = 0 row), loading and unloading (the compliance chart).
+// `h` with its t = 0 row), loading and unloading (the compliance chart), over the stages
+// where the load is on.
 void pressure_diameter_plots(const Model& m, const PlotTable& h, const std::string& stem, const UnitLabels& u,
                              const std::vector<std::string>& cols, std::vector<std::string>& made) {
   PlotTable metrics;
@@ -257,9 +258,12 @@ void pressure_diameter_plots(const Model& m, const PlotTable& h, const std::stri
     for (std::size_t r = 0; r < hs.size(); ++r) at_step[std::lround(hs[r])] = h.columns[static_cast<std::size_t>(pc)][r];
     PlotTable t = metrics;
     std::vector<double> p;
-    for (double s : t.columns[static_cast<std::size_t>(t.find("step"))]) {
-      const auto it = at_step.find(std::lround(s));
-      p.push_back(it == at_step.end() ? std::nan("") : it->second);
+    const int tc = t.find("time");
+    for (std::size_t r = 0; r < t.columns[static_cast<std::size_t>(t.find("step"))].size(); ++r) {
+      const auto it = at_step.find(std::lround(t.columns[static_cast<std::size_t>(t.find("step"))][r]));
+      // Not in a stage that switches the load off (a crimp before it, a release after it).
+      const bool on = tc < 0 || l.ramp.on(t.columns[static_cast<std::size_t>(tc)][r]);
+      p.push_back(it == at_step.end() || !on ? std::nan("") : it->second);
     }
     t.add("pressure", std::move(p));
     PlotSpec d{"Pressure-diameter curve of '" + l.name + "': stent outer diameters against the pressure",
