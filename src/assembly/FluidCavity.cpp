@@ -13,14 +13,24 @@
 namespace stentor {
 
 namespace {
-// Facet f's reference coordinates and displacements (overlap-local node indices in conn).
-template <class Conn, class Coords, class UView>
-void gather_facet(int f, int nn, const Conn& conn, const Coords& X, const UView* u, double (*Xe)[3], double (*Ue)[3]) {
-  for (int a = 0; a < nn; ++a) {
-    const int l = conn(f, a);
-    for (int d = 0; d < 3; ++d) {
-      Xe[a][d] = X(l, d);
-      Ue[a][d] = u ? (*u)(l * 3 + d, 0) : 0.0;
+// Calls f(pl, conn, facet, Xe, Ue, orientation, rule) for every facet of cavity k's wall that this
+// rank integrates (`pressures`: Assembler::pressures_), with its reference coordinates Xe and
+// displacements Ue (overlap-local node indices; Ue = 0 without u).
+template <class PressureLoads, class Coords, class UView, class F>
+void each_wall_facet(const PressureLoads& pressures, std::size_t k, const Coords& X, const UView* u, F&& f) {
+  for (const auto& pl : pressures) {
+    if (pl.cavity != static_cast<int>(k)) continue;
+    const QuadRule q = make_rule(pl.type, 2 * cell_order(pl.type) + 1);
+    const auto conn = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pl.conn);
+    const auto orient = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pl.orientation);
+    for (std::size_t c = 0; c < conn.extent(0); ++c) {
+      double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3];
+      for (int a = 0; a < pl.nn; ++a)
+        for (int d = 0; d < 3; ++d) {
+          Xe[a][d] = X(conn(c, a), d);
+          Ue[a][d] = u ? (*u)(conn(c, a) * 3 + d, 0) : 0.0;
+        }
+      f(pl, conn, c, Xe, Ue, orient(c), q);
     }
   }
 }
@@ -31,17 +41,9 @@ double Assembler::cavity_volume(std::size_t k, bool reference) const {
   const auto uh = u_overlap_->getLocalViewHost(Tpetra::Access::ReadOnly);
   const FluidCavitySpec& s = cavities_[k].spec;
   double loc = 0.0, glob = 0.0;
-  for (const PressureLoad& pl : pressures_) {
-    if (pl.cavity != static_cast<int>(k)) continue;
-    const QuadRule q = make_rule(pl.type, 2 * cell_order(pl.type) + 1);
-    const auto conn = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pl.conn);
-    const auto orient = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pl.orientation);
-    for (std::size_t f = 0; f < conn.extent(0); ++f) {
-      double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3];
-      gather_facet(static_cast<int>(f), pl.nn, conn, X, reference ? nullptr : &uh, Xe, Ue);
-      loc += cavity_facet_volume(pl.type, pl.nn, Xe, Ue, orient(f), s.point.data(), s.axis.data(), q);
-    }
-  }
+  each_wall_facet(pressures_, k, X, reference ? nullptr : &uh,
+                  [&](const auto& pl, const auto&, std::size_t, const double(*Xe)[3], const double(*Ue)[3], double orient,
+                      const QuadRule& q) { loc += cavity_facet_volume(pl.type, pl.nn, Xe, Ue, orient, s.point.data(), s.axis.data(), q); });
   Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &loc, &glob);
   return glob;
 }
@@ -81,19 +83,14 @@ void Assembler::update_cavity_gradients() {
     {
       const auto uh = u_overlap_->getLocalViewHost(Tpetra::Access::ReadOnly);
       auto gh = g_overlap.getLocalViewHost(Tpetra::Access::ReadWrite);
-      for (const PressureLoad& pl : pressures_) {
-        if (pl.cavity != static_cast<int>(k)) continue;
-        const QuadRule q = make_rule(pl.type, 2 * cell_order(pl.type) + 1);
-        const auto conn = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pl.conn);
-        const auto orient = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), pl.orientation);
-        for (std::size_t f = 0; f < conn.extent(0); ++f) {
-          double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], re[kMaxCellDofs], ke[kMaxCellDofs][kMaxCellDofs];
-          gather_facet(static_cast<int>(f), pl.nn, conn, X, &uh, Xe, Ue);
-          pressure_element(3, kin_, pl.type, pl.nn, Xe, Ue, -orient(f), 1.0, q, re, ke);
-          for (int a = 0; a < pl.nn; ++a)
-            for (int d = 0; d < 3; ++d) gh(conn(f, a) * 3 + d, 0) += re[a * 3 + d];
-        }
-      }
+      each_wall_facet(pressures_, k, X, &uh,
+                      [&](const auto& pl, const auto& conn, std::size_t f, const double(*Xe)[3], const double(*Ue)[3], double orient,
+                          const QuadRule& q) {
+                        double re[kMaxCellDofs], ke[kMaxCellDofs][kMaxCellDofs];
+                        pressure_element(3, kin_, pl.type, pl.nn, Xe, Ue, -orient, 1.0, q, re, ke);
+                        for (int a = 0; a < pl.nn; ++a)
+                          for (int d = 0; d < 3; ++d) gh(conn(f, a) * 3 + d, 0) += re[a * 3 + d];
+                      });
     }
     if (c.right.is_null()) c.right = Teuchos::rcp(new la::Vector(dist_.owned_map()));
     if (c.left.is_null()) c.left = Teuchos::rcp(new la::Vector(dist_.owned_map()));

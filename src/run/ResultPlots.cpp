@@ -258,9 +258,10 @@ void pressure_diameter_plots(const Model& m, const PlotTable& h, const std::stri
     for (std::size_t r = 0; r < hs.size(); ++r) at_step[std::lround(hs[r])] = h.columns[static_cast<std::size_t>(pc)][r];
     PlotTable t = metrics;
     std::vector<double> p;
+    const auto& steps = t.columns[static_cast<std::size_t>(t.find("step"))];
     const int tc = t.find("time");
-    for (std::size_t r = 0; r < t.columns[static_cast<std::size_t>(t.find("step"))].size(); ++r) {
-      const auto it = at_step.find(std::lround(t.columns[static_cast<std::size_t>(t.find("step"))][r]));
+    for (std::size_t r = 0; r < steps.size(); ++r) {
+      const auto it = at_step.find(std::lround(steps[r]));
       // Not in a stage that switches the load off (a crimp before it, a release after it).
       const bool on = tc < 0 || l.ramp.on(t.columns[static_cast<std::size_t>(tc)][r]);
       p.push_back(it == at_step.end() || !on ? std::nan("") : it->second);

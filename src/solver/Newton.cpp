@@ -182,11 +182,10 @@ bool linear_solve(LinearSolver& lin, const la::RCP<la::CrsMatrix>& K, const la::
   }
 }
 
-bool linear_solve(LinearSolver& lin, const NewtonSystem& sys, const la::Vector& b, la::Vector& x, double tol,
+bool linear_solve(LinearSolver& lin, NewtonSystem& sys, const la::Vector& b, la::Vector& x, double tol,
                   LinearSolver::Result& res, std::string& failure) {
-  auto K = const_cast<NewtonSystem&>(sys).matrix();
   const std::vector<NewtonSystem::RankOne> terms = sys.rank_one();
-  if (!linear_solve(lin, K, b, x, tol, res, failure)) return false;
+  if (!linear_solve(lin, sys.matrix(), b, x, tol, res, failure)) return false;
   if (terms.empty()) return true;
   // Woodbury with m terms: (C^-1 + R^T Y) z = R^T x0, x = x0 - Y z (m is the number of cavities).
   const std::size_t m = terms.size();

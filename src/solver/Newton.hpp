@@ -94,7 +94,7 @@ bool linear_solve(LinearSolver& lin, const la::RCP<la::CrsMatrix>& K, const la::
                   LinearSolver::Result& res, std::string& failure);
 // The same with the system's rank-one terms: (K + sum_i c_i l_i r_i^T) x = b, from K x0 = b and
 // K y_i = l_i (one set-up, 1 + m solves): x = x0 - Y (C^-1 + R^T Y)^-1 R^T x0.
-bool linear_solve(LinearSolver& lin, const NewtonSystem& sys, const la::Vector& b, la::Vector& x, double tol,
+bool linear_solve(LinearSolver& lin, NewtonSystem& sys, const la::Vector& b, la::Vector& x, double tol,
                   LinearSolver::Result& res, std::string& failure);
 
 // Rounds of revisions of held contact nodes in one solve (NewtonSystem::verify_held) before

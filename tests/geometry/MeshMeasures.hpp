@@ -33,6 +33,12 @@ inline double hex_volume(const Mesh& m, const GId* c) {
   return v;
 }
 
+// n cells over the angle theta: the area of the polygonal annulus between r1 and r2, times
+// the length (the tube generators' cross-sections over a sector).
+inline double sector_polygon(double r1, double r2, double theta, int n, double length) {
+  return 0.5 * n * (r2 * r2 - r1 * r1) * std::sin(theta / n) * length;
+}
+
 inline const CellBlock* block(const std::vector<CellBlock>& bs, const std::string& name) {
   for (const auto& b : bs)
     if (b.name == name) return &b;

@@ -18,18 +18,13 @@
 
 using namespace stentor;
 using test::block;
+using test::sector_polygon;
 
 namespace {
 
 const double kPi = 3.14159265358979323846;
 
-// Two rings of the S6 stent (OD 3 mm, struts 0.1 x 0.1, links at every crown).
-StentConfig stent() {
-  StentConfig s = test::s6_ring_as_cut();
-  s.rings = 2;
-  s.links_per_ring = 8;
-  return s;
-}
+StentConfig stent() { return test::s6_two_rings_linked(); }
 
 BalloonConfig balloon() {
   BalloonConfig b;
@@ -39,11 +34,6 @@ BalloonConfig balloon() {
   b.length = 4.0;
   b.element_length = 0.1;
   return b;
-}
-
-// Cells around Theta = N sector cells: the polygon's area between r1 and r2.
-double sector_polygon(double r1, double r2, double theta, int n, double length) {
-  return 0.5 * n * (r2 * r2 - r1 * r1) * std::sin(theta / n) * length;
 }
 
 double node_radius(const Mesh& m, GId n) { return std::hypot(m.coord(n)[0], m.coord(n)[1]); }

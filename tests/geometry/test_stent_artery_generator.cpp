@@ -21,18 +21,13 @@
 
 using namespace stentor;
 using test::block;
+using test::sector_polygon;
 
 namespace {
 
 const double kPi = 3.14159265358979323846;
 
-// Two rings of the S6 stent (OD 3 mm, struts 0.1 x 0.1, links at every crown): 2.3 mm long.
-StentConfig stent() {
-  StentConfig s = test::s6_ring_as_cut();
-  s.rings = 2;
-  s.links_per_ring = 8;
-  return s;
-}
+StentConfig stent() { return test::s6_two_rings_linked(); }
 
 // A coronary artery around it: lumen 3.4 mm (0.2 mm clear of the stent), 4 mm long.
 ArteryConfig artery() {
@@ -56,11 +51,6 @@ BalloonConfig balloon() {
   b.length = 3.0;
   b.element_length = 0.2;
   return b;
-}
-
-// n cells over the angle theta: the polygon's area between r1 and r2, times the length.
-double sector_polygon(double r1, double r2, double theta, int n, double length) {
-  return 0.5 * n * (r2 * r2 - r1 * r1) * std::sin(theta / n) * length;
 }
 
 double layer_inner(const ArteryConfig& a, int l) { return l == 0 ? a.inner_radius() : a.layer_outer_radius(l - 1); }
