@@ -118,7 +118,7 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
       surface_set.insert(surface_set.end(), p.slave_faces->nodes().begin(), p.slave_faces->nodes().end());
     }
   sort_unique(surface_set);
-  std::map<GId, int> slave_of;
+  std::multimap<GId, int> slave_of;
   for (std::size_t ip = 0; ip < pairs_.size(); ++ip) setup_slaves(ip, cfg, mesh, assembler, master_set, slave_of);
   if (has_master_) setup_master_maps(mesh, surface_set, assembler);
   for (auto& p : pairs_)
@@ -141,9 +141,9 @@ bool pairs_meet(const Config& cfg, std::size_t a, std::size_t b) {
 }  // namespace
 
 // Pair ip's slave nodes owned here (checks: the mesh dimension of an obstacle, a node in
-// one pair only and not on the master surface of a pair active with it, at least one usable node over all ranks).
+// no other pair active with it, as a slave or on its master surface, at least one usable node over all ranks).
 void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, const Assembler& assembler, const std::vector<GId>& master_set,
-                           std::map<GId, int>& slave_of) {
+                           std::multimap<GId, int>& slave_of) {
   const Distribution& dist = dist_;
   const auto& colmap = assembler.matrix()->getColMap();
   Pair& p = pairs_[ip];
@@ -182,10 +182,16 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
                          ", active in the same stage; a node may be a slave and a master node only of pairs that no stage "
                          "activates together (two-pass and self-contact are not implemented)");
     }
-    const auto [at, fresh] = slave_of.emplace(g, static_cast<int>(ip));
-    if (!fresh)
-      throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' is also a slave node of 'Contact->" +
-                       pairs_[static_cast<std::size_t>(at->second)].cfg.name + "'; a node may belong to one contact pair only");
+    // A node may be a slave of several pairs that no stage activates together (a stent's
+    // outer surface: the crimper's slave while crimping, the lumen's while expanding); each
+    // pair keeps its own state of the node, and an inactive pair leaves the node free.
+    const auto [lo, hi] = slave_of.equal_range(g);
+    for (auto at = lo; at != hi; ++at)
+      if (pairs_meet(cfg, ip, static_cast<std::size_t>(at->second)))
+        throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' is also a slave node of 'Contact->" +
+                         pairs_[static_cast<std::size_t>(at->second)].cfg.name +
+                         "', active in the same stage; a node may be a slave of several pairs only when no stage activates two of them");
+    slave_of.emplace(g, static_cast<int>(ip));
     if (!dist.owns_node(g)) continue;
     const la::LO l = dist.local_node(g);
     Slave nd;
@@ -1214,20 +1220,27 @@ std::vector<double> Contact::slave_pressures(const Pair& p) const {
 
 Contact::NodalFields Contact::nodal_fields() const {
   NodalFields out;
+  std::map<GId, std::size_t> row;  // a node slave of several pairs (never active together): the active pair's values
   for (const Pair& p : pairs_) {
     const std::vector<double> pressure = slave_pressures(p);
     for (std::size_t i = 0; i < p.nodes.size(); ++i) {
       const Slave& nd = p.nodes[i];
+      const auto [at, fresh] = row.emplace(nd.gid, out.nodes.size());
+      if (!fresh && !p.active) continue;
+      if (fresh) {
+        out.nodes.push_back(static_cast<long long>(nd.gid));
+        out.values.resize(out.values.size() + kNodalValues);
+      }
+      double* v = &out.values[at->second * kNodalValues];
       const bool active = nd.state >= contact::Stick;
       const double fn = dot3(nd.normal, nd.f);
-      out.nodes.push_back(static_cast<long long>(nd.gid));
-      out.values.push_back(static_cast<double>(nd.state));
-      out.values.push_back(nd.gap);
-      out.values.push_back(active ? -fn : 0.0);
-      out.values.push_back(pressure[i]);
-      for (int c = 0; c < 3; ++c) out.values.push_back(active ? -(nd.f[c] - fn * nd.normal[c]) : 0.0);
+      v[0] = static_cast<double>(nd.state);
+      v[1] = nd.gap;
+      v[2] = active ? -fn : 0.0;
+      v[3] = pressure[i];
+      for (int c = 0; c < 3; ++c) v[4 + c] = active ? -(nd.f[c] - fn * nd.normal[c]) : 0.0;
       const double reln = dot3(nd.rel, nd.normal);
-      for (int c = 0; c < 3; ++c) out.values.push_back(active ? nd.rel[c] - reln * nd.normal[c] : 0.0);
+      for (int c = 0; c < 3; ++c) v[7 + c] = active ? nd.rel[c] - reln * nd.normal[c] : 0.0;
     }
   }
   return out;

@@ -270,7 +270,7 @@ class Contact {
     double last_normal_force = 0.0, last_dt = 0.0;  // normal_force_history()
   };
   void setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, const Assembler& assembler, const std::vector<GId>& master_set,
-                    std::map<GId, int>& slave_of);
+                    std::multimap<GId, int>& slave_of);
   void setup_master_maps(const Mesh& mesh, const std::vector<GId>& surface_set, const Assembler& assembler);
   int master_pos(GId g) const;  // index of node g in master_nodes_, or -1
   contact::Obstacle obstacle(const Pair& p, double t) const;

@@ -1364,10 +1364,6 @@ void DeckReader::read_contact(const ParameterList& pl) {
     if (c.discretization == "mortar" && !has_master)
       fail(quoted(path + "->discretization") + " = mortar couples two meshed surfaces; it needs 'master' (a rigid obstacle is "
            "exact at every slave node already)");
-    for (const auto& o : cfg_.contact)
-      if (o.slave == c.slave)
-        fail("'Contact->" + o.name + "' and " + quoted(path) + " both use slave group '" + c.slave +
-             "'; a node may belong to one contact pair only");
     cfg_.contact.push_back(c);
   }
   if (cfg_.contact.empty()) fail("'Contact' defines no contact pair; add one sublist per pair or remove 'Contact'");
@@ -1893,6 +1889,24 @@ void DeckReader::read_stage_analysis(const ParameterList& sub, const std::string
 // analysis and scheme) are known.
 void DeckReader::check_analysis(bool initial_conditions, bool time_integration) {
   const bool staged = !cfg_.stages.empty();
+  // Two pairs may share a slave group (a stent's outer surface: the crimper's, then the
+  // lumen's) only when no stage activates both.
+  for (std::size_t i = 0; i < cfg_.contact.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j) {
+      const ContactPairConfig &a = cfg_.contact[j], &b = cfg_.contact[i];
+      if (a.slave != b.slave) continue;
+      std::string when = "without 'Stages' every pair is active throughout";
+      bool meet = !staged;
+      for (const StageConfig& st : cfg_.stages)
+        if (st.contact_active[i] && st.contact_active[j]) {
+          meet = true;
+          when = "stage 'Stages->" + st.name + "' activates both";
+          break;
+        }
+      if (meet)
+        fail("'Contact->" + a.name + "' and 'Contact->" + b.name + "' both use slave group '" + a.slave + "' and " + when +
+             "; a node may be a slave of two pairs only when no stage activates both");
+    }
   for (int k = 0; k < cfg_.interval_count(); ++k) {
     if (cfg_.analysis_in(k) != "midpoint") continue;
     for (const auto& m : cfg_.materials)

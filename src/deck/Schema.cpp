@@ -751,7 +751,10 @@ std::vector<ListSpec> build_schema() {
       "stent (`Mesh->generator` = stent) names nothing: its groups and axis come from the generator and the "
       "metrics are those of docs/stent.md (\"Stent metrics\"): outer diameters per ring at the crowns and "
       "overall, at the links, length, foreshortening, radial and longitudinal recoil, dogboning, the largest "
-      "equivalent plastic strain and where, mass and metal-to-artery ratio, and a diameter plot. In an "
+      "equivalent plastic strain and where, mass and metal-to-artery ratio, and a diameter plot; with an artery "
+      "generated around it (`Mesh->Artery`) also the lumen's mean and minimum diameter over the stented segment "
+      "and their gains, and per layer the largest principal stress (maximum and 99th percentile; docs/artery.md, "
+      "\"Artery metrics\"). In an "
       "axisymmetric run (`Problem->kinematics`) the vessel axis is the axis of revolution: `axis point` (0, z), `axis` "
       "(0, 1, 0); radii are the nodes' r = x and the circumferential stress is the hoop stress sigma_thth "
       "(docs/axisymmetric.md).",

@@ -13,6 +13,11 @@ MetricsReport::MetricsReport(const Model& model) : m_(model), plastic_(model.ass
   if (model.cfg.mesh.generator == "stent") {
     rings_ = std::make_unique<RingMetrics>(model);
     names_ = rings_->columns();
+    if (ArteryMetrics::applies(model.cfg)) {
+      artery_ = std::make_unique<ArteryMetrics>(model);
+      const auto c = artery_->columns();
+      names_.insert(names_.end(), c.begin(), c.end());
+    }
   } else {
     vessel_ = std::make_unique<StentMetrics>(model);
     names_ = vessel_->columns();
@@ -41,6 +46,10 @@ void MetricsReport::open(const std::string& stem) {
 
 void MetricsReport::step(const RunState& s, const la::Vector& u, double E) {
   now_ = vessel_ ? vessel_->evaluate(u) : rings_->evaluate(u, s.t);
+  if (artery_) {
+    const std::vector<double> a = artery_->evaluate(u);
+    now_.insert(now_.end(), a.begin(), a.end());
+  }
   E_ = E;
   if (!started_) {
     first_ = now_;
@@ -87,6 +96,7 @@ void MetricsReport::end_stage(const RunState& s, const std::string& name, std::o
   } else {
     log << " (t = " << s.t << "):\n";
     rings_->table(log);
+    if (artery_) artery_->table(log);
     log << "  stage";
   }
   const double none = std::numeric_limits<double>::quiet_NaN();
@@ -125,6 +135,7 @@ void MetricsReport::save(std::map<std::string, double>& out) const {
   out["metrics_stage_E0"] = stage_E0_;
   out["metrics_stent_r_max"] = stent_r_max_;
   if (rings_) rings_->save(out, "metrics_ring_");
+  if (artery_) artery_->save(out, "metrics_artery_");
 }
 
 void MetricsReport::restore(const std::map<std::string, double>& in) {
@@ -143,7 +154,7 @@ void MetricsReport::restore(const std::map<std::string, double>& in) {
     ok = get("metrics_first_" + std::to_string(k), first[k]) && get("metrics_stage_max_" + std::to_string(k), stage_max[k]);
   for (std::size_t i = 0; ok && i < std::size(kEnergyKeys); ++i)
     ok = get(std::string("metrics_stage_e0_") + kEnergyKeys[i], e0.*kEnergyFields[i]);
-  if (!ok || (rings_ && !rings_->restore(in, "metrics_ring_"))) return;
+  if (!ok || (rings_ && !rings_->restore(in, "metrics_ring_")) || (artery_ && !artery_->restore(in, "metrics_artery_"))) return;
   first_ = first, stage_max_ = stage_max, stage_e0_ = e0, stage_E0_ = E0, stent_r_max_ = r_max;
   started_ = true;
 }

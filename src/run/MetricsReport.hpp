@@ -3,7 +3,8 @@
 // the stage's end, the lumen gain and radial recoil so far, the stage's largest stresses
 // and contact pressure, and its energy terms), and a paragraph in the log per stage.
 // A stent in an artery: StentMetrics; a generated stent: RingMetrics (with its per-ring
-// table in each stage's paragraph).
+// table in each stage's paragraph), and ArteryMetrics when the artery is generated around
+// it (Mesh->Artery).
 #pragma once
 #include <map>
 #include <memory>
@@ -13,6 +14,7 @@
 
 #include "io/Csv.hpp"
 #include "run/RunState.hpp"
+#include "run/ArteryMetrics.hpp"
 #include "run/RingMetrics.hpp"
 #include "run/StentMetrics.hpp"
 
@@ -48,6 +50,7 @@ class MetricsReport {
   const Model& m_;
   std::unique_ptr<StentMetrics> vessel_;  // a stent in an artery (the deck names the groups)
   std::unique_ptr<RingMetrics> rings_;    // a generated stent
+  std::unique_ptr<ArteryMetrics> artery_; // ... in a generated artery
   std::vector<std::string> names_;
   std::unique_ptr<CsvWriter> steps_csv_, stages_csv_;
   std::vector<double> now_, first_;      // the last row's metrics, the t = 0 ones

@@ -13,6 +13,7 @@
 #include "mesh/MeshComm.hpp"
 #include "mesh/MeshPart.hpp"
 #include "mesh/MeshQuery.hpp"
+#include "run/ArteryMetrics.hpp"
 #include "run/RingMetrics.hpp"
 #include "run/Supports.hpp"
 #include "solver/SolverParams.hpp"
@@ -111,6 +112,10 @@ Model::Model(const Config& c, const RunOptions& opts, Timers& timers) : cfg(c), 
       if (cfg.output.metrics.enabled && cfg.mesh.generator == "stent") {
         const auto g = RingMetrics::whole_groups(cfg);
         whole_groups.insert(whole_groups.end(), g.begin(), g.end());
+        if (ArteryMetrics::applies(cfg)) {
+          const auto a = ArteryMetrics::whole_groups();
+          whole_groups.insert(whole_groups.end(), a.begin(), a.end());
+        }
       } else if (cfg.output.metrics.enabled) {
         whole_groups.insert(whole_groups.end(), {cfg.output.metrics.stent, cfg.output.metrics.lumen});
       }

@@ -45,4 +45,20 @@ awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
   { if ($c["contact_wall_active"] != 0 || $c["contact_wall_normal_force"] != 0) { print "row " NR ": contact"; bad = 1 }
     if (NR == 2 && !($c["contact_wall_min_gap"] > 0.4928)) { print "row 2: smallest gap " $c["contact_wall_min_gap"]; bad = 1 } }
   END { exit bad }' $h || fail "the stent touched the artery"
+# The artery's metrics (Output->Stent Metrics): the lumen uniformly expanded, so every
+# station's diameter is the probe's 2 r, and the minimum lumen diameter too; a largest
+# principal stress per layer, its 99th percentile not above its maximum.
+m=out/stent_artery_metrics.csv
+Dm=$(last $m "lumen_D_mean [mm]") Dn=$(last $m "lumen_D_min [mm]")
+echo "lumen D mean $Dm, minimum $Dn mm"
+for D in "$Dm" "$Dn"; do
+  awk -v d="$D" -v r="$ri" 'BEGIN { exit !(d - 2 * r < 3e-6 && 2 * r - d < 3e-6) }' || fail "lumen diameter $D, not 2 x $ri"
+done
+D0=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == "lumen_D_min [mm]") k = i; next } NR == 2 { print $k }' $m)
+awk -v d="$D0" 'BEGIN { exit !(d > 3.0 - 1e-12 && d < 3.0 + 1e-12) }' || fail "lumen diameter $D0 at t = 0, not 3"
+for l in intima media adventitia; do
+  mx=$(last $m "${l}_sigma1_max [MPa]") p99=$(last $m "${l}_sigma1_p99 [MPa]")
+  awk -v a="$mx" -v b="$p99" 'BEGIN { exit !(b > 0 && b <= a) }' || fail "$l: largest principal stress $mx, 99th percentile $p99"
+done
+grep -q "artery (stented segment): lumen D mean 3.0000 -> 5.43" log.txt || { grep "artery" log.txt; fail "no artery line in the log"; }
 echo "PASS"

@@ -1,0 +1,145 @@
+#include "run/ArteryMetrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+
+#include "io/Units.hpp"
+#include "mesh/MeshQuery.hpp"
+
+namespace stentor {
+
+namespace {
+const char* const kLayers[] = {"plaque", "intima", "media", "adventitia"};
+}  // namespace
+
+ArteryMetrics::ArteryMetrics(const Model& model) : m_(model) {
+  const Mesh& mesh = m_.mesh;
+  const StentConfig& s = m_.cfg.mesh.stent;
+  const UnitLabels u = unit_labels(m_.cfg.problem.units, 3);
+  length_unit_ = u.length, stress_unit_ = u.stress;
+  lumen_ = boundary_nodes(mesh, "lumen");
+  // Stations: the lumen's node planes z = const within the stent's reference span (the
+  // stent's proximal end at z = 0; with `half length` up to its middle plane).
+  const double ri = 0.5 * m_.cfg.mesh.artery.inner_diameter, tol = 1e-9 * ri;
+  const double z_hi = s.half_length ? 0.5 * s.total_length() : s.total_length();
+  const bool sector = s.sector != "full";
+  const double ct = std::cos(s.sector_angle()), st = std::sin(s.sector_angle());
+  std::map<long long, Station> by_z;  // z in units of tol
+  for (std::size_t i = 0; i < lumen_.size(); ++i) {
+    const double* x = mesh.coord(lumen_[i]);
+    if (x[2] < -tol || x[2] > z_hi + tol) continue;
+    const bool on_plane = sector && (std::abs(x[1]) < tol || std::abs(st * x[0] - ct * x[1]) < tol);
+    Station& g = by_z[std::llround(x[2] / (1e3 * tol))];
+    g.idx.push_back(i);
+    g.w.push_back(on_plane ? 0.5 : 1.0);
+  }
+  for (auto& [z, g] : by_z) stations_.push_back(std::move(g));
+  if (stations_.empty())
+    throw InputError("'Output->Stent Metrics': no node of the artery's 'lumen' lies within the stent's axial span (0 to " +
+                     std::to_string(z_hi) + ")");
+  layer_of_block_.assign(mesh.volumes.size(), -1);
+  for (const char* name : kLayers) {
+    bool found = false;
+    for (std::size_t b = 0; b < mesh.volumes.size(); ++b)
+      if (mesh.volumes[b].name == name) layer_of_block_[b] = static_cast<int>(layers_.size()), found = true;
+    if (found) layers_.emplace_back(name);
+  }
+}
+
+std::vector<std::string> ArteryMetrics::columns() const {
+  const std::string L = length_unit_.empty() ? "" : " [" + length_unit_ + "]";
+  const std::string S = stress_unit_.empty() ? "" : " [" + stress_unit_ + "]";
+  std::vector<std::string> c = {"lumen_D_mean" + L, "lumen_D_min" + L};
+  for (const std::string& l : layers_) c.insert(c.end(), {l + "_sigma1_max" + S, l + "_sigma1_p99" + S});
+  return c;
+}
+
+double ArteryMetrics::nearest_rank(std::vector<double>& v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const auto k = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+  return v[std::min(v.size(), std::max<std::size_t>(k, 1)) - 1];
+}
+
+// Per layer the largest principal stress of each cell, gathered on every rank (padded to
+// the largest rank's count), then the maximum and the 99th percentile.
+void ArteryMetrics::layer_stresses(const la::Vector& u, std::vector<double>& out) const {
+  Assembler::CellFieldRequest req;
+  req.principal = true;
+  const Assembler::CellFields cf = m_.assembler->cell_fields(u, req);
+  std::vector<std::vector<double>> mine(layers_.size());
+  std::size_t c = 0;
+  for (const LocalBlock& lb : m_.dist->blocks()) {
+    const int l = layer_of_block_[static_cast<std::size_t>(lb.volume_block)];
+    for (std::size_t i = 0; i < lb.cell_ids.size(); ++i, ++c)
+      if (l >= 0) mine[static_cast<std::size_t>(l)].push_back(cf.principal[3 * c]);
+  }
+  const int ranks = m_.comm->getSize();
+  for (auto& v : mine) {
+    int n = static_cast<int>(v.size()), n_max = 0;
+    Teuchos::reduceAll(*m_.comm, Teuchos::REDUCE_MAX, 1, &n, &n_max);
+    std::vector<double> send(static_cast<std::size_t>(n_max), -HUGE_VAL), all(static_cast<std::size_t>(n_max) * static_cast<std::size_t>(ranks));
+    std::copy(v.begin(), v.end(), send.begin());
+    if (n_max > 0) Teuchos::gatherAll(*m_.comm, n_max, send.data(), static_cast<int>(all.size()), all.data());
+    all.erase(std::remove(all.begin(), all.end(), -HUGE_VAL), all.end());
+    const double mx = all.empty() ? 0.0 : *std::max_element(all.begin(), all.end());
+    out.insert(out.end(), {mx, nearest_rank(all, 0.99)});
+  }
+}
+
+std::vector<double> ArteryMetrics::evaluate(const la::Vector& u) {
+  const Distribution& d = *m_.dist;
+  std::vector<double> loc(3 * lumen_.size(), 0.0), x(loc.size(), 0.0);
+  {
+    auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (std::size_t i = 0; i < lumen_.size(); ++i)
+      if (d.owns_node(lumen_[i]))
+        for (std::size_t k = 0; k < 3; ++k) loc[3 * i + k] = uh(static_cast<std::size_t>(d.local_node(lumen_[i]) * 3) + k, 0);
+  }
+  if (!loc.empty()) Teuchos::reduceAll(*m_.comm, Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), x.data());
+  double sum = 0.0, dmin = HUGE_VAL;
+  for (const Station& g : stations_) {
+    double rw = 0.0, w = 0.0;
+    for (std::size_t j = 0; j < g.idx.size(); ++j) {
+      const double* X = m_.mesh.coord(lumen_[g.idx[j]]);
+      const double* dx = &x[3 * g.idx[j]];
+      rw += g.w[j] * std::hypot(X[0] + dx[0], X[1] + dx[1]);
+      w += g.w[j];
+    }
+    const double D = 2.0 * rw / w;
+    sum += D, dmin = std::min(dmin, D);
+  }
+  now_ = {sum / static_cast<double>(stations_.size()), dmin};
+  if (D_mean0_ < 0.0) D_mean0_ = now_[0], D_min0_ = now_[1];
+  layer_stresses(u, now_);
+  return now_;
+}
+
+void ArteryMetrics::table(std::ostream& log) const {
+  if (now_.empty()) return;
+  const std::string L = length_unit_.empty() ? "" : " " + length_unit_, S = stress_unit_.empty() ? "" : " " + stress_unit_;
+  log << std::fixed << std::setprecision(4) << "  artery (stented segment): lumen D mean " << D_mean0_ << " -> " << now_[0] << L << " (gain "
+      << std::setprecision(2) << 100.0 * (now_[0] - D_mean0_) / D_mean0_ << " %), minimum lumen diameter " << std::setprecision(4) << D_min0_
+      << " -> " << now_[1] << L << " (acute gain " << now_[1] - D_min0_ << L << ")\n";
+  if (layers_.empty()) return;
+  log << "  artery: largest principal stress, max / 99th percentile of the cells:" << std::scientific << std::setprecision(3);
+  for (std::size_t l = 0; l < layers_.size(); ++l)
+    log << (l ? "," : "") << " " << layers_[l] << " " << now_[2 + 2 * l] << " / " << now_[3 + 2 * l] << S;
+  log << "\n" << std::defaultfloat;
+}
+
+void ArteryMetrics::save(std::map<std::string, double>& out, const std::string& prefix) const {
+  if (D_mean0_ < 0.0) return;
+  out[prefix + "D_mean0"] = D_mean0_;
+  out[prefix + "D_min0"] = D_min0_;
+}
+
+bool ArteryMetrics::restore(const std::map<std::string, double>& in, const std::string& prefix) {
+  const auto a = in.find(prefix + "D_mean0"), b = in.find(prefix + "D_min0");
+  if (a == in.end() || b == in.end()) return false;
+  D_mean0_ = a->second, D_min0_ = b->second;
+  return true;
+}
+
+}  // namespace stentor

@@ -1,0 +1,65 @@
+// The artery's metrics of a stent deployed in a generated artery (Output->Stent Metrics
+// with Mesh->generator = stent and Mesh->Artery; docs/artery.md "Artery metrics"), beside
+// the stent's (RingMetrics):
+//
+// * the lumen's diameter along the stented segment: the lumen's nodes grouped by their
+//   reference axial coordinate into stations (the artery's node planes z = const), each
+//   station's diameter 2 r_mean (r the current distance of its nodes from the axis, z, a
+//   node on a symmetry plane of the sector weighing 1/2), over the stations within the
+//   stent's reference axial span: their mean (`lumen_D_mean`) and their smallest, the
+//   minimum lumen diameter (`lumen_D_min`, MLD); the acute gains against the first
+//   evaluation (before the procedure);
+// * per layer of the wall (the volume groups plaque, intima, media, adventitia that the
+//   mesh has), the largest principal Cauchy stress of its cells (cell averages): the
+//   largest value and the 99th percentile over the layer's cells (nearest rank), the
+//   percentile being less sensitive to one cell at a strut's edge.
+//
+// Every rank computes the same values (the lumen group is whole on every rank; the cell
+// values are gathered), so they do not depend on the number of ranks.
+#pragma once
+#include <map>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "run/Model.hpp"
+
+namespace stentor {
+
+class ArteryMetrics {
+ public:
+  explicit ArteryMetrics(const Model& model);
+  // A stent deck with Mesh->Artery.
+  static bool applies(const Config& cfg) { return cfg.mesh.generator == "stent" && cfg.mesh.artery.around_stent; }
+  static std::vector<std::string> whole_groups() { return {"lumen"}; }
+
+  std::vector<std::string> columns() const;  // with units: "lumen_D_mean [mm]"
+  // One value per column at u (collective). The first call is the reference of the gains.
+  std::vector<double> evaluate(const la::Vector& u);
+  // The paragraph of the stage's end (rank 0 writes; every rank may call).
+  void table(std::ostream& log) const;
+  void save(std::map<std::string, double>& out, const std::string& prefix) const;
+  bool restore(const std::map<std::string, double>& in, const std::string& prefix);
+
+  // The q-quantile (0 < q <= 1) of v by nearest rank: the smallest value with at least
+  // ceil(q n) values at or below it (v is sorted in place; 0 for an empty v).
+  static double nearest_rank(std::vector<double>& v, double q);
+
+ private:
+  struct Station {
+    std::vector<std::size_t> idx;  // indices into lumen_
+    std::vector<double> w;         // symmetry weights
+  };
+  void layer_stresses(const la::Vector& u, std::vector<double>& out) const;  // collective: max, p99 per layer
+
+  const Model& m_;
+  std::vector<GId> lumen_;              // the lumen's nodes, sorted
+  std::vector<Station> stations_;       // within the stent's reference span, by increasing z
+  std::vector<std::string> layers_;     // the wall's volume groups in the mesh
+  std::vector<int> layer_of_block_;     // Mesh::volumes index -> index into layers_ or -1
+  std::string length_unit_, stress_unit_;
+  double D_mean0_ = -1.0, D_min0_ = -1.0;  // the first evaluation's
+  std::vector<double> now_;                // the last evaluation's values
+};
+
+}  // namespace stentor

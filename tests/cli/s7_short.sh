@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# S7's procedure, short (tests/cli/decks/s7_short.xml): one strut of the S6 ring expanded
+# by a rigid balloon into the layered artery (the pair `lumen` -> stent `outer`) and
+# deflated; and the same deck with the wall's pair left out of the stages (the stent
+# expanded freely, the artery untouched).
+# Checks: both runs end at t = 1.5; the lumen's nodes never penetrate the stent (smallest
+# gap >= -1e-9 mm) and rest on it after deflation; the lumen opened (minimum lumen diameter
+# from 3.1 to more than 3.4 mm) but not beyond the stent (mean lumen diameter <= the
+# stent's outer D_max); the wall pushes the stent back: its recoil exceeds the free
+# stent's; without the pair the lumen stays at 3.1 mm (1e-9) and the wall unstressed.
+# usage: s7_short.sh STENTOR WORKDIR DECK
+set -u
+. "$(dirname "$0")/lib.sh"
+stentor=$1 work=$2 deck=$3
+rm -rf "$work" && mkdir -p "$work" && cd "$work" || fail "cannot make $work"
+"$stentor" --output out "$deck" > log.txt 2>&1 || { tail -30 log.txt; fail "the run failed"; }
+sed 's|value="balloon, wall"|value="balloon"|' "$deck" > free.xml
+"$stentor" --output free free.xml > free.txt 2>&1 || { tail -30 free.txt; fail "the free run failed"; }
+last() {  # last() CSV COLUMN
+  awk -F, -v c="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == c) k = i; next } { v = $k } END { print v }' "$1"
+}
+h=out/s7_short_history.csv m=out/s7_short_metrics.csv fm=free/s7_short_metrics.csv
+for f in $h free/s7_short_history.csv; do
+  t=$(last $f time)
+  awk -v t="$t" 'BEGIN { exit !(t > 1.5 - 1e-12 && t < 1.5 + 1e-12) }' || fail "$f ends at t = $t"
+done
+awk -F, 'NR == 1 { for (i = 1; i <= NF; ++i) c[$i] = i; next }
+  $c["contact_wall_min_gap"] != "nan" && $c["contact_wall_min_gap"] < -1e-9 { print "t = " $c["time"] ": gap " $c["contact_wall_min_gap"]; bad = 1 }
+  { a = $c["contact_wall_active"] } END { if (a == 0) { print "no lumen node on the stent at the end"; bad = 1 }; exit bad }' $h ||
+  fail "the lumen penetrates or leaves the stent"
+Dmin=$(last $m "lumen_D_min [mm]") Dl=$(last $m "lumen_D_mean [mm]") Ds=$(last $m "D_max [mm]")
+rw=$(last $m "radial_recoil [-]") rf=$(last $fm "radial_recoil [-]")
+echo "minimum lumen diameter $Dmin mm, mean $Dl mm, stent D_max $Ds mm; recoil $rw (free $rf)"
+awk -v d="$Dmin" -v l="$Dl" -v s="$Ds" 'BEGIN { exit !(d > 3.4 && l <= s + 1e-9) }' || fail "the lumen: MLD $Dmin, mean $Dl, stent $Ds"
+awk -v a="$rw" -v b="$rf" 'BEGIN { exit !(a > b + 1e-6 && b > 0) }' || fail "recoil $rw with the wall, $rf free"
+for c in "lumen_D_min [mm]" "lumen_D_mean [mm]"; do
+  v=$(last $fm "$c")
+  awk -v v="$v" 'BEGIN { exit !(v > 3.1 - 1e-9 && v < 3.1 + 1e-9) }' || fail "free run: $c = $v, not 3.1"
+done
+v=$(last $fm "intima_sigma1_max [MPa]")
+awk -v v="$v" 'BEGIN { exit !(v < 1e-12 && v > -1e-12) }' || fail "free run: intima stressed ($v MPa)"
+grep -q "artery (stented segment): lumen D mean 3.1000 -> " log.txt || fail "no artery paragraph in the log"
+echo "PASS"
