@@ -6,7 +6,8 @@
 //   n_p = -(sum over its facets of their outward unit normals at p), normalized,
 //   d = n_p . (x_p - xbar_p),   rel = (x_p - x_p,n) - sum_k w_pk (x_k - x_k,n),
 // and then the same law as node-to-segment (contact/NodeLaw.hpp, law()) with the reaction
-// r_k += w_pk r_p on the master nodes. The derivatives of M, S, the dual basis and the
+// r_k += w_pk r_p on the master nodes. Axisymmetric: M, S and the dual basis in the
+// revolved measure 2 pi r ds (contact/Mortar.hpp), r_p the bulk residual of the whole ring. The derivatives of M, S, the dual basis and the
 // nodal normal are carried to the node's rows by the chain rule through (x_p, n_p, xbar_p,
 // the relative master motion, r_p). The facets' integrals and the nodes are Kokkos kernels
 // over the host execution space (OpenMP threads where Kokkos has them). A node whose facets are covered by less than half
@@ -104,7 +105,7 @@ std::vector<std::vector<Contact::FaceCoupling>> Contact::couple_faces(const Pair
       for (int b = 0; b < g.nn; ++b)
         for (int c = 0; c < 3; ++c) xmd[b][c] = c < dim_ ? PD::seed(xm[b][c], 12 + 3 * b + c) : PD(xm[b][c]);
       PD M[mortar::kMaxFacetNodes][mortar::kMaxFacetNodes];
-      if (!mortar::pair_integrals(dim_, face_of(f), xsd, face_of(g), xmd, M)) continue;
+      if (!mortar::pair_integrals(dim_, face_of(f), xsd, face_of(g), xmd, M, axi_)) continue;
       FaceCoupling cp;
       cp.master = m;
       for (int a = 0; a < f.nn; ++a)

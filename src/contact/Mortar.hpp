@@ -26,6 +26,14 @@
 // nodes projected on the slave bound the overlap, and a Gauss point maps to the master
 // along the slave's normal.
 //
+// Axisymmetric (2D, `axi`): the section's lines are revolved about the y axis, dA = 2 pi r ds
+// with r = x of the slave point in the current configuration (where the integrals are
+// taken), so M carries the derivative of the weight as well. The dual basis is then built
+// from the weighted mass matrix, A = D M^-1 with M_ac = int N_a N_c 2 pi r ds and
+// D_a = int N_a 2 pi r ds, so that it stays biorthogonal in the revolved measure (the
+// constant line2 coefficients are those of ds only). A slave facet on the axis (r = 0 at
+// both ends) has no area and couples to nothing.
+//
 // Branches (which side of an edge a vertex lies on, min/max of the overlap bounds) use
 // the values only: M is piecewise smooth in the positions, and its derivatives are exact
 // on each piece. Header-only, callable inside Kokkos kernels (no heap, no exceptions).
@@ -44,6 +52,7 @@ constexpr int kMaxFacetNodes = 4;                  // line2, tri3, quad4
 constexpr int kPairVars = 3 * 2 * kMaxFacetNodes;  // positions of one slave and one master facet
 using PD = Dual<kPairVars>;
 constexpr int kMaxPoly = 16;                       // clip polygon vertices (at most 4 + 4)
+constexpr double kTwoPi = 2.0 * 3.14159265358979323846;  // the ring weight of axisymmetric facets
 
 KOKKOS_INLINE_FUNCTION bool supported(CellType t) {
   return t == CellType::Line2 || t == CellType::Line3 || t == CellType::Tri3 || t == CellType::Quad4;
@@ -190,36 +199,6 @@ KOKKOS_INLINE_FUNCTION bool overlap_bounds(const T xi[2], double tx, double ty, 
   return len > tol || sd * (double(hi_is_xi) - double(lo_is_xi)) > 0.0;
 }
 
-// 2D: line2 slave segment xs against line2 master segment xm; M[a][b] += int Phi_a N_b.
-// Returns whether they overlap (and face each other).
-template <class T>
-KOKKOS_INLINE_FUNCTION bool pair_integrals_2d(const Face& s, const T (*xs)[3], const Face& m, const T (*xm)[3], T M[kMaxFacetNodes][kMaxFacetNodes]) {
-  using std::sqrt;
-  const T t[2] = {xs[1][0] - xs[0][0], xs[1][1] - xs[0][1]};
-  const T L = sqrt(t[0] * t[0] + t[1] * t[1]);
-  const T tm[2] = {xm[1][0] - xm[0][0], xm[1][1] - xm[0][1]};
-  // Outward normals (FacetGeometry's convention: o (a_y, -a_x)); facing: ns . nm < 0.
-  const double facing = s.orient * m.orient * value(t[1] * tm[1] + t[0] * tm[0]);
-  if (facing >= 0.0) return false;
-  T xi[2];
-  for (int b = 0; b < 2; ++b) xi[b] = 2.0 * ((xm[b][0] - xs[0][0]) * t[0] + (xm[b][1] - xs[0][1]) * t[1]) / (L * L) - 1.0;
-  T lo, hi;
-  if (!overlap_bounds(xi, value(t[0]), value(t[1]), lo, hi)) return false;
-  double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
-  const int nq = quadrature(CellType::Line2, 5, qp, qw);
-  const T half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
-  for (int q = 0; q < nq; ++q) {
-    const T x = mid + half * qp[q][0];
-    const T w = qw[q] * half * 0.5 * L;
-    const T eta = (2.0 * x - xi[0] - xi[1]) / (xi[1] - xi[0]);
-    const T Phi[2] = {0.5 * (1.0 - 3.0 * x), 0.5 * (1.0 + 3.0 * x)};
-    const T Nm[2] = {0.5 * (1.0 - eta), 0.5 * (1.0 + eta)};
-    for (int a = 0; a < 2; ++a)
-      for (int b = 0; b < 2; ++b) M[a][b] += w * Phi[a] * Nm[b];
-  }
-  return true;
-}
-
 // A 2D facet (line2, line3) at xi: the point p and the tangent a = dp/dxi.
 template <class T, class S>
 KOKKOS_INLINE_FUNCTION void curve(CellType t, int nn, const T (*x)[3], const S& xi, T p[2], T a[2]) {
@@ -232,6 +211,86 @@ KOKKOS_INLINE_FUNCTION void curve(CellType t, int nn, const T (*x)[3], const S& 
       p[c] += N[b] * x[b][c];
       a[c] += dN[b][0] * x[b][c];
     }
+}
+
+// Dual coefficients of a 2D slave facet (line2, line3) from its geometry: A = D M^-1 with
+// M_ac = int N_a N_c dA and D_a = int N_a dA, dA = |a| dxi, times 2 pi r (r = x of the
+// point) when axi (D > 0 for line3, unlike tri6's corners). False when the facet has no
+// area (axi: a facet on the axis). 3 Gauss points: exact for a line2 (N_a N_c r is cubic)
+// and a straight line3 with its mid-node in the middle.
+template <class T>
+KOKKOS_INLINE_FUNCTION bool dual_coefficients_2d(CellType t, int nn, const T (*x)[3], bool axi, T A[kMaxFacetNodes][kMaxFacetNodes]) {
+  using std::sqrt;
+  double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
+  const int nq = quadrature(CellType::Line2, 5, qp, qw);
+  T M[kMaxFacetNodes][kMaxFacetNodes], D[kMaxFacetNodes];
+  for (int a = 0; a < nn; ++a) {
+    D[a] = T(0.0);
+    for (int c = 0; c < nn; ++c) M[a][c] = T(0.0);
+  }
+  double total = 0.0;
+  for (int q = 0; q < nq; ++q) {
+    T p[2], tg[2];
+    curve(t, nn, x, qp[q][0], p, tg);
+    T J = sqrt(tg[0] * tg[0] + tg[1] * tg[1]);
+    if (axi) J = J * (kTwoPi * p[0]);
+    total += qw[q] * value(J);
+    double N[facet::kMaxNodes], dN[facet::kMaxNodes][2];
+    const double z[2] = {qp[q][0], 0.0};
+    facet::shape(t, z, N, dN);
+    for (int a = 0; a < nn; ++a) {
+      D[a] += qw[q] * J * N[a];
+      for (int c = 0; c < nn; ++c) M[a][c] += qw[q] * J * N[a] * N[c];
+    }
+  }
+  if (!(total > 0.0)) return false;
+  dual_from_mass(nn, M, D, A);
+  return true;
+}
+
+// 2D: line2 slave segment xs against line2 master segment xm; M[a][b] += int Phi_a N_b.
+// Returns whether they overlap (and face each other).
+// Axisymmetric (axi): the weight 2 pi r of the slave point and the dual basis of the
+// weighted measure (dual_coefficients_2d).
+template <class T>
+KOKKOS_INLINE_FUNCTION bool pair_integrals_2d(const Face& s, const T (*xs)[3], const Face& m, const T (*xm)[3], T M[kMaxFacetNodes][kMaxFacetNodes],
+                                              bool axi = false) {
+  using std::sqrt;
+  const T t[2] = {xs[1][0] - xs[0][0], xs[1][1] - xs[0][1]};
+  const T L = sqrt(t[0] * t[0] + t[1] * t[1]);
+  const T tm[2] = {xm[1][0] - xm[0][0], xm[1][1] - xm[0][1]};
+  // Outward normals (FacetGeometry's convention: o (a_y, -a_x)); facing: ns . nm < 0.
+  const double facing = s.orient * m.orient * value(t[1] * tm[1] + t[0] * tm[0]);
+  if (facing >= 0.0) return false;
+  T xi[2];
+  for (int b = 0; b < 2; ++b) xi[b] = 2.0 * ((xm[b][0] - xs[0][0]) * t[0] + (xm[b][1] - xs[0][1]) * t[1]) / (L * L) - 1.0;
+  T lo, hi;
+  if (!overlap_bounds(xi, value(t[0]), value(t[1]), lo, hi)) return false;
+  T A[kMaxFacetNodes][kMaxFacetNodes];
+  if (axi && !dual_coefficients_2d(CellType::Line2, 2, xs, true, A)) return false;
+  double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
+  const int nq = quadrature(CellType::Line2, 5, qp, qw);
+  const T half = 0.5 * (hi - lo), mid = 0.5 * (hi + lo);
+  for (int q = 0; q < nq; ++q) {
+    const T x = mid + half * qp[q][0];
+    const T eta = (2.0 * x - xi[0] - xi[1]) / (xi[1] - xi[0]);
+    const T Nm[2] = {0.5 * (1.0 - eta), 0.5 * (1.0 + eta)};
+    if (axi) {
+      // Ring weight 2 pi r(x), r linear along the slave segment; Phi from the weighted basis.
+      const T Ns[2] = {0.5 * (1.0 - x), 0.5 * (1.0 + x)};
+      const T w = qw[q] * half * 0.5 * L * kTwoPi * (Ns[0] * xs[0][0] + Ns[1] * xs[1][0]);
+      T Phi[kMaxFacetNodes];
+      dual_values(2, A, Ns, Phi);
+      for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) M[a][b] += w * Phi[a] * Nm[b];
+      continue;
+    }
+    const T w = qw[q] * half * 0.5 * L;
+    const T Phi[2] = {0.5 * (1.0 - 3.0 * x), 0.5 * (1.0 + 3.0 * x)};
+    for (int a = 0; a < 2; ++a)
+      for (int b = 0; b < 2; ++b) M[a][b] += w * Phi[a] * Nm[b];
+  }
+  return true;
 }
 
 // The root xi of g(xi) = 0 near xi0 (g(T or double, xi) and its derivative in xi, gd):
@@ -247,40 +306,15 @@ KOKKOS_INLINE_FUNCTION T root_1d(double xi0, const G& g, const GD& gd) {
   return T(x) - g(x) / gd(x);
 }
 
-// Dual coefficients of a line3 slave facet from its geometry: A = D M^-1 with M_ac = int N_a
-// N_c |a| dxi and D_a = int N_a |a| dxi (D > 0 for line3, unlike tri6's corners).
-template <class T>
-KOKKOS_INLINE_FUNCTION void dual_coefficients_line3(const T (*x)[3], T A[kMaxFacetNodes][kMaxFacetNodes]) {
-  using std::sqrt;
-  double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
-  const int nq = quadrature(CellType::Line2, 5, qp, qw);
-  T M[kMaxFacetNodes][kMaxFacetNodes], D[kMaxFacetNodes];
-  for (int a = 0; a < 3; ++a) {
-    D[a] = T(0.0);
-    for (int c = 0; c < 3; ++c) M[a][c] = T(0.0);
-  }
-  for (int q = 0; q < nq; ++q) {
-    T p[2], t[2];
-    curve(CellType::Line3, 3, x, qp[q][0], p, t);
-    const T J = sqrt(t[0] * t[0] + t[1] * t[1]);
-    double N[facet::kMaxNodes], dN[facet::kMaxNodes][2];
-    const double z[2] = {qp[q][0], 0.0};
-    facet::shape(CellType::Line3, z, N, dN);
-    for (int a = 0; a < 3; ++a) {
-      D[a] += qw[q] * J * N[a];
-      for (int c = 0; c < 3; ++c) M[a][c] += qw[q] * J * N[a] * N[c];
-    }
-  }
-  dual_from_mass(3, M, D, A);
-}
-
 // 2D with a curved (line3) facet on either side: the master's end nodes projected on the
 // slave (closest point) bound the overlap; a Gauss point x^s(xi) maps to the master point
 // on the slave's normal there, x^m(eta) - x^s(xi) parallel to n^s(xi) (so the overlap's ends
 // map to the master's end nodes). Ties as in pair_integrals_2d.
+// Axisymmetric (axi): the weight 2 pi r of the slave point, the dual basis of the weighted
+// measure (line2 as well).
 template <class T>
 KOKKOS_INLINE_FUNCTION bool pair_integrals_2d_curved(const Face& s, const T (*xs)[3], const Face& m, const T (*xm)[3],
-                                                     T M[kMaxFacetNodes][kMaxFacetNodes]) {
+                                                     T M[kMaxFacetNodes][kMaxFacetNodes], bool axi = false) {
   using std::sqrt;
   {
     T p[2], as[2], am[2];
@@ -315,8 +349,8 @@ KOKKOS_INLINE_FUNCTION bool pair_integrals_2d_curved(const Face& s, const T (*xs
   T lo, hi;
   if (!overlap_bounds(xi, value(xs[1][0] - xs[0][0]), value(xs[1][1] - xs[0][1]), lo, hi)) return false;
   T A[kMaxFacetNodes][kMaxFacetNodes];
-  if (s.type == CellType::Line3) {
-    dual_coefficients_line3(xs, A);
+  if (axi || s.type == CellType::Line3) {
+    if (!dual_coefficients_2d(s.type, s.nn, xs, axi, A)) return false;
   } else {
     dual_coefficients(s.type, s.nn, static_cast<const T(*)[2]>(nullptr), A);  // line2: constants
   }
@@ -350,7 +384,7 @@ KOKKOS_INLINE_FUNCTION bool pair_integrals_2d_curved(const Face& s, const T (*xs
     facet::shape(s.type, zs, Ns, dN);
     facet::shape(m.type, zm, Nm, dN);
     dual_values(s.nn, A, Ns, Phi);
-    const T w = qw[q] * half * J;
+    const T w = axi ? qw[q] * half * J * (kTwoPi * p[0]) : qw[q] * half * J;
     for (int a2 = 0; a2 < s.nn; ++a2)
       for (int b = 0; b < m.nn; ++b) M[a2][b] += w * Phi[a2] * Nm[b];
   }
@@ -463,11 +497,13 @@ KOKKOS_INLINE_FUNCTION bool pair_integrals_3d(const Face& s, const T (*xs)[3], c
   return true;
 }
 
+// axi: 2D axisymmetric (the section's facets revolved about the y axis, dA = 2 pi r ds).
 template <class T>
-KOKKOS_INLINE_FUNCTION bool pair_integrals(int dim, const Face& s, const T (*xs)[3], const Face& m, const T (*xm)[3], T M[kMaxFacetNodes][kMaxFacetNodes]) {
+KOKKOS_INLINE_FUNCTION bool pair_integrals(int dim, const Face& s, const T (*xs)[3], const Face& m, const T (*xm)[3], T M[kMaxFacetNodes][kMaxFacetNodes],
+                                           bool axi = false) {
   if (dim == 3) return pair_integrals_3d(s, xs, m, xm, M);
-  if (s.type == CellType::Line2 && m.type == CellType::Line2) return pair_integrals_2d(s, xs, m, xm, M);
-  return pair_integrals_2d_curved(s, xs, m, xm, M);
+  if (s.type == CellType::Line2 && m.type == CellType::Line2) return pair_integrals_2d(s, xs, m, xm, M, axi);
+  return pair_integrals_2d_curved(s, xs, m, xm, M, axi);
 }
 
 // The outward unit normal of a slave facet at its corner a (line2: -1, +1; tri3, quad4: the corners).
