@@ -19,11 +19,8 @@ void check_axisymmetric_deck(const Config& cfg) {
   if (cfg.mesh.dimension == 3)
     throw InputError(cfg.deck_path + ": 'Problem->kinematics' = axisymmetric needs a 2D mesh in the (r, z) half plane; "
                      "'Mesh->dimension' is 3");
-  // Node-to-segment pairs and rigid obstacles (2D profiles: surfaces of revolution) are
-  // supported; mortar's segment integrals have no 2 pi r weights.
-  for (const auto& c : cfg.contact)
-    if (!c.master.empty() && c.discretization == "mortar")
-      throw InputError(refused(cfg, "'Contact->" + c.name + "->discretization' = mortar"));
+  // Contact: node-to-segment and dual mortar pairs (their integrals in the revolved measure
+  // 2 pi r ds, contact/Mortar.hpp) and rigid obstacles (2D profiles: surfaces of revolution).
   if (cfg.output.metrics.enabled) {
     // The vessel axis is the axis of revolution: radii are r = x, the circumferential
     // stress is the hoop stress sigma_thth (docs/axisymmetric.md, Output).

@@ -14,6 +14,9 @@
 //  g. Contact pressure on a rigid plane normal to the axis (revolved areas).
 //  h. A ring bouncing on a rigid plane: the energy identity with contact.
 //  i. Node-to-segment contact between two bodies: the contact pressure of a stacked pair.
+//     Dual mortar between two bodies: the patch test of stacked annuli with non-matching
+//     meshes (tri3, quad4), and a tube pressed into a tube (cylindrical interface, non-matching)
+//     against node-to-segment on matching meshes.
 //  j. Plasticity and fibres in the axisymmetric kernel: global tangents against differences.
 //  k. A spinning cylinder (centrifugal body force field) against linear elasticity.
 //  l. Output->Stent Metrics of a homogeneously expanded tube: radii, recoil, foreshortening
@@ -768,6 +771,179 @@ Physical Curve("upper_top") = {7};
   EXPECT_GT(slave, 4u);
   EXPECT_GT(master, 4u);
   EXPECT_LT(err, 1e-9);
+}
+
+// i2. Dual mortar, patch test: two annular blocks r in [0.5, 1.5] (and two solid cylinders,
+// r in [0, 1.5]) stacked at z = 1 (lower
+// z in [0, 1], mesh size 0.25; upper z in [1, 2], size 0.2: non-matching interface meshes),
+// the lower base held axially, a dead traction p on the upper top. The homogeneous state
+// (P_zz = -p, u = (a r, b z)) is the exact discrete solution when the mortar integrals carry
+// 2 pi r and the dual basis is biorthogonal in that measure: the slave side's
+// contact_pressure is p and the master side's contact_master_traction (0, -p) at every
+// interface node, and the axial reaction is p pi (ro^2 - ri^2), the force on the whole ring.
+namespace {
+
+std::string two_rectangles_geo(const std::string& name, const std::array<double, 4>& lower, const std::array<double, 4>& upper,
+                               double h_lower, double h_upper, const std::array<std::string, 8>& groups) {
+  // lower/upper: r0, r1, z0, z1; groups: lower's bottom, outer, top, inner, then upper's.
+  std::ostringstream g;
+  g.precision(17);
+  const std::array<double, 4>* b[2] = {&lower, &upper};
+  const double h[2] = {h_lower, h_upper};
+  for (int k = 0; k < 2; ++k) {
+    const auto& q = *b[k];
+    const int o = 4 * k;
+    g << "Point(" << o + 1 << ") = {" << q[0] << ", " << q[2] << ", 0, " << h[k] << "};\n"
+      << "Point(" << o + 2 << ") = {" << q[1] << ", " << q[2] << ", 0, " << h[k] << "};\n"
+      << "Point(" << o + 3 << ") = {" << q[1] << ", " << q[3] << ", 0, " << h[k] << "};\n"
+      << "Point(" << o + 4 << ") = {" << q[0] << ", " << q[3] << ", 0, " << h[k] << "};\n";
+    for (int l = 0; l < 4; ++l) g << "Line(" << o + l + 1 << ") = {" << o + l + 1 << ", " << o + (l + 1) % 4 + 1 << "};\n";
+    g << "Curve Loop(" << k + 1 << ") = {" << o + 1 << ", " << o + 2 << ", " << o + 3 << ", " << o + 4 << "};\n"
+      << "Plane Surface(" << k + 1 << ") = {" << k + 1 << "};\n";
+    for (int l = 0; l < 4; ++l) g << "Physical Curve(\"" << groups[static_cast<std::size_t>(o + l)] << "\") = {" << o + l + 1 << "};\n";
+  }
+  g << "Physical Surface(\"lower\") = {1};\nPhysical Surface(\"upper\") = {2};\n";
+  return write_file(name, g.str());
+}
+
+std::string contact_pair(const std::string& name, const std::string& slave, const std::string& master, const std::string& disc) {
+  return "<ParameterList name=\"" + name + "\"><Parameter name=\"slave\" type=\"string\" value=\"" + slave + "\"/>" +
+         "<Parameter name=\"master\" type=\"string\" value=\"" + master + "\"/>" +
+         "<Parameter name=\"discretization\" type=\"string\" value=\"" + disc + "\"/></ParameterList>";
+}
+
+}  // namespace
+
+TEST(Axisymmetric, MortarPatchTestOfStackedAnnuliWithNonMatchingMeshes) {
+  const double p = 0.2, ro = 1.5;
+  // Annuli (ri = 0.5) in quad4 and tri3, and solid cylinders (ri = 0: a slave and a master
+  // facet end on the axis, the slave node there keeps u_r = 0 and contact in z) in quad4.
+  for (const auto& [quads, ri] : {std::pair<bool, double>{true, 0.5}, {false, 0.5}, {true, 0.0}}) {
+    const std::string mesh = two_rectangles_geo(ri > 0 ? "mortar_annuli.geo" : "mortar_solids.geo", {ri, ro, 0.0, 1.0}, {ri, ro, 1.0, 2.0}, 0.25,
+                                                0.2, {"base", "lower_outer", "lower_top", "lower_inner", "upper_base", "upper_outer",
+                                                      "upper_top", "upper_inner"});
+    DeckSpec s;
+    s.mesh = mesh;
+    s.recombine = quads;
+    s.fields = true;
+    s.bodies = {"lower", "upper"};
+    s.bcs = dirichlet("hold", "base", "y", "") +
+            "<ParameterList name=\"press\"><Parameter name=\"type\" type=\"string\" value=\"traction\"/>"
+            "<Parameter name=\"boundary\" type=\"string\" value=\"upper_top\"/>"
+            "<Parameter name=\"traction\" type=\"Array(double)\" value=\"{0, -0.2}\"/></ParameterList>";
+    s.contact = contact_pair("stack", "upper_base", "lower_top", "mortar");
+    const std::string tag = ri == 0.0 ? "mortar_solids_quad4" : quads ? "mortar_annuli_quad4" : "mortar_annuli_tri3";
+    const Config cfg = make_deck(s, tag);
+    const RunResult res = run(cfg, tag);
+    stentor::testing::H5Results h5(kDir / tag / "run.h5");
+    const std::string step = "/step_" + std::to_string(h5.times().size() - 1) + "/";
+    const auto X = h5.read("/mesh/coordinates"), pr = h5.read(step + "contact_pressure"), st = h5.read(step + "contact_status"),
+               tm = h5.read(step + "contact_master_traction");
+    ASSERT_EQ(3 * pr.size(), X.size());
+    ASSERT_EQ(tm.size(), X.size());
+    double err_s = 0, err_m = 0;
+    std::size_t slave = 0, master = 0;
+    for (std::size_t n = 0; n < pr.size(); ++n) {
+      if (X[3 * n + 1] != 1.0) continue;
+      if (st[n] >= 0.0) ++slave, err_s = std::max(err_s, std::abs(pr[n] - p) / p);
+      else ++master, err_m = std::max({err_m, std::abs(tm[3 * n]) / p, std::abs(tm[3 * n + 1] + p) / p});
+    }
+    const double F = reaction(cfg, res, "hold")[1], F_exact = p * kPi * (ro * ro - ri * ri);
+    std::printf("[axisymmetric] mortar patch test %s: %zu slave, %zu master nodes; max |contact_pressure - p|/p %.1e, "
+                "max |contact_master_traction - (0, -p)|/p %.1e; axial reaction %.15f, p pi (ro^2 - ri^2) = %.15f (rel. %.1e), "
+                "%d Newton iterations\n",
+                tag.c_str(), slave, master, err_s, err_m, F, F_exact, std::abs(std::abs(F) - F_exact) / F_exact, res.newton_iterations);
+    EXPECT_GT(slave, 4u);
+    EXPECT_GT(master, 3u);
+    EXPECT_NE(slave, master);  // non-matching interface meshes
+    EXPECT_LT(err_s, 1e-10) << tag;
+    EXPECT_LT(err_m, 1e-10) << tag;
+    EXPECT_LT(std::abs(std::abs(F) - F_exact), 1e-10 * F_exact) << tag;
+  }
+}
+
+// i3. Dual mortar on a cylindrical interface: an inner tube r in [1, 1.2] inside an outer
+// tube r in [1.2, 1.5], z in [0, 1], u_z = 0 on all four ends, a follower pressure 0.1 on the
+// bore: the tubes are pressed together on the cylinder r = 1.2. Structured quad4 meshes with
+// the same radial divisions, so the z-independent state is the exact discrete solution of
+// both discretizations: mortar with non-matching axial divisions (7 against 5) must give the
+// interface pressure and radial displacement of node-to-segment on matching ones (5 and 5),
+// uniform along z.
+namespace {
+
+std::string tubes_geo(const std::string& name, int nz_inner, int nz_outer) {
+  std::ostringstream g;
+  const double r[3] = {1.0, 1.2, 1.5};
+  const int nz[2] = {nz_inner, nz_outer}, nr[2] = {4, 5};
+  const char* grp[2][4] = {{"in_bottom", "in_out", "in_top", "bore"}, {"out_bottom", "mantle", "out_top", "out_in"}};
+  for (int k = 0; k < 2; ++k) {
+    const int o = 4 * k;
+    g << "Point(" << o + 1 << ") = {" << r[k] << ", 0, 0, 1};\nPoint(" << o + 2 << ") = {" << r[k + 1] << ", 0, 0, 1};\n"
+      << "Point(" << o + 3 << ") = {" << r[k + 1] << ", 1, 0, 1};\nPoint(" << o + 4 << ") = {" << r[k] << ", 1, 0, 1};\n";
+    for (int l = 0; l < 4; ++l) g << "Line(" << o + l + 1 << ") = {" << o + l + 1 << ", " << o + (l + 1) % 4 + 1 << "};\n";
+    g << "Transfinite Curve{" << o + 1 << ", " << o + 3 << "} = " << nr[k] + 1 << ";\n"
+      << "Transfinite Curve{" << o + 2 << ", " << o + 4 << "} = " << nz[k] + 1 << ";\n"
+      << "Curve Loop(" << k + 1 << ") = {" << o + 1 << ", " << o + 2 << ", " << o + 3 << ", " << o + 4 << "};\n"
+      << "Plane Surface(" << k + 1 << ") = {" << k + 1 << "};\nTransfinite Surface{" << k + 1 << "};\n";
+    for (int l = 0; l < 4; ++l) g << "Physical Curve(\"" << grp[k][l] << "\") = {" << o + l + 1 << "};\n";
+  }
+  g << "Physical Surface(\"inner\") = {1};\nPhysical Surface(\"outer\") = {2};\n";
+  return write_file(name, g.str());
+}
+
+struct TubeResult {
+  double pressure = 0, pressure_spread = 0, ur = 0, ur_spread = 0;
+  int slave = 0, iterations = 0;
+};
+
+TubeResult tubes(const std::string& disc, int nz_inner, int nz_outer) {
+  DeckSpec s;
+  const std::string tag = "tubes_" + disc + "_" + std::to_string(nz_inner) + "_" + std::to_string(nz_outer);
+  s.mesh = tubes_geo(tag + ".geo", nz_inner, nz_outer);
+  s.recombine = true;
+  s.fields = true;
+  s.bodies = {"inner", "outer"};
+  s.bcs = dirichlet("e1", "in_bottom", "y", "") + dirichlet("e2", "in_top", "y", "") + dirichlet("e3", "out_bottom", "y", "") +
+          dirichlet("e4", "out_top", "y", "") +
+          "<ParameterList name=\"p\"><Parameter name=\"type\" type=\"string\" value=\"pressure\"/>"
+          "<Parameter name=\"boundary\" type=\"string\" value=\"bore\"/><Parameter name=\"pressure\" type=\"double\" value=\"0.1\"/></ParameterList>";
+  s.contact = contact_pair("fit", "in_out", "out_in", disc);
+  const RunResult res = run(make_deck(s, tag), tag);
+  stentor::testing::H5Results h5(kDir / tag / "run.h5");
+  const std::string step = "/step_" + std::to_string(h5.times().size() - 1) + "/";
+  const auto X = h5.read("/mesh/coordinates"), pr = h5.read(step + "contact_pressure"), st = h5.read(step + "contact_status"),
+             u = h5.read(step + "displacement");
+  TubeResult t;
+  t.iterations = res.newton_iterations;
+  double pmin = 1e300, pmax = -1e300, umin = 1e300, umax = -1e300;
+  for (std::size_t n = 0; n < pr.size(); ++n) {
+    if (X[3 * n] != 1.2 || st[n] < 0.0) continue;  // slave nodes: the inner tube's outer surface
+    ++t.slave;
+    pmin = std::min(pmin, pr[n]), pmax = std::max(pmax, pr[n]);
+    umin = std::min(umin, u[3 * n]), umax = std::max(umax, u[3 * n]);
+  }
+  t.pressure = 0.5 * (pmin + pmax), t.pressure_spread = pmax - pmin;
+  t.ur = 0.5 * (umin + umax), t.ur_spread = umax - umin;
+  return t;
+}
+
+}  // namespace
+
+TEST(Axisymmetric, MortarTubeInTubeEqualsNodeToSegmentOnMatchingMeshes) {
+  const TubeResult nts = tubes("node-to-segment", 5, 5), mortar = tubes("mortar", 7, 5);
+  std::printf("[axisymmetric] tube in tube: node-to-segment (matching 5/5) interface pressure %.15f, u_r %.15f (spread along z %.1e, %.1e); "
+              "mortar (7/5) %.15f, u_r %.15f (spread %.1e, %.1e); relative differences %.1e, %.1e; %d slave nodes, %d Newton iterations\n",
+              nts.pressure, nts.ur, nts.pressure_spread, nts.ur_spread, mortar.pressure, mortar.ur, mortar.pressure_spread, mortar.ur_spread,
+              std::abs(mortar.pressure - nts.pressure) / nts.pressure, std::abs(mortar.ur - nts.ur) / nts.ur, mortar.slave, mortar.iterations);
+  EXPECT_EQ(nts.slave, 6);
+  EXPECT_EQ(mortar.slave, 8);
+  EXPECT_GT(nts.pressure, 0.01);  // in contact, carrying a good part of the bore's 0.1
+  EXPECT_LT(nts.pressure, 0.1);
+  EXPECT_LT(nts.pressure_spread, 1e-10 * nts.pressure);
+  EXPECT_LT(mortar.pressure_spread, 1e-10 * nts.pressure);
+  EXPECT_LT(mortar.ur_spread, 1e-10 * nts.ur);
+  EXPECT_LT(std::abs(mortar.pressure - nts.pressure), 1e-10 * nts.pressure);
+  EXPECT_LT(std::abs(mortar.ur - nts.ur), 1e-10 * nts.ur);
 }
 
 // j. The laws with Gauss-point history and with fibres through the same axisymmetric kernel:
