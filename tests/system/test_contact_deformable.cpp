@@ -1076,6 +1076,31 @@ TEST(MortarContact, TangentMatchesFiniteDifferences2D) {
   EXPECT_GE(n[2] + n[3], 5);
 }
 
+// The same two blocks as the meridian section of two stacked solid cylinders (axisymmetric:
+// the mortar integrals and the dual basis carry 2 pi r of the current slave point, nodes on
+// the axis x = 0 hold u_r = 0): the contact-modified tangent against central differences,
+// frictionless, slip, stick and persistence.
+TEST(MortarContact, TangentMatchesFiniteDifferencesAxisymmetric) {
+  struct Case {
+    double mu;
+    double shift, dt;
+    int min_active;
+  };
+  for (const Case& c : {Case{0.0, 0.0, 1.0, 6}, Case{0.3, 2e-3, 1.0, 1}, Case{0.3, 1e-6, 1e3, 1}}) {
+    Config cfg = patch_deck(c.mu, "gap");
+    cfg.problem.kinematics = "axisymmetric";
+    cfg.contact[0].discretization = "mortar";
+    const auto n = check_tangent(cfg, c.shift, c.dt);
+    EXPECT_GE(n[2] + n[3], c.min_active) << "mu " << c.mu << " shift " << c.shift;
+  }
+  Config cfg = patch_deck(0.3, "persistence");
+  cfg.problem.kinematics = "axisymmetric";
+  cfg.problem.analysis = "dynamic";
+  cfg.contact[0].discretization = "mortar";
+  const auto n = check_tangent(cfg, 2e-4, 0.02, 11);
+  EXPECT_GE(n[2] + n[3], 5);
+}
+
 TEST(MortarContact, PatchTestNonMatching2DIsExact) {
   for (const auto& [nl, nu] : std::vector<std::pair<int, int>>{{4, 4}, {4, 5}, {5, 4}, {3, 7}}) {
     const PatchResult r = patch(nl, nu, false, "mortar");
