@@ -22,6 +22,8 @@
 //  l. Output->Stent Metrics of a homogeneously expanded tube: radii, recoil, foreshortening
 //     and the hoop stress against the closed form.
 //  m. The scene S4-axi, coarse: the balloon's radius and the thin ring's elastic spring-back.
+//  n. The dynamic S4-axi, coarse: the energy identity with a moving rigid balloon, frictional
+//     node-to-segment contact between bodies and plasticity, per step and over the run.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -1136,4 +1138,51 @@ TEST(Axisymmetric, S4AxiCoarseRecoilIsTheElasticSpringBack) {
   EXPECT_NEAR(st["radial_recoil"][1], recoil, 0.1 * recoil);
   EXPECT_NEAR(st["radial_recoil"][2], st["radial_recoil"][1], 1e-3 * recoil);  // the withdrawn balloon touches nothing
   EXPECT_GT(st["lumen_gain"][1], 0.1);                          // the stent holds the lumen open
+}
+
+// ---------------------------------------------------------------------------------------
+// n. The dynamic S4-axi (inputs/s4_axi_dynamic.xml: the procedure of m with every stage
+// dynamic, Gonzalez, the persistence condition on both pairs) on the coarse section of m.
+// The energy CSV's identity E_{n+1} - E_n = W_contact - D_plastic - D_friction (no external
+// load, supports at rest) is checked per step and over the run, relative to the largest total
+// energy E = K + W; the terms it balances are all present (the inflating balloon's work, the
+// turns' plastic flow, friction on the lumen, inertia). The balloon's inner-face contact starts
+// on a step end (28 steps, touch at 2/7 of the inflation), so the persistence condition holds
+// the turns on the balloon at radius 1.6 without the overlap of a mid-step touch.
+TEST(Axisymmetric, S4AxiDynamicCoarseKeepsTheEnergyIdentity) {
+  Config cfg = read_deck(std::string(STENTOR_SOURCE_DIR) + "/inputs/s4_axi_dynamic.xml");
+  cfg.mesh.file = std::string(STENTOR_SOURCE_DIR) + "/tests/cli/decks/s4_axi_coarse.geo";
+  cfg.output.fields = false;
+  run(cfg, "s4_axi_dynamic_coarse");
+  const Series e = read_csv(kDir / "s4_axi_dynamic_coarse" / "s4_axi_dynamic_energy.csv");
+  const Series st = read_csv(kDir / "s4_axi_dynamic_coarse" / "s4_axi_dynamic_stages.csv");
+  ASSERT_GT(e.rows(), 30u);
+  ASSERT_EQ(st.rows(), 3u);
+  double Emax = 0, bal = 0, Kmax = 0;
+  for (std::size_t i = 0; i < e.rows(); ++i) {
+    Emax = std::max(Emax, std::abs(e["total"][i]));
+    bal = std::max(bal, std::abs(e["balance_residual"][i]));
+    Kmax = std::max(Kmax, e["kinetic"][i]);
+  }
+  const std::size_t n = e.rows() - 1;
+  const double Wc = e["contact_work"][n], Dp = e["plastic_dissipation"][n], Df = e["friction_dissipation"][n];
+  const double run_defect = e["total"][n] - e["total"][0] -
+                            (e["external_work"][n] + e["support_work"][n] - e["dissipation"][n] + Wc - Df);
+  std::printf("[axisymmetric] S4-axi dynamic coarse: %zu rows, largest E %.6e, max |balance| per step %.2e E, over the run "
+              "%.2e E; W_contact %.4e, D_plastic %.4e, D_friction %.3e, max kinetic %.2e E; stent radius %.12f after "
+              "inflation, radial recoil %.5f, lumen gain %.4f\n",
+              e.rows(), Emax, bal / Emax, run_defect / Emax, Wc, Dp, Df, Kmax / Emax, st["stent_radius_mean"][0],
+              st["radial_recoil"][1], st["lumen_gain"][1]);
+  EXPECT_LT(bal, 1e-10 * Emax);
+  EXPECT_LT(std::abs(run_defect), 1e-10 * Emax);
+  EXPECT_EQ(e["external_work"][n], 0.0);
+  EXPECT_GT(Wc, Emax);                  // the balloon's work: stored in the wall and the turns, and dissipated
+  EXPECT_GT(Dp, 0.5 * Emax);            // the turns yield
+  EXPECT_GT(Df, 0.0);                   // the lumen slides on the turns
+  EXPECT_NEAR(e["dissipation"][n], Dp, 1e-12 * Emax);  // no viscosity: the dissipation is plastic
+  EXPECT_GT(Kmax, 0.0);                 // inertia is present,
+  EXPECT_LT(Kmax, 1e-6 * Emax);         // and small: a 1 s inflation is quasi-static
+  EXPECT_NEAR(st["stent_radius_mean"][0], 1.6, 1e-9);
+  EXPECT_GT(st["radial_recoil"][1], 0.0);
+  EXPECT_GT(st["lumen_gain"][1], 0.1);  // the stent holds the lumen open
 }
