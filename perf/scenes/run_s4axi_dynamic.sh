@@ -23,7 +23,7 @@ if [ "${S4AXI_SKIP_RUN:-0}" != 1 ]; then
     { echo "S4-axi dynamic FAILED (see $RUNS/log)"; exit 1; }
 fi
 read -r wall user sys < "$RUNS/time"
-grep -E "^Summary|^Energy balance|^  (mesh|newton|contact|assembly) |metrics at the end" "$RUNS/log"
+grep -E "^Summary|^Energy balance|^  (mesh|newton|contact|assembly) +[0-9]|metrics at the end" "$RUNS/log"
 echo "S4-axi dynamic: wall $wall s, CPU $(echo "$user + $sys" | bc) s (user $user, sys $sys), load average $(cut -d' ' -f1 /proc/loadavg)"
 python3 - "$RUNS/out/s4_axi_dynamic_energy.csv" <<'PY'
 import csv, sys
