@@ -292,6 +292,9 @@ class Contact {
   void initial_gap_rates(const la::Vector& u0, const la::Vector& v0, double dt0);
   void read_scales(const la::CrsMatrix& K);
   void capture_rows(const la::RCP<la::CrsMatrix>& K);  // Pair::krow_* of the linearised pairs
+  // The part of v (a slave's force or slip) that friction sees: tangential, and on one
+  // symmetry plane in 3D along the plane's one tangential direction (ContactHolds.cpp).
+  double friction_part(const Slave& nd, const double* v, double* vt) const;
   void count_flips(const Pair& p, Slave& nd) const;
   static double tangent_penalty(const Pair& p, const Slave& nd, double dt);
   bool linearised_ = false;                            // some pair decides its sets from the last solve

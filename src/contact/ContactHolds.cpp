@@ -22,6 +22,29 @@ double tangential(const double* v, const double* n, double* vt) {
 }
 }  // namespace
 
+// A 3D slave node on one plane (one prescribed component, or one `normal` plane e) slides
+// only along t1 = e x n / |e x n|, and its friction acts along t1 (NodeLaw.hpp, law()):
+// its tangential force and slip are their components along t1. Elsewhere the whole
+// tangential part. Returns the length.
+double Contact::friction_part(const Slave& nd, const double* v, double* vt) const {
+  const double len = tangential(v, nd.normal, vt);
+  int nfixed = 0, axis = 0;
+  for (int c = 0; c < dim_; ++c)
+    if (nd.fixed[c]) ++nfixed, axis = c;
+  if (dim_ != 3 || nfixed != 1) return len;
+  double e[3] = {0.0, 0.0, 0.0};
+  e[axis] = 1.0;
+  if (nd.planes == 1)
+    for (int c = 0; c < 3; ++c) e[c] = nd.e[0][c];
+  const double* n = nd.normal;
+  double t[3] = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
+  const double tl = std::sqrt(dot3(t, t));
+  if (!(tl > 0.0)) return len;
+  const double a = dot3(v, t) / (tl * tl);
+  for (int c = 0; c < 3; ++c) vt[c] = a * t[c];
+  return std::abs(a) * tl;
+}
+
 // The set of this solve (nd.state) against the last one's (nd.base_state): a node that
 // entered or left contact kFreezeAfter times in the step is held active from now on, one
 // that changed between stick and slip that often is held slipping, with its friction
@@ -42,8 +65,8 @@ void Contact::count_flips(const Pair& p, Slave& nd) const {
     nd.hold_tangent = contact::Slip;
     const double ct = tangent_penalty(p, nd, dt_);
     double ft[3], vt[3], q[3];
-    tangential(nd.f, nd.normal, ft);
-    tangential(nd.rel, nd.normal, vt);
+    friction_part(nd, nd.f, ft);
+    friction_part(nd, nd.rel, vt);
     for (int c = 0; c < 3; ++c) q[c] = -ft[c] + ct * vt[c] / dt_;
     const double qn = std::sqrt(dot3(q, q));
     for (int c = 0; c < 3; ++c) nd.hold_dir[c] = qn > 0.0 ? q[c] / qn : 0.0;
@@ -92,7 +115,7 @@ int Contact::verify_held(std::string& why) {
       if (nd.state >= contact::Stick) {
         double st[3];
         loc[0] = std::max(loc[0], std::sqrt(dot3(nd.f, nd.f)));
-        loc[1] = std::max(loc[1], tangential(nd.rel, nd.normal, st));
+        loc[1] = std::max(loc[1], friction_part(nd, nd.rel, st));
         loc[2] = std::max(loc[2], std::sqrt(dot3(nd.rel, nd.rel)));
       }
     Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_MAX, 3, loc, glob);
@@ -122,7 +145,7 @@ int Contact::verify_held(std::string& why) {
       if (!(nd.hold_active || nd.hold_tangent) || nd.state < contact::Stick) continue;
       const double lam_n = -dot3(nd.f, nd.normal);
       double ft[3], st[3];  // the tangential force (lambda_tau = -ft) and slip
-      const double lam_t = tangential(nd.f, nd.normal, ft), slip = tangential(nd.rel, nd.normal, st);
+      const double lam_t = friction_part(nd, nd.f, ft), slip = friction_part(nd, nd.rel, st);
       const double bound = p.cfg.friction * std::max(-lam_n, 0.0), along = -dot3(ft, st);  // lambda_tau . slip
       // The slip off the friction direction: against it, or (3D) across it.
       const double across = lam_t > 0.0 ? std::sqrt(std::max(slip * slip - along * along / (lam_t * lam_t), 0.0)) : 0.0;

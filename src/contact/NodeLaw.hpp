@@ -323,6 +323,24 @@ KOKKOS_INLINE_FUNCTION int law(int dim, const bool fixed[3], const LawParams& p,
   const T rn = dot3(n, r);
   T t[2][3];
   tangents(dim, n, a1, t);
+  int nfixed = 0, fixed_axis = 0;
+  for (int c = 0; c < dim; ++c)
+    if (fixed[c]) ++nfixed, fixed_axis = c;
+  // 3D on one plane (a prescribed axis e, or a `normal` plane e): the one free tangential
+  // direction t1 = e x n / |e x n|. The node can slide only along it, and its friction force
+  // acts along it (the mirror image across the plane cancels the rest), so the sets and the
+  // slip direction are decided from the components along t1 alone: the tangential
+  // projections of r and rel off the plane (from the tilt of n against it) are not friction.
+  const bool one_tangent = dim == 3 && nfixed == 1;
+  if (one_tangent) {
+    T e[3] = {T(0.0), T(0.0), T(0.0)};
+    e[fixed_axis] = T(1.0);
+    if (p.planes == 1)
+      for (int c = 0; c < 3; ++c) e[c] = T(p.e[0][c]);
+    T a[3] = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
+    const T len = sqrt(dot3(a, a));
+    for (int c = 0; c < 3; ++c) t[0][c] = a[c] / len;
+  }
   const T reln = dot3(n, rel);
   T q[3];
   // The decision's values: the deciding multiplier f (r unless p.has_lam).
@@ -337,8 +355,14 @@ KOKKOS_INLINE_FUNCTION int law(int dim, const bool fixed[3], const LawParams& p,
     q[c] = -(r[c] - rn * n[c]) + p.ct * relt;
     si.lam_t[c] = -(f[c] - fn * nv[c]);
     si.rel_t[c] = value(relt);
-    si.q[c] = si.lam_t[c] + p.ct * si.rel_t[c];
   }
+  if (one_tangent) {
+    const T qt = dot3(q, t[0]);
+    double t1[3], lt = 0.0, st = 0.0;
+    for (int c = 0; c < 3; ++c) t1[c] = value(t[0][c]), lt += si.lam_t[c] * t1[c], st += si.rel_t[c] * t1[c];
+    for (int c = 0; c < 3; ++c) q[c] = qt * t[0][c], si.lam_t[c] = lt * t1[c], si.rel_t[c] = st * t1[c];
+  }
+  for (int c = 0; c < 3; ++c) si.q[c] = si.lam_t[c] + p.ct * si.rel_t[c];
   const int set = decide_set(p, si);
   if (set == 0) return Inactive;
   bool stick = false;
@@ -359,27 +383,12 @@ KOKKOS_INLINE_FUNCTION int law(int dim, const bool fixed[3], const LawParams& p,
       stick = true;
     }
   }
-  int slot_n = -1, nfixed = 0, fixed_axis = 0;
-  for (int c = 0; c < dim; ++c) {
-    if (fixed[c]) {
-      ++nfixed, fixed_axis = c;
-      continue;
-    }
-    if (slot_n < 0 || std::abs(normal[c]) > std::abs(normal[slot_n])) slot_n = c;
-  }
+  int slot_n = -1;
+  for (int c = 0; c < dim; ++c)
+    if (!fixed[c] && (slot_n < 0 || std::abs(normal[c]) > std::abs(normal[slot_n]))) slot_n = c;
   int slot_t[2] = {0, 0}, nt = 0;
   for (int c = 0; c < dim; ++c)
     if (c != slot_n && !fixed[c]) slot_t[nt++] = c;
-  if (dim == 3 && nfixed == 1) {
-    // The one free tangential direction: e x n (orthogonal to the prescribed axis e and n).
-    T e[3] = {T(0.0), T(0.0), T(0.0)};
-    e[fixed_axis] = T(1.0);
-    if (p.planes == 1)
-      for (int c = 0; c < 3; ++c) e[c] = T(p.e[0][c]);
-    T a[3] = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
-    const T len = sqrt(dot3(a, a));
-    for (int c = 0; c < 3; ++c) t[0][c] = a[c] / len;
-  }
   // 3D, two tangents: each goes to the free component it is most aligned with, so the row's
   // diagonal entry is its leading term. In component order, a plane z = 0 (t1 = e_y, t2 =
   // -e_x) put t1 . r_p on the x row: a zero diagonal on stick rows and an off-diagonal

@@ -55,6 +55,16 @@ std::vector<std::string> ArteryMetrics::columns() const {
   return c;
 }
 
+std::vector<std::string> ArteryMetrics::diameter_columns() const {
+  const std::vector<std::string> c = columns();
+  return {c[0], c[1]};
+}
+
+std::vector<std::string> ArteryMetrics::stress_columns() const {
+  const std::vector<std::string> c = columns();
+  return {c.begin() + 2, c.end()};
+}
+
 double ArteryMetrics::nearest_rank(std::vector<double>& v, double q) {
   if (v.empty()) return 0.0;
   std::sort(v.begin(), v.end());

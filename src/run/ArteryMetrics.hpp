@@ -34,6 +34,8 @@ class ArteryMetrics {
   static std::vector<std::string> whole_groups() { return {"lumen"}; }
 
   std::vector<std::string> columns() const;  // with units: "lumen_D_mean [mm]"
+  std::vector<std::string> diameter_columns() const;  // the diameter plot's: the lumen's
+  std::vector<std::string> stress_columns() const;    // the stress plot's: the layers'
   // One value per column at u (collective). The first call is the reference of the gains.
   std::vector<double> evaluate(const la::Vector& u);
   // The paragraph of the stage's end (rank 0 writes; every rank may call).

@@ -172,10 +172,16 @@ std::vector<std::string> MetricsReport::radius_columns() const {
 }
 
 std::vector<std::string> MetricsReport::diameter_columns() const {
-  return rings_ ? rings_->diameter_columns() : std::vector<std::string>{};
+  std::vector<std::string> c = rings_ ? rings_->diameter_columns() : std::vector<std::string>{};
+  if (artery_) {
+    const auto a = artery_->diameter_columns();
+    c.insert(c.end(), a.begin(), a.end());
+  }
+  return c;
 }
 
 std::vector<std::string> MetricsReport::stress_columns() const {
+  if (artery_) return artery_->stress_columns();
   if (!vessel_) return {};
   return {"artery_von_mises_max", "artery_hoop_stress_max", "contact_pressure_max"};
 }

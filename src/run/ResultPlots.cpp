@@ -186,7 +186,11 @@ std::string metric_legend(const std::string& c) {
       {"stent_radius_mean", "stent radius, mean"}, {"stent_radius_middle", "stent radius, middle"},
       {"stent_radius_ends", "stent radius, ends"}, {"artery_von_mises_max", "artery von Mises stress, maximum"},
       {"artery_hoop_stress_max", "artery hoop (circumferential) stress, maximum"},
-      {"contact_pressure_max", "contact pressure, maximum"}};
+      {"contact_pressure_max", "contact pressure, maximum"}, {"plaque_sigma1_max", "plaque, maximum"},
+      {"plaque_sigma1_p99", "plaque, 99th percentile"}, {"intima_sigma1_max", "intima, maximum"},
+      {"intima_sigma1_p99", "intima, 99th percentile"}, {"media_sigma1_max", "media, maximum"},
+      {"media_sigma1_p99", "media, 99th percentile"}, {"adventitia_sigma1_max", "adventitia, maximum"},
+      {"adventitia_sigma1_p99", "adventitia, 99th percentile"}};
   for (const auto& p : names)
     if (c == p.first) return p.second;
   std::string s = c;
@@ -198,12 +202,19 @@ std::string metric_legend(const std::string& c) {
 void metrics_plots(const Model& m, const std::string& stem, const UnitLabels& u, const std::vector<std::string>& radii,
                    const std::vector<std::string>& stresses, std::vector<std::string>& made) {
   PlotTable t;
-  if (radii.empty() || !read_csv_table(stem + "_metrics.csv", t)) return;
-  PlotSpec r{"Lumen and stent radii", with_unit("time", u.time), with_unit("radius", u.length), "time", {}, true};
-  for (const auto& c : radii) r.curves.push_back({c, metric_legend(c), ""});
-  if (plot_png(t, stem + "_radii.png", r, stage_marks(m.cfg))) made.push_back(stem + "_radii.png");
-  PlotSpec s{"Artery wall stress, contact pressure", with_unit("time", u.time), with_unit("stress", u.stress), "time", {}, true};
-  for (const auto& c : stresses) s.curves.push_back({c, metric_legend(c), ""});
+  if ((radii.empty() && stresses.empty()) || !read_csv_table(stem + "_metrics.csv", t)) return;
+  if (!radii.empty()) {
+    PlotSpec r{"Lumen and stent radii", with_unit("time", u.time), with_unit("radius", u.length), "time", {}, true};
+    for (const auto& c : radii) r.curves.push_back({c, metric_legend(c), ""});
+    if (plot_png(t, stem + "_radii.png", r, stage_marks(m.cfg))) made.push_back(stem + "_radii.png");
+  }
+  if (stresses.empty()) return;
+  // A stent deck with the artery around it: the layers' largest principal stresses.
+  const bool layers = m.cfg.mesh.generator == "stent";
+  PlotSpec s{layers ? "Artery wall: largest principal Cauchy stress per layer (maximum and 99th percentile of the cells)"
+                    : "Artery wall stress, contact pressure",
+             with_unit("time", u.time), with_unit("stress", u.stress), "time", {}, true};
+  for (const auto& c : stresses) s.curves.push_back({c, metric_legend(c.substr(0, c.find(" ["))), ""});
   if (plot_png(t, stem + "_stresses.png", s, stage_marks(m.cfg))) made.push_back(stem + "_stresses.png");
 }
 
@@ -212,8 +223,11 @@ void diameter_plot(const Model& m, const std::string& stem, const UnitLabels& u,
                    std::vector<std::string>& made) {
   PlotTable t;
   if (cols.empty() || !read_csv_table(stem + "_metrics.csv", t)) return;
-  PlotSpec d{"Stent outer diameters (mean over the nodes; crowns: the crown sections)", with_unit("time", u.time),
-             with_unit("outer diameter", u.length), "time", {}, true};
+  const bool lumen = std::any_of(cols.begin(), cols.end(), [](const std::string& c) { return c.rfind("lumen_", 0) == 0; });
+  PlotSpec d{lumen ? "Stent outer and lumen diameters (stent: mean over the nodes, crowns: the crown sections; lumen: "
+                     "over the stented segment)"
+                   : "Stent outer diameters (mean over the nodes; crowns: the crown sections)",
+             with_unit("time", u.time), with_unit(lumen ? "diameter" : "outer diameter", u.length), "time", {}, true};
   for (const auto& c : cols) {
     std::string legend = c.substr(0, c.find(" ["));
     for (char& ch : legend)
