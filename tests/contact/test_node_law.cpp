@@ -147,3 +147,36 @@ TEST(NodeLaw, HeldSlipRowsMatchFiniteDifferences) {
       EXPECT_NEAR(out.dres[k][j], (up.res[k] - dn.res[k]) / (2 * h), 1e-7) << "row " << k << ", unknown " << j;
   }
 }
+
+// A node on a symmetry plane y = 0 (its y component prescribed, its bulk r_y = 0) pressed
+// against a rigid plane whose normal n = (cos a, sin a, 0) tilts towards y: it can slide
+// only along t1 = e_y x n = -e_z, and its friction force is its component along t1. The
+// normal force then has a tangential projection off the symmetry plane, -(n . r) n
+// against r, which is no friction (the mirrored node's cancels it). With mu = 0.1, a
+// force (1, 0, 0.05): |lambda_tau . t1| = 0.05 < mu |lambda_nu| = 0.0995, the node sticks;
+// the same node off the plane (nothing prescribed) reads the whole tangential part,
+// sqrt(sin^2 a + 0.05^2) = 0.112 > 0.0995, and slips.
+TEST(NodeLaw, SymmetryPlaneNodeReadsFrictionAlongThePlaneOnly) {
+  const double a = std::asin(0.1), n[3] = {std::cos(a), std::sin(a), 0.0};
+  auto eval = [&](bool on_plane) {
+    contact::Obstacle o;
+    o.kind = 0;
+    for (int k = 0; k < 3; ++k) o.normal[k] = n[k];
+    contact::NodeInput in;
+    in.dim = 3;
+    in.xs[0] = in.xs_n[0] = -0.01;
+    in.r[0] = 1.0, in.r[2] = 0.05;
+    in.fixed[1] = on_plane;
+    contact::LawParams p;
+    p.persistence = false;
+    p.mu = 0.1;
+    contact::NodeOutput out;
+    contact::evaluate(in, p, &o, out);
+    return out;
+  };
+  const contact::NodeOutput plane = eval(true), free = eval(false);
+  EXPECT_EQ(plane.state, contact::Stick);
+  EXPECT_EQ(free.state, contact::Slip);
+  // Sticking, the node's one tangential row is its slip along t1: zero here (no motion).
+  EXPECT_NEAR(plane.res[2], 0.0, 1e-15);
+}
