@@ -1118,6 +1118,20 @@ std::string Contact::iteration_summary() const {
   return os.str();
 }
 
+void Contact::contact_force_of(const Slave& nd, const double* n, double* F) const {
+  // nd.f is the bulk residual, zero on the planes' rows: completed on the planes first, as
+  // the conditions take it (NodeLaw.hpp, evaluate).
+  contact::LawParams lp;
+  lp.planes = nd.planes;
+  for (int i = 0; i < 3; ++i) {
+    lp.pj[i] = nd.pj[i];
+    for (int c = 0; c < 3; ++c) lp.e[i][c] = nd.e[i][c];
+  }
+  double r[3] = {nd.f[0], nd.f[1], nd.f[2]};
+  contact::complete_on_planes(lp, r);
+  contact::contact_force(dim_, nd.fixed, lp, n, r, F);
+}
+
 Contact::StepStats Contact::accept(const la::Vector& u_np1) {
   auto uh = u_np1.getLocalViewHost(Tpetra::Access::ReadOnly);
   if (has_master_) update_master_positions(u_np1, master_x_);
@@ -1157,12 +1171,16 @@ Contact::StepStats Contact::accept(const la::Vector& u_np1) {
         // F = r_p on the slave (and -F at the master's contact point): its work over the
         // step is F . rel (+ F . dw for a moving rigid obstacle, work done by the obstacle's
         // motion). Normal part: contact work; tangential part: -(frictional dissipation).
-        const double fn = dot3(nd.f, n);
+        // On symmetry planes the force between the bodies is F_c (NodeLaw.hpp,
+        // contact_force), the rest of r_p the planes' reaction.
+        double F[3];
+        contact_force_of(nd, n, F);
+        const double fn = dot3(F, n);
         loc[kPer * i + 6] += fn;
         double ft[3], relt[3], dwt[3];
         const double reln = dot3(rel, n), dwn = dot3(ob.dw, n);
         for (int c = 0; c < 3; ++c) {
-          ft[c] = nd.f[c] - fn * n[c];
+          ft[c] = F[c] - fn * n[c];
           relt[c] = rel[c] - reln * n[c];
           dwt[c] = p.master ? 0.0 : ob.dw[c] - dwn * n[c];
         }
@@ -1252,7 +1270,13 @@ Contact::NodalFields Contact::master_fields() const {
     if (!p.master) continue;
     for (const Slave& nd : p.nodes) {
       if (nd.state < contact::Stick || nd.facet < 0) continue;
-      const double fn = dot3(nd.f, nd.normal);
+      double F[3];  // what the master receives (F_c on a slave on symmetry planes)
+      if (p.mortar) {
+        for (int c = 0; c < 3; ++c) F[c] = nd.f[c];
+      } else {
+        contact_force_of(nd, nd.normal, F);
+      }
+      const double fn = dot3(F, nd.normal);
       if (p.mortar) {
         const contact::MortarRows& mo = p.mortar_out[static_cast<std::size_t>(&nd - p.nodes.data())];
         for (std::size_t k = 0; k < mo.masters.size(); ++k) {
@@ -1270,7 +1294,7 @@ Contact::NodalFields Contact::master_fields() const {
       facet::frame(fc.type, fc.nn, dim_, fc.orient, xa, nd.xi, fr);
       for (int a = 0; a < fc.nn; ++a) {
         auto& f = force[fc.node[a]];
-        for (int c = 0; c < 3; ++c) f[static_cast<std::size_t>(c)] -= fr.N[a] * nd.f[c];
+        for (int c = 0; c < 3; ++c) f[static_cast<std::size_t>(c)] -= fr.N[a] * F[c];
         f[3] += fr.N[a] * fn;
       }
     }

@@ -295,6 +295,8 @@ class Contact {
   // The part of v (a slave's force or slip) that friction sees: tangential, and on one
   // symmetry plane in 3D along the plane's one tangential direction (ContactHolds.cpp).
   double friction_part(const Slave& nd, const double* v, double* vt) const;
+  // The force between the bodies at slave nd with normal n (contact::contact_force).
+  void contact_force_of(const Slave& nd, const double* n, double* F) const;
   void count_flips(const Pair& p, Slave& nd) const;
   static double tangent_penalty(const Pair& p, const Slave& nd, double dt);
   bool linearised_ = false;                            // some pair decides its sets from the last solve

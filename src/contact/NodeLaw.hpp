@@ -25,7 +25,8 @@
 //   normal                   s_p g
 //   stick tangent k          s_p t_k . rel
 //   slip / frictionless k    (t_k + mu (s . t_k) n) . r_p
-// and the master nodes' rows receive the reaction: r_a += N_a(xi) r_p (all components).
+// and the master nodes' rows receive the reaction: r_a += N_a(xi) r_p (all components; on
+// a slave with prescribed components the contact force F_c of contact_force() instead).
 // s_p is the slave's largest tangent diagonal (a force/length scale). Inactive nodes keep
 // their bulk rows (lambda = 0) and send nothing to the master.
 // Prescribed components (a slave node on a symmetry plane): their rows stay Dirichlet rows
@@ -413,6 +414,55 @@ KOKKOS_INLINE_FUNCTION int law(int dim, const bool fixed[3], const LawParams& p,
   return stick ? Stick : Slip;
 }
 
+// The contact force F_c on a slave node with prescribed components (on symmetry planes):
+// the force that acts between the slave and the master, in the directions the contact
+// conditions act in (n and the free tangents), whose part along the node's free
+// directions V is its bulk residual r (r is in V: prescribed components zeroed, `normal`
+// planes completed). The rest of F_c, across V, is taken by the planes' reaction at the
+// slave, which does no work; the master receives -F_c. (Sending it -r instead sends it
+// the plane's reaction too, which works on the master's motion off the plane: with
+// persistence the pair's work was then not zero, and a dynamic run's energy identity
+// closed only to that work.) Without prescribed components F_c = r.
+//   3D, one plane e (one free tangent t1 = e x n): F_c = (r . n) / (1 - (n . e)^2) n + (r . t1) t1;
+//   one free direction v (2D with one prescribed component, 3D with two): F_c = (r . v) / (n . v) n.
+template <class T>
+KOKKOS_INLINE_FUNCTION void contact_force(int dim, const bool fixed[3], const LawParams& p, const T n[3], const T r[3], T F[3]) {
+  using std::sqrt;
+  int nfixed = 0, axis = 0, free_axis = 0;
+  for (int c = 0; c < dim; ++c) {
+    if (fixed[c]) ++nfixed, axis = c;
+    else free_axis = c;
+  }
+  for (int c = 0; c < 3; ++c) F[c] = r[c];
+  if (nfixed == 0 || nfixed >= dim) return;
+  if (dim == 3 && nfixed == 1) {
+    double e[3] = {0.0, 0.0, 0.0};
+    e[axis] = 1.0;
+    if (p.planes == 1)
+      for (int c = 0; c < 3; ++c) e[c] = p.e[0][c];
+    const T ne = n[0] * e[0] + n[1] * e[1] + n[2] * e[2];
+    T t[3] = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
+    const T tl = sqrt(dot3(t, t));
+    if (!(value(tl) > 1e-6)) return;  // n along the plane's normal: no tangent, leave r
+    for (int c = 0; c < 3; ++c) t[c] = t[c] / tl;
+    const T a = dot3(r, n) / (1.0 - ne * ne), b = dot3(r, t);
+    for (int c = 0; c < 3; ++c) F[c] = a * n[c] + b * t[c];
+    return;
+  }
+  T v[3] = {T(0.0), T(0.0), T(0.0)};
+  if (p.planes == 0) {
+    v[free_axis] = T(1.0);
+  } else {
+    const T rl = sqrt(dot3(r, r));
+    if (!(value(rl) > 0.0)) return;
+    for (int c = 0; c < 3; ++c) v[c] = r[c] / rl;
+  }
+  const T nv = dot3(n, v);
+  if (!(std::abs(value(nv)) > 1e-6)) return;
+  const T a = dot3(r, v) / nv;
+  for (int c = 0; c < 3; ++c) F[c] = a * n[c];
+}
+
 // The conditions of one node in scalar T. res: the slave's rows; add: master rows' additions.
 // Returns the state. Branches use the values only.
 template <class T>
@@ -426,8 +476,10 @@ KOKKOS_INLINE_FUNCTION int conditions(const NodeInput& in, const LawParams& p, c
   if (p.persistence) g = in.nm == 0 ? d - in.d_n : dot3(n, rel);
   const int state = law(in.dim, in.fixed, p, g, n, rel, in.nm ? a1 : static_cast<const T*>(nullptr), r, res, normal);
   if (state == Inactive) return state;
+  T F[3];
+  contact_force(in.dim, in.fixed, p, n, r, F);
   for (int a = 0; a < in.nm; ++a)
-    for (int c = 0; c < in.dim; ++c) add[a][c] = N[a] * r[c];
+    for (int c = 0; c < in.dim; ++c) add[a][c] = N[a] * F[c];
   return state;
 }
 

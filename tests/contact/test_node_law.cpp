@@ -180,3 +180,45 @@ TEST(NodeLaw, SymmetryPlaneNodeReadsFrictionAlongThePlaneOnly) {
   // Sticking, the node's one tangential row is its slip along t1: zero here (no motion).
   EXPECT_NEAR(plane.res[2], 0.0, 1e-15);
 }
+
+// The force between the bodies at a slave on symmetry planes (contact::contact_force): in
+// the directions the conditions act in, and equal to the bulk residual r along the node's
+// free directions (the rest is the planes' reaction). 3D on the plane theta = 22.5 deg
+// (e its normal, r completed onto it): F in span{n, t1}, t1 = e x n, and F - r along e.
+// 2D with x prescribed (a node on the axis of an axisymmetric section): F = a n with
+// F_y = r_y. Without prescribed components, F = r.
+TEST(NodeLaw, ContactForceOnSymmetryPlanes) {
+  const double th = 0.3926990816987241, e[3] = {-std::sin(th), std::cos(th), 0.0};
+  contact::LawParams p;
+  p.planes = 1;
+  p.pj[0] = 1;
+  for (int c = 0; c < 3; ++c) p.e[0][c] = e[c];
+  double n[3] = {0.92, 0.38, 0.06};
+  const double nl = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+  for (double& v : n) v /= nl;
+  double r[3] = {-0.8, 0.0, 0.03};
+  contact::complete_on_planes(p, r);  // e . r = 0
+  const bool fixed[3] = {false, true, false};
+  double F[3];
+  contact::contact_force(3, fixed, p, n, r, F);
+  const double t[3] = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
+  const double m[3] = {n[1] * t[2] - n[2] * t[1], n[2] * t[0] - n[0] * t[2], n[0] * t[1] - n[1] * t[0]};
+  EXPECT_NEAR(contact::dot3(F, m), 0.0, 1e-15);  // no component off span{n, t1}
+  double d[3];
+  for (int c = 0; c < 3; ++c) d[c] = F[c] - r[c];
+  const double along = contact::dot3(d, e);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(d[c], along * e[c], 1e-15);  // F - r along e only
+  EXPECT_GT(std::abs(along), 5e-4);  // and not zero: r itself has a part off span{n, t1}
+  // 2D, x prescribed.
+  const bool fx[3] = {true, false, false};
+  contact::LawParams p2;
+  const double n2[3] = {0.6, 0.8, 0.0}, r2[3] = {0.0, -0.5, 0.0};
+  double F2[3];
+  contact::contact_force(2, fx, p2, n2, r2, F2);
+  EXPECT_NEAR(F2[1], -0.5, 1e-15);
+  EXPECT_NEAR(F2[0] * n2[1] - F2[1] * n2[0], 0.0, 1e-15);  // along n
+  const bool none[3] = {false, false, false};
+  double F3[3];
+  contact::contact_force(3, none, p, n, r, F3);
+  for (int c = 0; c < 3; ++c) EXPECT_EQ(F3[c], r[c]);
+}
