@@ -10,10 +10,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 #include "assembly/HyperelasticElement.hpp"
 #include "assembly/PressureElement.hpp"
+#include "material/Damage.hpp"
+#include "material/ElasticLaw.hpp"
 #include "material/NeoHookean.hpp"
 
 using namespace stentor;
@@ -224,4 +228,184 @@ TEST(AxisymmetricElement, PressureTangentAgainstFiniteDifferences) {
       EXPECT_NEAR(re[1] + re[3], -p * kPi * (r0 + r1) * (r1 - r0), 1e-13);
     }
   }
+}
+
+// ---------------------------------------------------------------------------------------
+// The other laws in axisymmetry, through the same kernel as the assembler runs them:
+// Ciarlet-Geymonat and Mooney-Rivlin as the device-side ElasticLaw, and the neo-Hookean
+// damage law with its Gauss-point history (CellHistory). For each:
+//  - the homogeneous state u = (a r, b z): F = diag(1 + a, 1 + b, 1 + a), the energy is
+//    W(F) times the revolved volume (damage: (1 - g(W0)) W0, g(W0) = d_inf (1 - exp(-W0/beta))
+//    from a virgin state, and every point's history holds alpha = W0 and d = g(W0));
+//  - the tangent against central differences of the residual, and the residual against
+//    central differences of the energy, tri3/tri6/quad4 on and off the axis. For damage the
+//    residual is dE/du only where the damage does not grow (a history whose alpha exceeds
+//    every W0 reached: the elastic (1 - d) W0 branch); the loading branch's tangent
+//    (with -g' S0 (x) S0) is checked against the residual from a virgin state.
+namespace {
+
+// The ElasticLaw of a deck's Ciarlet-Geymonat and Mooney-Rivlin with mu = 1, lambda = 3
+// (docs/deck.md: CG C1 = mu/2 - C2, D = lambda/4 - C2; MR C1 = mu/2 - C2, lam = lambda - 4 C2).
+const ElasticLaw kCiarletGeymonat = ElasticLaw::ciarlet_geymonat(CiarletGeymonat{0.4, 0.1, 0.65});
+const ElasticLaw kMooneyRivlin = ElasticLaw::mooney_rivlin(MooneyRivlin{0.35, 0.15, 2.4});
+const IsotropicDamage<NeoHookean> kDamage{NeoHookean{1.0, 3.0}, 0.6, 0.02};
+
+template <class Law>
+struct LawEval {
+  std::vector<double> r;
+  std::vector<std::vector<double>> K;
+  std::vector<double> h1;  // trial history, kNumHist per Gauss point (laws with history)
+  double energy = 0.0, dissipation = 0.0, damage_dissipation = 0.0;
+  int status = 0;
+};
+
+// One end-point evaluation of the cell with `law`; hn: the committed history row per point
+// (laws with history; the same row at every point).
+template <class Law>
+LawEval<Law> eval_law(const Law& law, const Cell& c, const double (*U)[3], const std::vector<double>& hn_row) {
+  const QuadRule q = make_rule(c.type, stiffness_quadrature_degree(c.type));
+  double re[kMaxCellDofs], ke[kMaxCellDofs][kMaxCellDofs];
+  LawEval<Law> e;
+  if constexpr (std::is_same_v<Law, ElasticLaw>) {
+    e.status = solid_element<true>(2, Kinematics::Axisymmetric, ElementTechnology::Full, c.type, c.nn, c.X, U, U, law, ElementTime{}, q,
+                                   re, ke, e.energy, e.dissipation);
+  } else {
+    const int nh = Law::kNumHist;
+    std::vector<double> hn;
+    for (int g = 0; g < q.n; ++g) hn.insert(hn.end(), hn_row.begin(), hn_row.end());
+    e.h1.assign(static_cast<std::size_t>(q.n * nh), -1.0);
+    const CellHistory hist{hn.data(), e.h1.data(), nh};
+    e.status = solid_element<true>(2, Kinematics::Axisymmetric, ElementTechnology::Full, c.type, c.nn, c.X, U, U, law, ElementTime{}, q,
+                                   re, ke, e.energy, e.dissipation, hist, &e.damage_dissipation);
+  }
+  const int nd = 2 * c.nn;
+  e.r.assign(re, re + nd);
+  for (int i = 0; i < nd; ++i) e.K.emplace_back(ke[i], ke[i] + nd);
+  return e;
+}
+
+// Worst relative errors (tangent vs FD(r), residual vs FD(E)) over the cells; check_residual:
+// whether the residual is the energy's derivative for this history.
+template <class Law>
+void law_fd(const Law& law, const std::vector<double>& hn_row, bool check_residual, const char* name) {
+  double worst_k = 0, worst_r = 0;
+  for (CellType t : kTypes)
+    for (double r0 : {0.6, 0.0}) {
+      const Cell c = make_cell(t, r0);
+      SCOPED_TRACE(std::string(name) + ", " + cell_name(t) + (r0 == 0.0 ? " on the axis" : " off the axis"));
+      double U[kMaxCellNodes][3];
+      displacement(c, 1.0, 0.03, U);
+      const LawEval<Law> e = eval_law(law, c, U, hn_row);
+      ASSERT_EQ(e.status, kElementOk);
+      const int nd = 2 * c.nn;
+      const double h = 1e-6;
+      double kmax = 0, kerr = 0, rmax = 0, rerr = 0;
+      for (int j = 0; j < nd; ++j) {
+        double Up[kMaxCellNodes][3], Um[kMaxCellNodes][3];
+        std::copy(&U[0][0], &U[0][0] + 3 * kMaxCellNodes, &Up[0][0]);
+        std::copy(&U[0][0], &U[0][0] + 3 * kMaxCellNodes, &Um[0][0]);
+        Up[j / 2][j % 2] += h, Um[j / 2][j % 2] -= h;
+        const LawEval<Law> p = eval_law(law, c, Up, hn_row), m = eval_law(law, c, Um, hn_row);
+        for (int i = 0; i < nd; ++i) {
+          const auto si = static_cast<std::size_t>(i), sj = static_cast<std::size_t>(j);
+          kmax = std::max(kmax, std::abs(e.K[si][sj]));
+          kerr = std::max(kerr, std::abs(e.K[si][sj] - (p.r[si] - m.r[si]) / (2 * h)));
+        }
+        rmax = std::max(rmax, std::abs(e.r[static_cast<std::size_t>(j)]));
+        rerr = std::max(rerr, std::abs(e.r[static_cast<std::size_t>(j)] - (p.energy - m.energy) / (2 * h)));
+      }
+      EXPECT_GT(kmax, 0.1);
+      EXPECT_LT(kerr / kmax, 1e-7) << "tangent against FD of the residual";
+      worst_k = std::max(worst_k, kerr / kmax);
+      if (check_residual) {
+        EXPECT_GT(rmax, 1e-3);
+        EXPECT_LT(rerr / rmax, 1e-7) << "residual against FD of the stored energy";
+        worst_r = std::max(worst_r, rerr / rmax);
+      }
+    }
+  std::printf("[axisymmetric element] %s, tri3/tri6/quad4 on and off the axis: max |K - FD(r)|/max|K| %.1e", name, worst_k);
+  if (check_residual) std::printf(", max |r - FD(E)|/max|r| %.1e", worst_r);
+  std::printf("\n");
+}
+
+// The homogeneous state's energy against W(F) V (the law's W from its own closed form, w).
+template <class Law, class W>
+void law_homogeneous(const Law& law, const std::vector<double>& hn_row, W w, const char* name) {
+  const double a = 0.08, b = -0.04;
+  Mat3 F = Mat3::identity();
+  F(0, 0) = 1 + a, F(1, 1) = 1 + b, F(2, 2) = 1 + a;
+  const double Wf = w(F);
+  ASSERT_GT(Wf, 0.0);
+  double worst = 0;
+  for (CellType t : kTypes) {
+    const Cell c = make_cell(t, 0.3);
+    double U[kMaxCellNodes][3];
+    for (int n = 0; n < c.nn; ++n) U[n][0] = a * c.X[n][0], U[n][1] = b * c.X[n][1], U[n][2] = 0.0;
+    const int corners = t == CellType::Quad4 ? 4 : 3;
+    double Sr = 0;
+    for (int i = 0; i < corners; ++i) {
+      const double* p = c.X[i];
+      const double* q = c.X[(i + 1) % corners];
+      Sr += (p[0] * q[1] - q[0] * p[1]) * (p[0] + q[0]) / 6.0;
+    }
+    const double volume = 2 * kPi * Sr;
+    const LawEval<Law> e = eval_law(law, c, U, hn_row);
+    ASSERT_EQ(e.status, kElementOk) << cell_name(t);
+    EXPECT_NEAR(e.energy, Wf * volume, 1e-13 * Wf * volume) << name << ", " << cell_name(t);
+    worst = std::max(worst, std::abs(e.energy - Wf * volume) / (Wf * volume));
+    if constexpr (!std::is_same_v<Law, ElasticLaw>) {
+      // Every point loads from the virgin state: alpha = W0(F), d = g(W0), dissipation d W0 V.
+      const double W0 = law.elastic.energy(tmul(F, F)), d = law.d_inf * (1.0 - std::exp(-W0 / law.beta));
+      EXPECT_GT(d, 0.1) << "the state must damage the law noticeably";
+      for (std::size_t g = 0; g < e.h1.size(); g += Law::kNumHist) {
+        EXPECT_NEAR(e.h1[g + Law::kMaxEnergy], W0, 1e-14) << cell_name(t);
+        EXPECT_NEAR(e.h1[g + Law::kDamage], d, 1e-14) << cell_name(t);
+      }
+      EXPECT_NEAR(e.damage_dissipation, d * W0 * volume, 1e-13 * W0 * volume) << cell_name(t);
+    }
+  }
+  std::printf("[axisymmetric element] %s, homogeneous u = (%.2f r, %.2f z): W(F) = %.10e, max |E - W V|/(W V) %.1e\n", name, a, b, Wf,
+              worst);
+}
+
+}  // namespace
+
+TEST(AxisymmetricElement, CiarletGeymonatHomogeneousStateAndTangent) {
+  // W = C1 (I1 - 3) + C2 (I2 - 3) + D (I3 - 1) - (C1 + 2 C2 + D) ln I3 at C = F^T F.
+  law_homogeneous(kCiarletGeymonat, {}, [](const Mat3& F) {
+    const double l[3] = {F(0, 0) * F(0, 0), F(1, 1) * F(1, 1), F(2, 2) * F(2, 2)};  // eigenvalues of C
+    const double I1 = l[0] + l[1] + l[2], I2 = l[0] * l[1] + l[1] * l[2] + l[2] * l[0], I3 = l[0] * l[1] * l[2];
+    const double C1 = 0.4, C2 = 0.1, D = 0.65;
+    return C1 * (I1 - 3) + C2 * (I2 - 3) + D * (I3 - 1) - (C1 + 2 * C2 + D) * std::log(I3);
+  }, "Ciarlet-Geymonat");
+  law_fd(kCiarletGeymonat, {}, true, "Ciarlet-Geymonat");
+}
+
+TEST(AxisymmetricElement, MooneyRivlinHomogeneousStateAndTangent) {
+  // W = C1 (I1 - 3) + C2 (I2 - 3) - 2 (C1 + 2 C2) ln J + lam/2 (ln J)^2.
+  law_homogeneous(kMooneyRivlin, {}, [](const Mat3& F) {
+    const double l[3] = {F(0, 0) * F(0, 0), F(1, 1) * F(1, 1), F(2, 2) * F(2, 2)};
+    const double I1 = l[0] + l[1] + l[2], I2 = l[0] * l[1] + l[1] * l[2] + l[2] * l[0], lnJ = 0.5 * std::log(l[0] * l[1] * l[2]);
+    const double C1 = 0.35, C2 = 0.15, lam = 2.4;
+    return C1 * (I1 - 3) + C2 * (I2 - 3) - 2 * (C1 + 2 * C2) * lnJ + 0.5 * lam * lnJ * lnJ;
+  }, "Mooney-Rivlin");
+  law_fd(kMooneyRivlin, {}, true, "Mooney-Rivlin");
+}
+
+TEST(AxisymmetricElement, DamageHomogeneousStateAndTangent) {
+  using D = IsotropicDamage<NeoHookean>;
+  const std::vector<double> virgin(D::kNumHist, 0.0);
+  // Psi = (1 - g(W0)) W0, W0 = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2 (mu = 1, lambda = 3).
+  law_homogeneous(kDamage, virgin, [](const Mat3& F) {
+    const double l[3] = {F(0, 0) * F(0, 0), F(1, 1) * F(1, 1), F(2, 2) * F(2, 2)};
+    const double lnJ = 0.5 * std::log(l[0] * l[1] * l[2]);
+    const double W0 = 0.5 * (l[0] + l[1] + l[2] - 3) - lnJ + 1.5 * lnJ * lnJ;
+    return (1.0 - 0.6 * (1.0 - std::exp(-W0 / 0.02))) * W0;
+  }, "neo-Hookean damage");
+  // Loading from a virgin state at every point (tangent with the -g' S0 (x) S0 term).
+  law_fd(kDamage, virgin, false, "neo-Hookean damage, loading");
+  // Unloading below a past maximum alpha = 1: the (1 - d) W0 branch, a potential.
+  std::vector<double> past(D::kNumHist, 0.0);
+  past[D::kMaxEnergy] = 1.0, past[D::kDamage] = kDamage.damage(1.0);
+  law_fd(kDamage, past, true, "neo-Hookean damage, unloading");
 }
