@@ -19,6 +19,7 @@
 #include "material/Damage.hpp"
 #include "material/ElasticLaw.hpp"
 #include "material/NeoHookean.hpp"
+#include "material/Plasticity.hpp"
 
 using namespace stentor;
 
@@ -408,4 +409,25 @@ TEST(AxisymmetricElement, DamageHomogeneousStateAndTangent) {
   std::vector<double> past(D::kNumHist, 0.0);
   past[D::kMaxEnergy] = 1.0, past[D::kDamage] = kDamage.damage(1.0);
   law_fd(kDamage, past, true, "neo-Hookean damage, unloading");
+}
+
+// Ciarlet-Geymonat plasticity (the deck's `Ciarlet-Geymonat plasticity`, mu = 1, lambda = 3,
+// yield stress 0.02, hardening 0.1) from its virgin history (the law's initial values): every
+// point of the deformed cell flows, and the tangent of the return map matches central
+// differences of the residual (the residual is not dE/du: the step dissipates).
+TEST(AxisymmetricElement, CiarletGeymonatPlasticityTangent) {
+  using P = CiarletGeymonatPlasticity;
+  const P law{CiarletGeymonat{0.4, 0.1, 0.65}, 0.02, 0.1, false, NonlinearHardening{}};
+  std::vector<double> virgin;
+  for (int i = 0; i < P::kNumHist; ++i) virgin.push_back(P::kHistory[i].initial);
+  law_fd(law, virgin, false, "Ciarlet-Geymonat plasticity");
+  // The same cells flow: positive plastic dissipation on each.
+  for (CellType t : kTypes) {
+    const Cell c = make_cell(t, 0.0);
+    double U[kMaxCellNodes][3];
+    displacement(c, 1.0, 0.03, U);
+    const LawEval<P> e = eval_law(law, c, U, virgin);
+    ASSERT_EQ(e.status, kElementOk);
+    EXPECT_GT(e.damage_dissipation, 0.0) << cell_name(t) << ": the cell must flow";
+  }
 }
