@@ -31,6 +31,18 @@ env:
   COLS    panels per row (default: side 2 for an even number of panels, else 1; end and
           crown all in one row)
   DPI     of the output (default 100); PANEL "W,H" pixels of one rendered panel
+A stent with an artery around it (Mesh->Artery: the stent is the mesh's first block, the
+artery's layers the others; without these variables every block is drawn alike):
+  ARTERY_FIELD  colour the artery's cells by this field (its first component: the largest
+          principal stress of principal_stress) with a colour table and bar of their own,
+          the stent's by FIELD; ARTERY_LABEL its bar's label, ARTERY_CMAP (default Blues),
+          ARTERY_SCALE, ARTERY_VMIN (default 0) / ARTERY_VMAX (default the largest shown)
+  CUT     +y, -y, +x or -x: show only the artery's cells whose centroid (reference
+          configuration, after the symmetry map) lies on that side of the plane through
+          the axis (+y: y > 0, the far half in the side view), the artery cut open along
+          its axis so that the stent shows inside; the stent is drawn whole
+  The captions add the lumen's mean and minimum diameter (lumen_D_mean, lumen_D_min of the
+  metrics CSV) where the CSV has them.
 The panels are cut to the same box (the union of what they draw), so they keep one scale;
 the PNG is written with a 256-colour palette (Debian's python3-pil, matplotlib's own
 dependency; a full-colour PNG without it).
@@ -117,9 +129,9 @@ def flips(m):
     return (np.linalg.det(r) < 0) != (zc is not None)
 
 
-def write_grid(path, xs, conns, values):
+def write_grid(path, xs, conns, values, name="value"):
     """A .vtu of hex8 cells: the copies' points xs, connectivities conns (into each copy's
-    points) and cell values."""
+    points) and cell values (the cell array `name`)."""
     pts, cells, off = [], [], 0
     for x, c in zip(xs, conns):
         pts.append(x)
@@ -135,7 +147,7 @@ def write_grid(path, xs, conns, values):
     ca.SetCells(len(cells), numpy_to_vtkIdTypeArray(ids, deep=True))
     grid.SetCells(VTK_HEXAHEDRON, ca)
     arr = numpy_to_vtk(np.ascontiguousarray(np.concatenate(values)), deep=True)
-    arr.SetName("value")
+    arr.SetName(name)
     grid.GetCellData().AddArray(arr)
     w = vtkXMLUnstructuredGridWriter()
     w.SetFileName(path)
@@ -169,6 +181,10 @@ def main():
     if conn.shape[1] != 8:
         sys.exit("render_stent.py: hex8 meshes only (the stent generator's)")
     steps = [int(np.argmin([abs(t - float(s[0])) for t in times])) for s in shots]
+    artery_field = os.environ.get("ARTERY_FIELD")
+    cut = os.environ.get("CUT")
+    n_first = len(h5["mesh/" + blocks[0] + "/connectivity"])
+    in_artery = np.arange(len(conn)) >= n_first  # the cells after the first block's
     maps = symmetry_copies(x0, deck.get("half length", "false").lower() == "true")
     centroid0 = x0[conn].mean(axis=1)
 
@@ -177,6 +193,11 @@ def main():
 
     # crown close-up: the cell of the largest value at CROWN_T, and the cells near it
     keep = [np.ones(len(conn), bool) for _ in maps]
+    if cut:
+        if cut not in ("+y", "-y", "+x", "-x"):
+            sys.exit("render_stent.py: CUT is +y, -y, +x or -x")
+        axis, sign = "xy".index(cut[1]), 1.0 if cut[0] == "+" else -1.0
+        keep = [~in_artery | (sign * apply_map(centroid0, m)[:, axis] > 0) for m in maps]
     if view_kind == "crown":
         kc = int(np.argmin([abs(t - float(os.environ.get("CROWN_T", shots[-1][0]))) for t in times]))
         hot = int(np.argmax(field_at(kc)))
@@ -188,17 +209,32 @@ def main():
     tmp = tempfile.mkdtemp(prefix="render_stent_")
     size = [int(v) for v in os.environ.get("PANEL", {"side": "1500,620", "end": "800,800",
                                                       "crown": "760,640"}[view_kind]).split(",")]
-    vals_all, xs_all = [], []
+    vals_all, xs_all, art_all = [], [], []
     for k in steps:
         x = x0 + h5["step_%d/displacement" % k][()]
         v = field_at(k)
         xs = [apply_map(x, m) for m in maps]
-        cs = [(conn[:, HEX_FLIP] if flips(m) else conn)[kp] for m, kp in zip(maps, keep)]
-        vs = [v[kp] for kp in keep]
+        if artery_field:  # the stent's cells in step_k.vtu, the artery's in artery_k.vtu
+            sk = [kp & ~in_artery for kp in keep]
+            ak = [kp & in_artery for kp in keep]
+            va = h5["step_%d/%s" % (k, artery_field)][()].reshape(len(conn), -1)[:, 0] \
+                * float(os.environ.get("ARTERY_SCALE", "1"))
+            csa = [(conn[:, HEX_FLIP] if flips(m) else conn)[kp] for m, kp in zip(maps, ak)]
+            write_grid(os.path.join(tmp, "artery_%d.vtu" % k), xs, csa, [va[kp] for kp in ak], "artery_value")
+            art_all.append(np.concatenate([va[kp] for kp in ak]))
+        else:
+            sk = keep
+        cs = [(conn[:, HEX_FLIP] if flips(m) else conn)[kp] for m, kp in zip(maps, sk)]
+        vs = [v[kp] for kp in sk]
         write_grid(os.path.join(tmp, "step_%d.vtu" % k), xs, cs, vs)
         vals_all.append(np.concatenate(vs))
         xs_all.append(x)
     allv = np.concatenate(vals_all)
+    if artery_field:
+        alla = np.concatenate(art_all)
+        avmin = float(os.environ.get("ARTERY_VMIN", min(0.0, alla.min())))
+        avmax = float(os.environ.get("ARTERY_VMAX", alla.max() or 1.0))
+        acmap = matplotlib.colormaps[os.environ.get("ARTERY_CMAP", "Blues")]
     vmin = float(os.environ.get("VMIN", min(0.0, allv.min())))
     vmax = float(os.environ.get("VMAX", allv.max() or 1.0))
 
@@ -267,9 +303,26 @@ def main():
             view.CameraPosition = (xc + 10.0 * d).tolist()
             view.CameraViewUp = [0.0, 0.0, 1.0]
             view.CameraParallelScale = float(os.environ.get("ZOOM", str(0.7 * radius)))
+        if artery_field:
+            asrc = pv.XMLUnstructuredGridReader(FileName=[os.path.join(tmp, "artery_%d.vtu" % k)])
+            asurf = pv.ExtractSurface(Input=asrc)
+            adisp = pv.Show(asurf, view)
+            pv.ColorBy(adisp, ("CELLS", "artery_value"))
+            alut = pv.GetColorTransferFunction("artery_value")
+            alut.AutomaticRescaleRangeMode = "Never"
+            alut.ColorSpace = "RGB"
+            alut.RGBPoints = [float(c) for s in samples for c in (avmin + s * (avmax - avmin), *acmap(s)[:3])]
+            adisp.LookupTable = alut
+            adisp.SetScalarBarVisibility(view, False)
+            adisp.Specular = 0.1
+            if view_kind == "crown":
+                adisp.SetRepresentationType("Surface With Edges")
+                adisp.EdgeColor = [0.15, 0.15, 0.15]
         png = os.path.join(tmp, "panel_%d.png" % i)
         pv.SaveScreenshot(png, view, ImageResolution=size, TransparentBackground=0)
         pv.Hide(surf, view)
+        if artery_field:
+            pv.Hide(asurf, view)
         images.append(png)
 
     # compose: every panel cut to the same box (the union of the drawn parts), so that the
@@ -287,7 +340,7 @@ def main():
     rows = -(-n // cols)
     pw = {"side": 9.0 / cols, "end": 3.0, "crown": 3.2}[view_kind]
     ph = pw * (r1 - r0) / (c1 - c0)
-    width = pw * cols + 1.3
+    width = pw * cols + 1.3 + (1.1 if artery_field else 0.0)
     fig = plt.figure(figsize=(width, (ph + (0.3 if view_kind == "side" and cols == 1 else 0.45)) * rows + 0.45))
     top = 1 - 0.45 / fig.get_figheight()
     for i, im in enumerate(pix):
@@ -297,6 +350,9 @@ def main():
         cap = "t = %.3g s" % times[k]
         if row is not None and "D_mean [%s]" % unit in row:
             cap += ", mean outer D = %.3f %s" % (float(row["D_mean [%s]" % unit]), unit)
+        if row is not None and "lumen_D_mean [%s]" % unit in row:
+            cap += "\nlumen D mean %.3f, min %.3f %s" % (float(row["lumen_D_mean [%s]" % unit]),
+                                                     float(row["lumen_D_min [%s]" % unit]), unit)
         if title:
             cap = "%s%s(%s)" % (title, " " if view_kind == "side" and cols == 1 else "\n", cap)
         r, c = divmod(i, cols)
@@ -310,6 +366,14 @@ def main():
     extend = "max" if vmax < allv.max() - 1e-12 * abs(allv.max()) else "neither"
     cax = fig.add_axes([1 - 0.95 / width, 0.15, 0.16 / width, 0.65 * top])
     fig.colorbar(cm.ScalarMappable(norm, cmap), cax=cax, label=label, extend=extend)
+    if artery_field:  # the stent's bar moves left, the artery's takes the right
+        cax.set_position([1 - 2.05 / width, 0.15, 0.16 / width, 0.65 * top])
+        aext = "max" if avmax < alla.max() - 1e-12 * abs(alla.max()) else "neither"
+        if avmin > alla.min() + 1e-12 * abs(alla.min()):
+            aext = "both" if aext == "max" else "min"
+        bax = fig.add_axes([1 - 0.95 / width, 0.15, 0.16 / width, 0.65 * top])
+        fig.colorbar(cm.ScalarMappable(colors.Normalize(avmin, avmax), acmap), cax=bax,
+                     label=os.environ.get("ARTERY_LABEL", artery_field), extend=aext)
     fig.savefig(out, dpi=int(os.environ.get("DPI", "100")), bbox_inches="tight", pad_inches=0.05)
     if os.environ.get("PALETTE", "1") != "0":
         try:  # a 256-colour palette: a third of the size
@@ -321,6 +385,8 @@ def main():
             pass
     print("wrote %s (output steps %s; %s from %.4g to %.4g, shown %.4g to %.4g)"
           % (out, ", ".join(str(k) for k in steps), field, allv.min(), allv.max(), vmin, vmax))
+    if artery_field:
+        print("artery: %s from %.4g to %.4g, shown %.4g to %.4g" % (artery_field, alla.min(), alla.max(), avmin, avmax))
 
 
 if __name__ == "__main__":
