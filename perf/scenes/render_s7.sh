@@ -55,3 +55,30 @@ if [ "${S7_SKIP_RUNS:-0}" != 1 ]; then
   run friction_0.1 "s|<ParameterList name=\"wall\">|<ParameterList name=\"wall\">$FRICTION|"
 fi
 [ "${S7_RUNS_ONLY:-0}" = 1 ] && exit 0
+
+F=$RUNS/frictionless
+M=$RUNS/friction_0.1
+# Without -screen ...x24 pvbatch's render window fails on Xvfb's default screen ("bad X
+# server connection").
+PV=(xvfb-run -a -s "-noreset -screen 0 1600x1200x24" pvbatch "$ROOT/perf/scenes/render_stent.py")
+render() {  # the arguments of render_stent.py; its output in $RUNS/render_<picture>.log
+  local log=$RUNS/render_$(basename "$3" .png).log
+  "${PV[@]}" "$@" > "$log" 2>&1 || { echo "render_s7.sh: rendering $3 failed:" >&2; tail -20 "$log" >&2; exit 1; }
+  grep -E '^(wrote|artery)' "$log" || true
+}
+EPS="stent: equivalent plastic strain [-]"
+S1="artery: largest principal stress [kPa]"
+# the artery: its half y > 0 only (CUT=+y), the stent whole; the wall's stress in kPa,
+# its colour scale cut at ARTERY_VMAX (the plaque's largest values lie above it)
+ARTERY=(ARTERY_FIELD=principal_stress ARTERY_SCALE=1000 "ARTERY_LABEL=$S1" ARTERY_VMAX=${S7_ARTERY_VMAX:-20} CUT=+y)
+env "${ARTERY[@]}" TITLE="S7: the ring (16 copies of its strut) in the stenosed artery cut open, frictionless wall" \
+  COLS=3 PANEL=700,1000 \
+  render "$F" s7_ring_artery "$OUT/s7_artery_deployment.png" equivalent_plastic_strain "$EPS" \
+  "1:crimped in the artery" "2.25:expanded (peak)" "2.75:deflated"
+env "${ARTERY[@]}" TITLE="S7: the ring in the artery cut open, seen 40 deg off the axis, frictionless wall" \
+  VIEW=end TILT=40 AZIM=0 \
+  render "$F" s7_ring_artery "$OUT/s7_artery_end.png" equivalent_plastic_strain "$EPS" \
+  "1:crimped in the artery" "2.25:expanded (peak)" "2.75:deflated"
+/usr/bin/python3 "$ROOT/perf/scenes/s7_report.py" "$OUT/s7_diameters_forces.png" "$OUT/s7_layer_stresses.png" \
+  "$F:s7_ring_artery:frictionless" "$M:s7_ring_artery:friction 0.1" > "$RUNS/s7_tables.md"
+echo "tables: $RUNS/s7_tables.md"
