@@ -11,8 +11,8 @@
 #                                         crimped in the artery, expanded, deflated: the
 #                                         stent's equivalent plastic strain, the wall's
 #                                         largest principal stress
-#   docs/scenes/s7_ring_end.png           the same seen 30 deg off the axis (whole artery
-#                                         shown from its end, cut open)
+#   docs/scenes/s7_artery_end.png         the same seen 40 deg off the axis from the
+#                                         proximal end: the stress through the wall
 # and with matplotlib (perf/scenes/s7_report.py), from the metrics and history CSVs,
 #   docs/scenes/s7_diameters_forces.png   the stent's and the lumen's diameters and the
 #                                         contact forces against time, both runs
@@ -21,7 +21,9 @@
 # and the tables in <runs>/s7_tables.md (the numbers of docs/scenes/s7_summary.md).
 # usage: perf/scenes/render_s7.sh [build-dir]   (default build)
 # env: S7_RUNS (where the runs go, default <build-dir>/scenes/s7), S7_SKIP_RUNS=1 (render
-#      the runs already there again), S7_OUT (where the PNGs go, default docs/scenes)
+#      the runs already there again), S7_OUT (where the PNGs go, default docs/scenes),
+#      S7_ARTERY_VMAX (the top of the wall's colour scale, default 20 kPa), S7_RUNS_ONLY=1
+#      (the runs only, no pictures)
 # Needs ParaView's pvbatch and xvfb-run (Debian: paraview, python3-paraview, xvfb; ci/setup.sh
 # installs them) and Debian's python3-matplotlib, python3-h5py, python3-numpy.
 set -euo pipefail
@@ -71,14 +73,15 @@ S1="artery: largest principal stress [kPa]"
 # the artery: its half y > 0 only (CUT=+y), the stent whole; the wall's stress in kPa,
 # its colour scale cut at ARTERY_VMAX (the plaque's largest values lie above it)
 ARTERY=(ARTERY_FIELD=principal_stress ARTERY_SCALE=1000 "ARTERY_LABEL=$S1" ARTERY_VMAX=${S7_ARTERY_VMAX:-20} CUT=+y)
-env "${ARTERY[@]}" TITLE="S7: the ring (16 copies of its strut) in the stenosed artery cut open, frictionless wall" \
+(export "${ARTERY[@]}"
+TITLE="S7: the ring (16 copies of its strut) in the stenosed artery cut open, frictionless wall" \
   COLS=3 PANEL=700,1000 \
   render "$F" s7_ring_artery "$OUT/s7_artery_deployment.png" equivalent_plastic_strain "$EPS" \
   "1:crimped in the artery" "2.25:expanded (peak)" "2.75:deflated"
-env "${ARTERY[@]}" TITLE="S7: the ring in the artery cut open, seen 40 deg off the axis, frictionless wall" \
+TITLE="S7: the ring in the artery cut open, seen 40 deg off the axis, frictionless wall" \
   VIEW=end TILT=40 AZIM=0 \
   render "$F" s7_ring_artery "$OUT/s7_artery_end.png" equivalent_plastic_strain "$EPS" \
-  "1:crimped in the artery" "2.25:expanded (peak)" "2.75:deflated"
+  "1:crimped in the artery" "2.25:expanded (peak)" "2.75:deflated")
 /usr/bin/python3 "$ROOT/perf/scenes/s7_report.py" "$OUT/s7_diameters_forces.png" "$OUT/s7_layer_stresses.png" \
   "$F:s7_ring_artery:frictionless" "$M:s7_ring_artery:friction 0.1" > "$RUNS/s7_tables.md"
 echo "tables: $RUNS/s7_tables.md"

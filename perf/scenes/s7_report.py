@@ -84,6 +84,19 @@ def mark_stages(ax, run, top, t0=0.0):
                 transform=ax.get_xaxis_transform())
 
 
+def save(fig, out):
+    """The figure as a PNG with a 256-colour palette (as render_stent.py; Debian's python3-pil,
+    matplotlib's own dependency; a full-colour PNG without it)."""
+    fig.savefig(out, dpi=100)
+    try:
+        from PIL import Image
+        rgb = Image.open(out).convert("RGB")
+        rgb.quantize(256, method=Image.Quantize.MEDIANCUT).save(out, optimize=True)
+    except ImportError:
+        pass
+    print("wrote", out, file=sys.stderr)
+
+
 def plot_diameters(out, runs):
     fig, (ax, bx) = plt.subplots(1, 2, figsize=(12.5, 4.8), gridspec_kw={"width_ratios": [1.2, 1]})
     styles = ["-", "--", ":"]
@@ -107,26 +120,31 @@ def plot_diameters(out, runs):
     ax.legend(fontsize=7, loc="lower right", ncol=1)
     ax.grid(alpha=0.3)
 
+    cx = bx.twinx()  # the wall's force is some 4 % of the balloon's: its own scale
     for i, run in enumerate(runs):
         h, ls = run["history"], styles[i % 3]
         th = col(h, "time")
         n = run["copies"]
         bx.plot(th, col(h, "contact_balloon_normal_force") * n, ls, color="C3", lw=1.3,
-                label="balloon on the stent, %s" % run["label"])
-        bx.plot(th, col(h, "contact_wall_normal_force") * n, ls, color="C0", lw=1.3,
-                label="wall on the stent, %s" % run["label"])
+                label="balloon on the stent (left axis), %s" % run["label"])
+        cx.plot(th, col(h, "contact_wall_normal_force") * n, ls, color="C0", lw=1.3,
+                label="wall on the stent (right axis), %s" % run["label"])
+    cx.set_ylabel("wall: radial force, whole ring [N]", color="C0")
+    cx.set_ylim(0, 0.07)
+    cx.tick_params(axis="y", colors="C0")
     bx.set_xlim(1.25, th.max() + 0.02)
     mark_stages(bx, runs[0], 0.99, t0=1.25)
     bx.set_xlabel("pseudo-time t [s]")
-    bx.set_ylabel("radial contact force, whole ring (model x %d) [N]" % runs[0]["copies"])
+    bx.set_ylabel("balloon: radial force, whole ring (x %d) [N]" % runs[0]["copies"])
+    bx.set_ylim(0, None)
     bx.set_title("(b) contact forces in the expansion and the deflation", fontsize=10)
-    bx.legend(fontsize=7, loc="upper left")
+    lines = bx.get_legend_handles_labels()[0] + cx.get_legend_handles_labels()[0]
+    bx.legend(lines, [l.get_label() for l in lines], fontsize=7, loc="upper left")
     bx.grid(alpha=0.3)
     fig.suptitle("S7: one strut of the 316L ring (F-bar hex8) crimped, expanded into a stenosed layered "
                  "artery (12 % plaque) and deflated", fontsize=11)
     fig.tight_layout()
-    fig.savefig(out, dpi=100)
-    print("wrote", out, file=sys.stderr)
+    save(fig, out)
 
 
 def plot_stresses(out, runs):
@@ -139,18 +157,17 @@ def plot_stresses(out, runs):
                         label="%s: max" % layer)
             ax.semilogy(t, col(m, "%s_sigma1_p99 [MPa]" % layer), "--", color="C%d" % j, lw=1.1,
                         label="%s: 99th percentile" % layer)
-        ax.set_ylim(1e-4, 3)
+        ax.set_ylim(1e-5, 3)
         mark_stages(ax, run, 0.99, t0=1.25)
         ax.set_xlabel("pseudo-time t [s]")
         ax.set_title("%s" % run["label"], fontsize=10)
         ax.grid(alpha=0.3, which="both")
     axes[0][0].set_ylabel("largest principal Cauchy stress of the cells [MPa]")
-    axes[0][0].legend(fontsize=7, loc="lower right", ncol=2)
-    fig.suptitle("S7: the artery's layers, largest principal stress (cell averages) while the stent is "
-                 "expanded and released", fontsize=11)
+    axes[0][0].legend(fontsize=7, loc="center left", ncol=2)
+    fig.suptitle("S7: the layers of the artery, largest principal stress of the cells "
+                 "(cell averages)", fontsize=11)
     fig.tight_layout()
-    fig.savefig(out, dpi=100)
-    print("wrote", out, file=sys.stderr)
+    save(fig, out)
 
 
 def tables(runs):
@@ -206,6 +223,41 @@ def tables(runs):
             print("<!-- %s %s: largest max %.4g MPa at t = %.4g -->" % (run["label"], l, v[k], m[k]["time"]))
 
 
+def lumen_stations(run):
+    """The lumen's diameter per axial station (2 r_mean of the lumen nodes of a reference z:
+    the innermost artery nodes of that z; every node weighs the same here) at the output
+    steps of the HDF5: [(z, [D at each step])], and the stent's current z range at each."""
+    import h5py
+    with h5py.File(os.path.join(run["dir"], run["base"] + ".h5"), "r") as f:
+        x0 = f["mesh/coordinates"][()]
+        ns = int(f["mesh/block_0/connectivity"][()].max()) + 1  # the stent's nodes come first
+        steps = sorted((k for k in f if k.startswith("step_")), key=lambda s: int(s[5:]))
+        us = [f[k + "/displacement"][()] for k in steps]
+    times = [float(v) for v in re.findall(r'<Time Value="([^"]+)"',
+                                          open(os.path.join(run["dir"], run["base"] + ".xdmf")).read())]
+    X = x0[ns:]
+    r0 = np.hypot(X[:, 0], X[:, 1])
+    zs = np.round(X[:, 2], 9)
+    out = []
+    for z in np.unique(zs):
+        m = zs == z
+        sel = m & (np.abs(r0 - r0[m].min()) < 1e-9)
+        out.append((z, [2 * np.hypot(*(X[sel] + u[ns:][sel])[:, :2].T).mean() for u in us]))
+    span = [((x0[:ns] + u[:ns])[:, 2].min(), (x0[:ns] + u[:ns])[:, 2].max()) for u in us]
+    return times, out, span
+
+
+def print_stations(runs):
+    for run in runs:
+        times, st, span = lumen_stations(run)
+        print("\n### %s: the lumen's diameter per station [mm] (unweighted mean of its nodes)\n" % run["label"])
+        print("| z [mm] | " + " | ".join("t = %.4g" % t for t in times) + " |")
+        print("|---" * (1 + len(times)) + "|")
+        for z, d in st:
+            print("| %.2f | %s |" % (z, " | ".join("%.3f" % v for v in d)))
+        print("| stent z range | %s |" % " | ".join("%.3f to %.3f" % s for s in span))
+
+
 def main():
     if len(sys.argv) < 4:
         sys.exit(__doc__)
@@ -213,6 +265,7 @@ def main():
     plot_diameters(sys.argv[1], runs)
     plot_stresses(sys.argv[2], runs)
     tables(runs)
+    print_stations(runs)
 
 
 if __name__ == "__main__":
