@@ -1311,7 +1311,10 @@ void DeckReader::read_contact_obstacle(const ParameterList& sub, const std::stri
     if (c.obstacle == "circle" && (dim == 3 || c.point_len == 3))
       fail(quoted(path + "->obstacle") + " = circle is 2D only; use cylinder or sphere in 3D");
     if ((c.obstacle == "cylinder" || c.obstacle == "sphere") && (dim == 2 || c.point_len == 2))
-      fail(quoted(path + "->obstacle") + " = " + c.obstacle + " is 3D only; use circle in 2D");
+      fail(quoted(path + "->obstacle") + " = " + c.obstacle + " is 3D only; use circle in 2D" +
+           (cfg_.problem.axisymmetric() ? std::string(" (in axisymmetry a cylinder about the axis is a `plane` with normal (1, 0) or "
+                                                      "(-1, 0), a sphere a `circle` centred on the axis, a balloon a `capsule` along it)")
+                                        : std::string("")));
     read_obstacle_axis(sub, path, ls, c);
   }
   int tl = 0;

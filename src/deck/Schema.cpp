@@ -851,7 +851,7 @@ std::vector<ListSpec> build_schema() {
            "segment-based integration: each slave node's weighted gap against the master facets that overlap its "
            "facets, the normal averaged over the slave facets at the node, the reaction spread over the master nodes "
            "by the mortar weights; transmits a uniform pressure exactly across non-matching meshes, the patch test; "
-           "line2, line3, tri3, quad4 facets on both sides). See docs/contact.md, Mortar.")
+           "line2, line3, tri3, quad4 facets on both sides; in axisymmetry the integrals and the dual basis carry 2 pi r). See docs/contact.md, Mortar.")
            .one_of({"node-to-segment", "mortar"}),
        dbl("c normal", 0.0,
            "Active-set parameter c_nu (> 0) of the normal complementarity function, per unit area of the slave "

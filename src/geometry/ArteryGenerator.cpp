@@ -126,7 +126,13 @@ void add_tube(const ArteryConfig& a, const TubeGrid& g, const Frame& fr, int tag
               const std::string& source, Mesh& m) {
   const std::vector<double> x = nodes(a, g, fr.z0);
   m.x.insert(m.x.end(), x.begin(), x.end());
+  // Cell ids consecutive within each block, in the order the blocks are appended (the
+  // plaque's cells, picked out of the innermost layer, after the layers': output writers
+  // take a block's cells as one range of ids).
   GId next_cell = next_cell_id(m);
+  auto number = [&next_cell](CellBlock& b) {
+    for (std::size_t c = 0; c < b.num_cells(); ++c) b.cell_id.push_back(next_cell++);
+  };
   int k0 = 0;
   CellBlock plaque = hex_block("plaque", tag + 3);
   for (int l = 0; l < 3; ++l) {
@@ -140,9 +146,9 @@ void add_tube(const ArteryConfig& a, const TubeGrid& g, const Frame& fr, int tag
           // Cells of the innermost layer inside the healthy lumen (centroid r < Ri) are plaque.
           CellBlock& into = l == 0 && a.has_plaque() && centroid_radius(m.x, h) < a.inner_radius() ? plaque : b;
           into.conn.insert(into.conn.end(), h, h + 8);
-          into.cell_id.push_back(next_cell++);
         }
     k0 += n;
+    number(b);
     m.volumes.push_back(std::move(b));
   }
   if (a.has_plaque()) {
@@ -150,6 +156,7 @@ void add_tube(const ArteryConfig& a, const TubeGrid& g, const Frame& fr, int tag
       throw InputError(source + ": the plaque ('Mesh->Artery->plaque stenosis' = " + format_number(a.plaque_stenosis) +
                        ") is thinner than the cells that would hold it: raise 'Mesh->Artery->elements through plaque' or "
                        "'elements along'");
+    number(plaque);
     m.volumes.push_back(std::move(plaque));
   }
   boundaries(a, g, fr, facet_tag, m);

@@ -186,6 +186,13 @@ TEST(ArteryGenerator, ConcentricPlaqueNarrowsTheLumen) {
   EXPECT_EQ(count_inverted_cells(m), 0u);
   EXPECT_NO_THROW(check_mesh(m));
   ASSERT_NE(block(m.volumes, "plaque"), nullptr);
+  // Each block's cell ids are one consecutive range, the blocks' ranges in order (the
+  // output writes a block's cells as one range; the plaque's cells, picked out of the
+  // intima's columns, once had ids between the intima's).
+  GId next = m.volumes.front().cell_id.front();
+  for (const CellBlock& b : m.volumes)
+    for (std::size_t c = 0; c < b.num_cells(); ++c) ASSERT_EQ(b.cell_id[c], next++) << b.name << " cell " << c;
+  for (const CellBlock& b : m.volumes) EXPECT_EQ(locate_cell(m, b.cell_id.back()).first, static_cast<std::size_t>(&b - m.volumes.data()));
   const CellBlock* lumen = block(m.boundaries, "lumen");
   double worst = 0.0, d_min = 1e9;
   for (GId n : lumen->conn) {
