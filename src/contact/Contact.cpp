@@ -1236,6 +1236,16 @@ std::vector<double> Contact::slave_pressures(const Pair& p) const {
   return out;
 }
 
+double Contact::contact_area(const std::string& group) const {
+  double loc = 0.0, glob = 0.0;
+  for (const Pair& p : pairs_)
+    if (p.active && p.cfg.slave == group)
+      for (const Slave& nd : p.nodes)
+        if (nd.state >= contact::Stick) loc += nd.area;
+  Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 1, &loc, &glob);
+  return glob;
+}
+
 Contact::NodalFields Contact::nodal_fields() const {
   NodalFields out;
   std::map<GId, std::size_t> row;  // a node slave of several pairs (never active together): the active pair's values

@@ -155,6 +155,9 @@ class Contact {
     std::vector<double> values;
   };
   NodalFields nodal_fields() const;
+  // The reference tributary area of the slave nodes of `group` in contact (stick or slip)
+  // in the active pairs, summed over the ranks (collective; 0 when no pair has that slave).
+  double contact_area(const std::string& group) const;
   // Per master node touched by an active slave of this rank: global node id and 5 values
   // (the reaction force on the master node, -sum N_a F, x y z; its HRZ tributary area; the
   // normal force it carries, sum N_a F . n, compression > 0, n the slave's contact normal).

@@ -50,7 +50,8 @@ ArteryMetrics::ArteryMetrics(const Model& model) : m_(model) {
 std::vector<std::string> ArteryMetrics::columns() const {
   const std::string L = length_unit_.empty() ? "" : " [" + length_unit_ + "]";
   const std::string S = stress_unit_.empty() ? "" : " [" + stress_unit_ + "]";
-  std::vector<std::string> c = {"lumen_D_mean" + L, "lumen_D_min" + L};
+  const std::string A = length_unit_.empty() ? "" : " [" + length_unit_ + "^2]";
+  std::vector<std::string> c = {"lumen_D_mean" + L, "lumen_D_min" + L, "lumen_contact_area" + A};
   for (const std::string& l : layers_) c.insert(c.end(), {l + "_sigma1_max" + S, l + "_sigma1_p99" + S});
   return c;
 }
@@ -62,7 +63,7 @@ std::vector<std::string> ArteryMetrics::diameter_columns() const {
 
 std::vector<std::string> ArteryMetrics::stress_columns() const {
   const std::vector<std::string> c = columns();
-  return {c.begin() + 2, c.end()};
+  return {c.begin() + 3, c.end()};
 }
 
 double ArteryMetrics::nearest_rank(std::vector<double>& v, double q) {
@@ -120,7 +121,10 @@ std::vector<double> ArteryMetrics::evaluate(const la::Vector& u) {
     const double D = 2.0 * rw / w;
     sum += D, dmin = std::min(dmin, D);
   }
-  now_ = {sum / static_cast<double>(stations_.size()), dmin};
+  // The lumen's area in contact (its slave nodes' reference tributary areas) times the
+  // copies of the model that make the whole stent.
+  const double area = m_.contact ? m_.contact->contact_area("lumen") * m_.cfg.mesh.stent.symmetry_copies() : 0.0;
+  now_ = {sum / static_cast<double>(stations_.size()), dmin, area};
   if (D_mean0_ < 0.0) D_mean0_ = now_[0], D_min0_ = now_[1];
   layer_stresses(u, now_);
   return now_;
@@ -131,11 +135,12 @@ void ArteryMetrics::table(std::ostream& log) const {
   const std::string L = length_unit_.empty() ? "" : " " + length_unit_, S = stress_unit_.empty() ? "" : " " + stress_unit_;
   log << std::fixed << std::setprecision(4) << "  artery (stented segment): lumen D mean " << D_mean0_ << " -> " << now_[0] << L << " (gain "
       << std::setprecision(2) << 100.0 * (now_[0] - D_mean0_) / D_mean0_ << " %), minimum lumen diameter " << std::setprecision(4) << D_min0_
-      << " -> " << now_[1] << L << " (acute gain " << now_[1] - D_min0_ << L << ")\n";
+      << " -> " << now_[1] << L << " (acute gain " << now_[1] - D_min0_ << L << "), lumen in contact " << now_[2]
+      << (length_unit_.empty() ? "" : " " + length_unit_ + "^2") << "\n";
   if (layers_.empty()) return;
   log << "  artery: largest principal stress, max / 99th percentile of the cells:" << std::scientific << std::setprecision(3);
   for (std::size_t l = 0; l < layers_.size(); ++l)
-    log << (l ? "," : "") << " " << layers_[l] << " " << now_[2 + 2 * l] << " / " << now_[3 + 2 * l] << S;
+    log << (l ? "," : "") << " " << layers_[l] << " " << now_[3 + 2 * l] << " / " << now_[4 + 2 * l] << S;
   log << "\n" << std::defaultfloat;
 }
 

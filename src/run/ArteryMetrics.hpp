@@ -8,7 +8,9 @@
 //   node on a symmetry plane of the sector weighing 1/2), over the stations within the
 //   stent's reference axial span: their mean (`lumen_D_mean`) and their smallest, the
 //   minimum lumen diameter (`lumen_D_min`, MLD); the acute gains against the first
-//   evaluation (before the procedure);
+//   evaluation (before the procedure); the lumen's area in contact (`lumen_contact_area`: the
+//   reference tributary areas of the lumen's slave nodes in contact, times the model's
+//   symmetry copies: the whole stent's; 0 where the lumen is no pair's slave);
 // * per layer of the wall (the volume groups plaque, intima, media, adventitia that the
 //   mesh has), the largest principal Cauchy stress of its cells (cell averages): the
 //   largest value and the 99th percentile over the layer's cells (nearest rank), the

@@ -39,5 +39,10 @@ for c in "lumen_D_min [mm]" "lumen_D_mean [mm]"; do
 done
 v=$(last $fm "intima_sigma1_max [MPa]")
 awk -v v="$v" 'BEGIN { exit !(v < 1e-12 && v > -1e-12) }' || fail "free run: intima stressed ($v MPa)"
+# The lumen's area in contact: some after deflation (the stent rests on the wall), none in
+# the free run; below the lumen's own area over the stent's span, pi 3.1 mm x 1 mm.
+a=$(last $m "lumen_contact_area [mm^2]") af=$(last $fm "lumen_contact_area [mm^2]")
+echo "lumen area in contact $a mm^2 (free $af)"
+awk -v a="$a" -v f="$af" 'BEGIN { exit !(a > 0 && a < 3.14159265 * 3.1 && f == 0) }' || fail "contact area $a, free $f"
 grep -q "artery (stented segment): lumen D mean 3.1000 -> " log.txt || fail "no artery paragraph in the log"
 echo "PASS"
