@@ -82,17 +82,28 @@ def log_tables(path):
     return out, summary
 
 
-def load(spec):
+def output_path(run, suffix):
+    """<run dir>/<basename><suffix>."""
+    return os.path.join(run["dir"], run["base"] + suffix)
+
+
+def load_run(spec):
+    """A run's outputs from RUN_DIR:BASENAME[:LABEL]: the deck copy, the metrics, history and
+    stages CSVs, the log's stage tables and summary, the model's symmetry copies."""
     parts = spec.split(":")
     run = {"dir": parts[0], "base": parts[1]}
     run["label"] = parts[2] if len(parts) > 2 else parts[1]
-    p = lambda suffix: os.path.join(run["dir"], run["base"] + suffix)
-    run["params"], run["stages"] = deck(p("_deck.xml"))
-    run["metrics"] = rows(p("_metrics.csv"))
-    run["history"] = rows(p("_history.csv"))
-    run["stage_rows"] = rows(p("_stages.csv"))
-    run["log"], run["summary"] = log_tables(p(".log"))
+    run["params"], run["stages"] = deck(output_path(run, "_deck.xml"))
+    run["metrics"] = rows(output_path(run, "_metrics.csv"))
+    run["history"] = rows(output_path(run, "_history.csv"))
+    run["stage_rows"] = rows(output_path(run, "_stages.csv"))
+    run["log"], run["summary"] = log_tables(output_path(run, ".log"))
     run["copies"] = copies(run, run["params"])
+    return run
+
+
+def load(spec):
+    run = load_run(spec)
     run["rings"] = sorted({int(m.group(1)) for k in run["metrics"][0]
                            for m in [re.match(r"ring(\d+)_D_mean", k)] if m})
     return run

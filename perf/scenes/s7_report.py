@@ -29,7 +29,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from s6_report import col, copies, deck, log_tables, rows  # noqa: E402
+from s6_report import col, load_run, output_path  # noqa: E402
 
 LAYERS = ["plaque", "intima", "media", "adventitia"]
 
@@ -52,17 +52,8 @@ def artery_lines(path):
 
 
 def load(spec):
-    parts = spec.split(":")
-    run = {"dir": parts[0], "base": parts[1]}
-    run["label"] = parts[2] if len(parts) > 2 else parts[1]
-    p = lambda suffix: os.path.join(run["dir"], run["base"] + suffix)
-    run["params"], run["stages"] = deck(p("_deck.xml"))
-    run["metrics"] = rows(p("_metrics.csv"))
-    run["history"] = rows(p("_history.csv"))
-    run["stage_rows"] = rows(p("_stages.csv"))
-    run["log"], run["summary"] = log_tables(p(".log"))
-    run["artery"] = artery_lines(p(".log"))
-    run["copies"] = copies(run, run["params"])
+    run = load_run(spec)
+    run["artery"] = artery_lines(output_path(run, ".log"))
     wall = os.path.normpath(run["dir"]) + ".wall"
     run["wall"] = open(wall).read().split(";")[0].split(":")[1].strip() if os.path.exists(wall) else "-"
     run["layers"] = [l for l in LAYERS if "%s_sigma1_max [MPa]" % l in run["metrics"][0]]

@@ -129,17 +129,6 @@ Contact::Contact(const Config& cfg, const Mesh& mesh, const Distribution& dist, 
   }
 }
 
-namespace {
-// Whether some stage activates pairs a and b together (without stages, every pair is active
-// throughout).
-bool pairs_meet(const Config& cfg, std::size_t a, std::size_t b) {
-  if (cfg.stages.empty()) return true;
-  for (const StageConfig& st : cfg.stages)
-    if (st.contact_active[a] && st.contact_active[b]) return true;
-  return false;
-}
-}  // namespace
-
 // Pair ip's slave nodes owned here (checks: the mesh dimension of an obstacle, a node in
 // no other pair active with it, as a slave or on its master surface, at least one usable node over all ranks).
 void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, const Assembler& assembler, const std::vector<GId>& master_set,
@@ -174,7 +163,7 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
       std::string of;  // the pairs active with this one whose master surface holds the node
       for (std::size_t iq = 0; iq < pairs_.size(); ++iq) {
         const Pair& q = pairs_[iq];
-        if (q.master && pairs_meet(cfg, ip, iq) && std::binary_search(q.master->nodes().begin(), q.master->nodes().end(), g))
+        if (q.master && cfg.pairs_meet(ip, iq) && std::binary_search(q.master->nodes().begin(), q.master->nodes().end(), g))
           of += std::string(of.empty() ? "" : ", ") + "'Contact->" + q.cfg.name + "->master' = '" + q.cfg.master + "'";
       }
       if (!of.empty())
@@ -187,7 +176,7 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
     // pair keeps its own state of the node, and an inactive pair leaves the node free.
     const auto [lo, hi] = slave_of.equal_range(g);
     for (auto at = lo; at != hi; ++at)
-      if (pairs_meet(cfg, ip, static_cast<std::size_t>(at->second)))
+      if (cfg.pairs_meet(ip, static_cast<std::size_t>(at->second)))
         throw InputError(where + "->slave: node " + std::to_string(g) + " of group '" + pc.slave + "' is also a slave node of 'Contact->" +
                          pairs_[static_cast<std::size_t>(at->second)].cfg.name +
                          "', active in the same stage; a node may be a slave of several pairs only when no stage activates two of them");
@@ -1280,12 +1269,8 @@ Contact::NodalFields Contact::master_fields() const {
     if (!p.master) continue;
     for (const Slave& nd : p.nodes) {
       if (nd.state < contact::Stick || nd.facet < 0) continue;
-      double F[3];  // what the master receives (F_c on a slave on symmetry planes)
-      if (p.mortar) {
-        for (int c = 0; c < 3; ++c) F[c] = nd.f[c];
-      } else {
-        contact_force_of(nd, nd.normal, F);
-      }
+      double F[3] = {nd.f[0], nd.f[1], nd.f[2]};  // what the master receives: F_c from a node-to-segment slave on symmetry planes
+      if (!p.mortar) contact_force_of(nd, nd.normal, F);
       const double fn = dot3(F, nd.normal);
       if (p.mortar) {
         const contact::MortarRows& mo = p.mortar_out[static_cast<std::size_t>(&nd - p.nodes.data())];

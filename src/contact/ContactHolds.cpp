@@ -28,16 +28,8 @@ double tangential(const double* v, const double* n, double* vt) {
 // tangential part. Returns the length.
 double Contact::friction_part(const Slave& nd, const double* v, double* vt) const {
   const double len = tangential(v, nd.normal, vt);
-  int nfixed = 0, axis = 0;
-  for (int c = 0; c < dim_; ++c)
-    if (nd.fixed[c]) ++nfixed, axis = c;
-  if (dim_ != 3 || nfixed != 1) return len;
-  double e[3] = {0.0, 0.0, 0.0};
-  e[axis] = 1.0;
-  if (nd.planes == 1)
-    for (int c = 0; c < 3; ++c) e[c] = nd.e[0][c];
-  const double* n = nd.normal;
-  double t[3] = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
+  double e[3], t[3];
+  if (!contact::plane_cross(dim_, nd.fixed, nd.planes, nd.e, nd.normal, e, t)) return len;
   const double tl = std::sqrt(dot3(t, t));
   if (!(tl > 0.0)) return len;
   const double a = dot3(v, t) / (tl * tl);

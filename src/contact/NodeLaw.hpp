@@ -312,6 +312,23 @@ KOKKOS_INLINE_FUNCTION int decide_set(const LawParams& p, const SetInput& in) {
   return qn >= -p.mu * std::min(lam_aug, 0.0) ? 2 : 1;
 }
 
+// A 3D slave node on one plane (one prescribed component, or one `normal` plane): the
+// plane's unit normal e (the prescribed axis, or the plane's e_0) and a = e x n, whose
+// direction is the node's one free tangential direction t1. False (e, a untouched) unless
+// dim = 3 with exactly one prescribed component. Shared by law(), contact_force() and the
+// cycle control's checks (ContactHolds.cpp).
+template <class T>
+KOKKOS_INLINE_FUNCTION bool plane_cross(int dim, const bool fixed[3], int planes, const double (&pe)[3][3], const T n[3], double e[3],
+                                        T a[3]) {
+  int nfixed = 0, axis = 0;
+  for (int c = 0; c < dim; ++c)
+    if (fixed[c]) ++nfixed, axis = c;
+  if (dim != 3 || nfixed != 1) return false;
+  for (int c = 0; c < 3; ++c) e[c] = planes == 1 ? pe[0][c] : (c == axis ? 1.0 : 0.0);
+  a[0] = e[1] * n[2] - e[2] * n[1], a[1] = e[2] * n[0] - e[0] * n[2], a[2] = e[0] * n[1] - e[1] * n[0];
+  return true;
+}
+
 // The law of one active or candidate slave node in scalar T, from its geometry: the
 // normal measure d (gap) and, with persistence, g = n . rel (master surfaces) or d - d_n
 // (rigid), the normal n, the relative displacement rel, the tangent direction a1 (null:
@@ -324,21 +341,15 @@ KOKKOS_INLINE_FUNCTION int law(int dim, const bool fixed[3], const LawParams& p,
   const T rn = dot3(n, r);
   T t[2][3];
   tangents(dim, n, a1, t);
-  int nfixed = 0, fixed_axis = 0;
-  for (int c = 0; c < dim; ++c)
-    if (fixed[c]) ++nfixed, fixed_axis = c;
-  // 3D on one plane (a prescribed axis e, or a `normal` plane e): the one free tangential
-  // direction t1 = e x n / |e x n|. The node can slide only along it, and its friction force
-  // acts along it (the mirror image across the plane cancels the rest), so the sets and the
-  // slip direction are decided from the components along t1 alone: the tangential
-  // projections of r and rel off the plane (from the tilt of n against it) are not friction.
-  const bool one_tangent = dim == 3 && nfixed == 1;
+  // 3D on one plane: the one free tangential direction t1 = e x n / |e x n|. The node can
+  // slide only along it, and its friction force acts along it (the mirror image across the
+  // plane cancels the rest), so the sets and the slip direction are decided from the
+  // components along t1 alone: the tangential projections of r and rel off the plane (from
+  // the tilt of n against it) are not friction.
+  double e[3];
+  T a[3];
+  const bool one_tangent = plane_cross(dim, fixed, p.planes, p.e, n, e, a);
   if (one_tangent) {
-    T e[3] = {T(0.0), T(0.0), T(0.0)};
-    e[fixed_axis] = T(1.0);
-    if (p.planes == 1)
-      for (int c = 0; c < 3; ++c) e[c] = T(p.e[0][c]);
-    T a[3] = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
     const T len = sqrt(dot3(a, a));
     for (int c = 0; c < 3; ++c) t[0][c] = a[c] / len;
   }
@@ -428,20 +439,17 @@ KOKKOS_INLINE_FUNCTION int law(int dim, const bool fixed[3], const LawParams& p,
 template <class T>
 KOKKOS_INLINE_FUNCTION void contact_force(int dim, const bool fixed[3], const LawParams& p, const T n[3], const T r[3], T F[3]) {
   using std::sqrt;
-  int nfixed = 0, axis = 0, free_axis = 0;
+  int nfixed = 0, free_axis = 0;
   for (int c = 0; c < dim; ++c) {
-    if (fixed[c]) ++nfixed, axis = c;
+    if (fixed[c]) ++nfixed;
     else free_axis = c;
   }
   for (int c = 0; c < 3; ++c) F[c] = r[c];
   if (nfixed == 0 || nfixed >= dim) return;
-  if (dim == 3 && nfixed == 1) {
-    double e[3] = {0.0, 0.0, 0.0};
-    e[axis] = 1.0;
-    if (p.planes == 1)
-      for (int c = 0; c < 3; ++c) e[c] = p.e[0][c];
+  double e[3];
+  T t[3];
+  if (plane_cross(dim, fixed, p.planes, p.e, n, e, t)) {
     const T ne = n[0] * e[0] + n[1] * e[1] + n[2] * e[2];
-    T t[3] = {e[1] * n[2] - e[2] * n[1], e[2] * n[0] - e[0] * n[2], e[0] * n[1] - e[1] * n[0]};
     const T tl = sqrt(dot3(t, t));
     if (!(value(tl) > 1e-6)) return;  // n along the plane's normal: no tangent, leave r
     for (int c = 0; c < 3; ++c) t[c] = t[c] / tl;

@@ -93,6 +93,17 @@ bool Config::any_dynamic() const {
   return std::any_of(stages.begin(), stages.end(), [](const StageConfig& s) { return s.dynamic(); });
 }
 
+bool Config::pairs_meet(std::size_t a, std::size_t b, const StageConfig** stage) const {
+  if (stage) *stage = nullptr;
+  if (stages.empty()) return true;
+  for (const StageConfig& st : stages)
+    if (st.contact_active[a] && st.contact_active[b]) {
+      if (stage) *stage = &st;
+      return true;
+    }
+  return false;
+}
+
 bool Config::one_analysis() const {
   for (int k = 1; k < interval_count(); ++k)
     if (analysis_in(k) != analysis_in(0)) return false;
@@ -1897,17 +1908,10 @@ void DeckReader::check_analysis(bool initial_conditions, bool time_integration) 
   for (std::size_t i = 0; i < cfg_.contact.size(); ++i)
     for (std::size_t j = 0; j < i; ++j) {
       const ContactPairConfig &a = cfg_.contact[j], &b = cfg_.contact[i];
-      if (a.slave != b.slave) continue;
-      std::string when = "without 'Stages' every pair is active throughout";
-      bool meet = !staged;
-      for (const StageConfig& st : cfg_.stages)
-        if (st.contact_active[i] && st.contact_active[j]) {
-          meet = true;
-          when = "stage 'Stages->" + st.name + "' activates both";
-          break;
-        }
-      if (meet)
-        fail("'Contact->" + a.name + "' and 'Contact->" + b.name + "' both use slave group '" + a.slave + "' and " + when +
+      const StageConfig* st = nullptr;
+      if (a.slave == b.slave && cfg_.pairs_meet(i, j, &st))
+        fail("'Contact->" + a.name + "' and 'Contact->" + b.name + "' both use slave group '" + a.slave + "' and " +
+             (st ? "stage 'Stages->" + st->name + "' activates both" : std::string("without 'Stages' every pair is active throughout")) +
              "; a node may be a slave of two pairs only when no stage activates both");
     }
   for (int k = 0; k < cfg_.interval_count(); ++k) {

@@ -345,6 +345,10 @@ struct Config {
   // (mass matrix, time integrator, energy output; the supports check of static bodies).
   bool any_dynamic() const;
   bool any_static() const;
+  // Whether some stage activates contact pairs a and b together (without stages every pair
+  // is active throughout); `stage`, if given, gets the first such stage (nullptr without
+  // stages).
+  bool pairs_meet(std::size_t a, std::size_t b, const StageConfig** stage = nullptr) const;
 };
 
 // Reads and validates a deck. Throws InputError naming the file, the parameter path

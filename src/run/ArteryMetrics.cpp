@@ -100,22 +100,13 @@ void ArteryMetrics::layer_stresses(const la::Vector& u, std::vector<double>& out
 }
 
 std::vector<double> ArteryMetrics::evaluate(const la::Vector& u) {
-  const Distribution& d = *m_.dist;
-  std::vector<double> loc(3 * lumen_.size(), 0.0), x(loc.size(), 0.0);
-  {
-    auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (std::size_t i = 0; i < lumen_.size(); ++i)
-      if (d.owns_node(lumen_[i]))
-        for (std::size_t k = 0; k < 3; ++k) loc[3 * i + k] = uh(static_cast<std::size_t>(d.local_node(lumen_[i]) * 3) + k, 0);
-  }
-  if (!loc.empty()) Teuchos::reduceAll(*m_.comm, Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), x.data());
+  const std::vector<double> x = current_positions(m_, lumen_, u);
   double sum = 0.0, dmin = HUGE_VAL;
   for (const Station& g : stations_) {
     double rw = 0.0, w = 0.0;
     for (std::size_t j = 0; j < g.idx.size(); ++j) {
-      const double* X = m_.mesh.coord(lumen_[g.idx[j]]);
-      const double* dx = &x[3 * g.idx[j]];
-      rw += g.w[j] * std::hypot(X[0] + dx[0], X[1] + dx[1]);
+      const double* xj = &x[3 * g.idx[j]];
+      rw += g.w[j] * std::hypot(xj[0], xj[1]);
       w += g.w[j];
     }
     const double D = 2.0 * rw / w;

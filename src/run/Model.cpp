@@ -209,4 +209,19 @@ void Model::check_numeric_range(double dt) {
   throw InputError(os.str());
 }
 
+std::vector<double> current_positions(const Model& m, const std::vector<GId>& nodes, const la::Vector& u) {
+  const Distribution& d = *m.dist;
+  std::vector<double> loc(3 * nodes.size(), 0.0), x(loc.size(), 0.0);
+  {
+    auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      if (d.owns_node(nodes[i]))
+        for (int k = 0; k < m.dim; ++k) loc[3 * i + static_cast<std::size_t>(k)] = uh(static_cast<std::size_t>(d.local_node(nodes[i]) * m.dim + k), 0);
+  }
+  if (!loc.empty()) Teuchos::reduceAll(*m.comm, Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), x.data());
+  for (std::size_t i = 0; i < nodes.size(); ++i)
+    for (std::size_t k = 0; k < 3; ++k) x[3 * i + k] += m.mesh.coord(nodes[i])[k];
+  return x;
+}
+
 }  // namespace stentor

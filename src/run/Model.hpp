@@ -67,4 +67,9 @@ struct Model {
   std::unique_ptr<TimeIntegrator> integrator;  // null without a dynamic stage
 };
 
+// The current positions x = X + u of the global nodes `nodes` (3 values per node; 0 beyond
+// the model's dimension for the displacement), each node's u from its owner, summed over
+// the ranks: every rank gets the same array. Collective.
+std::vector<double> current_positions(const Model& m, const std::vector<GId>& nodes, const la::Vector& u);
+
 }  // namespace stentor

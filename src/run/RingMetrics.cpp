@@ -234,18 +234,7 @@ void RingMetrics::plastic(const la::Vector& u, std::vector<double>& out) {
 }
 
 std::vector<double> RingMetrics::evaluate(const la::Vector& u, double t) {
-  // Current positions of the group nodes (each from its owner, summed over ranks).
-  const Distribution& d = *m_.dist;
-  std::vector<double> loc(3 * nodes_.size(), 0.0), x(loc.size(), 0.0);
-  {
-    auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (std::size_t i = 0; i < nodes_.size(); ++i)
-      if (d.owns_node(nodes_[i]))
-        for (int k = 0; k < 3; ++k) loc[3 * i + static_cast<std::size_t>(k)] = uh(static_cast<std::size_t>(d.local_node(nodes_[i]) * 3 + k), 0);
-  }
-  if (!loc.empty()) Teuchos::reduceAll(*m_.comm, Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), x.data());
-  for (std::size_t i = 0; i < nodes_.size(); ++i)
-    for (std::size_t k = 0; k < 3; ++k) x[3 * i + k] += m_.mesh.coord(nodes_[i])[k];
+  const std::vector<double> x = current_positions(m_, nodes_, u);
 
   const Stats all = diameters(outer_, x);
   std::vector<double> v = {all.mean, all.min, all.max};

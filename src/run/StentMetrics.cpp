@@ -70,18 +70,6 @@ double StentMetrics::radius(const double* x) const {
   return std::sqrt(dot(r, r));
 }
 
-std::vector<double> StentMetrics::positions(const Group& g, const la::Vector& u) const {
-  const Distribution& d = *m_.dist;
-  std::vector<double> loc(3 * g.nodes.size(), 0.0), x(loc.size(), 0.0);
-  auto uh = u.getLocalViewHost(Tpetra::Access::ReadOnly);
-  for (std::size_t i = 0; i < g.nodes.size(); ++i)
-    if (d.owns_node(g.nodes[i]))
-      for (int k = 0; k < m_.dim; ++k) loc[3 * i + static_cast<std::size_t>(k)] = uh(static_cast<std::size_t>(d.local_node(g.nodes[i]) * m_.dim + k), 0);
-  if (!loc.empty()) Teuchos::reduceAll(*m_.comm, Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), x.data());
-  for (std::size_t i = 0; i < g.nodes.size(); ++i)
-    for (std::size_t k = 0; k < 3; ++k) x[3 * i + k] += m_.mesh.coord(g.nodes[i])[k];
-  return x;
-}
 
 // Largest von Mises and circumferential (e_t . sigma e_t, e_t = axis x e_r at the cell's
 // reference centroid; in axisymmetry the hoop component sigma_thth) Cauchy stress over the
@@ -140,7 +128,7 @@ double StentMetrics::lumen_area(const std::vector<double>& x) const {
 }
 
 std::vector<double> StentMetrics::evaluate(const la::Vector& u) {
-  const std::vector<double> xs = positions(stent_, u), xl = positions(lumen_, u);
+  const std::vector<double> xs = current_positions(m_, stent_.nodes, u), xl = current_positions(m_, lumen_.nodes, u);
   double lsum = 0.0, lmin = 1e300;
   long ln = 0;
   for (std::size_t i = 0; i < lumen_.nodes.size(); ++i) {

@@ -32,7 +32,6 @@ class StentMetrics {
     std::vector<GId> nodes;        // sorted global ids
     std::vector<double> z0;        // reference axial coordinate of each node
   };
-  std::vector<double> positions(const Group& g, const la::Vector& u) const;  // 3 per node, current (collective)
   double radius(const double* x) const;
   double axial_coordinate(const double* x) const;
   void stresses(const la::Vector& u, double& von_mises, double& hoop) const;  // collective

@@ -77,6 +77,34 @@ Eval eval(const Cell& c, const double (*U)[3], const double (*U0)[3], const Elem
   return e;
 }
 
+// Central differences (h = 1e-6) in each of the cell's nd displacement components at U of
+// the residual and the energy of eval_at, against e = eval_at(U): max |K|, max |K - FD(r)|,
+// max |r|, max |r - FD(E)|.
+struct FdErrors {
+  double kmax = 0, kerr = 0, rmax = 0, rerr = 0;
+};
+template <class E, class F>
+FdErrors fd_errors(int nd, const double (*U)[3], const E& e, F eval_at) {
+  const double h = 1e-6;
+  FdErrors f;
+  for (int j = 0; j < nd; ++j) {
+    double Up[kMaxCellNodes][3], Um[kMaxCellNodes][3];
+    std::copy(&U[0][0], &U[0][0] + 3 * kMaxCellNodes, &Up[0][0]);
+    std::copy(&U[0][0], &U[0][0] + 3 * kMaxCellNodes, &Um[0][0]);
+    Up[j / 2][j % 2] += h, Um[j / 2][j % 2] -= h;
+    const E p = eval_at(Up), m = eval_at(Um);
+    const auto sj = static_cast<std::size_t>(j);
+    for (int i = 0; i < nd; ++i) {
+      const auto si = static_cast<std::size_t>(i);
+      f.kmax = std::max(f.kmax, std::abs(e.K[si][sj]));
+      f.kerr = std::max(f.kerr, std::abs(e.K[si][sj] - (p.r[si] - m.r[si]) / (2 * h)));
+    }
+    f.rmax = std::max(f.rmax, std::abs(e.r[sj]));
+    f.rerr = std::max(f.rerr, std::abs(e.r[sj] - (p.energy - m.energy) / (2 * h)));
+  }
+  return f;
+}
+
 // max |K - FD(r)| / max |K| and max |r - FD(E)| / max |r| at U (U0 = u_n when et.has_old);
 // the largest of each is kept in `worst` (tangent, residual).
 void expect_consistent(const Cell& c, const ElementTime& et, const char* what, double* worst) {
@@ -85,23 +113,7 @@ void expect_consistent(const Cell& c, const ElementTime& et, const char* what, d
   displacement(c, 0.7, -0.02, U0);
   const Eval e = eval(c, U, U0, et);
   ASSERT_EQ(e.status, kElementOk) << what;
-  const int nd = 2 * c.nn;
-  const double h = 1e-6;
-  double kmax = 0, kerr = 0, rmax = 0, rerr = 0;
-  for (int j = 0; j < nd; ++j) {
-    double Up[kMaxCellNodes][3], Um[kMaxCellNodes][3];
-    std::copy(&U[0][0], &U[0][0] + 3 * kMaxCellNodes, &Up[0][0]);
-    std::copy(&U[0][0], &U[0][0] + 3 * kMaxCellNodes, &Um[0][0]);
-    Up[j / 2][j % 2] += h, Um[j / 2][j % 2] -= h;
-    const Eval p = eval(c, Up, U0, et), m = eval(c, Um, U0, et);
-    for (int i = 0; i < nd; ++i) {
-      kmax = std::max(kmax, std::abs(e.K[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]));
-      kerr = std::max(kerr, std::abs(e.K[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] -
-                                     (p.r[static_cast<std::size_t>(i)] - m.r[static_cast<std::size_t>(i)]) / (2 * h)));
-    }
-    rmax = std::max(rmax, std::abs(e.r[static_cast<std::size_t>(j)]));
-    rerr = std::max(rerr, std::abs(e.r[static_cast<std::size_t>(j)] - (p.energy - m.energy) / (2 * h)));
-  }
+  const auto [kmax, kerr, rmax, rerr] = fd_errors(2 * c.nn, U, e, [&](const double (*V)[3]) { return eval(c, V, U0, et); });
   EXPECT_GT(kmax, 0.1) << what;
   EXPECT_LT(kerr / kmax, 1e-7) << what << ": tangent against FD of the residual";
   worst[0] = std::max(worst[0], kerr / kmax);
@@ -298,23 +310,7 @@ void law_fd(const Law& law, const std::vector<double>& hn_row, bool check_residu
       displacement(c, 1.0, 0.03, U);
       const LawEval<Law> e = eval_law(law, c, U, hn_row);
       ASSERT_EQ(e.status, kElementOk);
-      const int nd = 2 * c.nn;
-      const double h = 1e-6;
-      double kmax = 0, kerr = 0, rmax = 0, rerr = 0;
-      for (int j = 0; j < nd; ++j) {
-        double Up[kMaxCellNodes][3], Um[kMaxCellNodes][3];
-        std::copy(&U[0][0], &U[0][0] + 3 * kMaxCellNodes, &Up[0][0]);
-        std::copy(&U[0][0], &U[0][0] + 3 * kMaxCellNodes, &Um[0][0]);
-        Up[j / 2][j % 2] += h, Um[j / 2][j % 2] -= h;
-        const LawEval<Law> p = eval_law(law, c, Up, hn_row), m = eval_law(law, c, Um, hn_row);
-        for (int i = 0; i < nd; ++i) {
-          const auto si = static_cast<std::size_t>(i), sj = static_cast<std::size_t>(j);
-          kmax = std::max(kmax, std::abs(e.K[si][sj]));
-          kerr = std::max(kerr, std::abs(e.K[si][sj] - (p.r[si] - m.r[si]) / (2 * h)));
-        }
-        rmax = std::max(rmax, std::abs(e.r[static_cast<std::size_t>(j)]));
-        rerr = std::max(rerr, std::abs(e.r[static_cast<std::size_t>(j)] - (p.energy - m.energy) / (2 * h)));
-      }
+      const auto [kmax, kerr, rmax, rerr] = fd_errors(2 * c.nn, U, e, [&](const double (*V)[3]) { return eval_law(law, c, V, hn_row); });
       EXPECT_GT(kmax, 0.1);
       EXPECT_LT(kerr / kmax, 1e-7) << "tangent against FD of the residual";
       worst_k = std::max(worst_k, kerr / kmax);
