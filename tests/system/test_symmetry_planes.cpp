@@ -35,6 +35,7 @@
 #include "AssemblerFixture.hpp"
 #include "BlockDeck.hpp"
 #include "CsvSeries.hpp"
+#include "RotatedMesh.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -77,26 +78,10 @@ RunResult run(const std::string& text, const std::string& name) {
   return res;
 }
 
-// The 40-degree rotation about (1, 1, 1) / sqrt 3 (Rodrigues) applied to v.
-std::array<double, 3> rotate(const std::array<double, 3>& v) {
-  const double a = 40.0 * std::acos(-1.0) / 180.0, k = 1.0 / std::sqrt(3.0), c = std::cos(a), s = std::sin(a);
-  const double kv = k * (v[0] + v[1] + v[2]);
-  const double kx[3] = {k * (v[2] - v[1]), k * (v[0] - v[2]), k * (v[1] - v[0])};  // k x v
-  std::array<double, 3> r{};
-  for (int i = 0; i < 3; ++i) r[static_cast<std::size_t>(i)] = v[static_cast<std::size_t>(i)] * c + kx[i] * s + k * kv * (1.0 - c);
-  return r;
-}
+using stentor::testing::rotate;
 
 // The mesh rotated node by node, written as <name>.msh (the same cells and groups).
-fs::path rotated_msh(Mesh m, const std::string& name) {
-  for (std::size_t i = 0; i < m.num_nodes(); ++i) {
-    const auto r = rotate({m.x[3 * i], m.x[3 * i + 1], m.x[3 * i + 2]});
-    for (int c = 0; c < 3; ++c) m.x[3 * i + static_cast<std::size_t>(c)] = r[static_cast<std::size_t>(c)];
-  }
-  const fs::path msh = kDir / (name + ".msh");
-  std::ofstream(msh) << mesh_to_msh(m);
-  return msh;
-}
+fs::path rotated_msh(const Mesh& m, const std::string& name) { return stentor::testing::rotated_msh(m, kDir / (name + ".msh")); }
 
 std::string ring_deck(const std::string& sector) {
   std::ifstream in(std::string(STENTOR_SOURCE_DIR) + "/tests/cli/decks/restart_stent.xml");
