@@ -1748,6 +1748,10 @@ void DeckReader::read_stent_metrics(const ParameterList& sub) {
   StentMetricsConfig& m = cfg_.output.metrics;
   m.enabled = true;
   m.end_fraction = get_double(sub, ls, "end fraction");
+  m.malapposition_threshold = get_double(sub, ls, "malapposition threshold");
+  if (sub.isParameter("malapposition threshold") && !(cfg_.mesh.generator == "stent" && cfg_.mesh.artery.around_stent))
+    fail(quoted(path + "->malapposition threshold") + " applies to a generated stent in a generated artery ('Mesh->generator' = "
+         "stent with 'Mesh->Artery'); this deck has none: remove it");
   const char* named[] = {"axis point", "axis", "stent", "lumen", "artery"};
   if (cfg_.mesh.generator == "stent") {
     // The generated stent's axis is z through the origin and its groups are the generator's.

@@ -228,6 +228,7 @@ struct StentMetricsConfig {
   std::array<double, 3> axis{};        // "axis" (normalized here)
   std::string stent, lumen, artery;    // boundary, boundary, volume group names
   double end_fraction = 0.2;           // "end fraction"
+  double malapposition_threshold = 0.0;  // "malapposition threshold" [length] (0: a tenth of the strut thickness)
 };
 
 struct OutputConfig {

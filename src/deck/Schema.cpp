@@ -780,7 +780,12 @@ std::vector<ListSpec> build_schema() {
                                 "fraction of its reference length from either end, its middle those within this "
                                 "fraction around the centre (a generated stent compares its end and centre rings).")
            .gt(0.0)
-           .le(0.5)}));
+           .le(0.5),
+       dbl("malapposition threshold", 0.0,
+           "A generated stent in a generated artery: an `outer` node of the stent farther than this from the lumen "
+           "surface [length] counts as malapposed (the `malapposed_area` metric: the share of the stent's outer "
+           "surface off the wall; docs/artery.md, \"Artery metrics\"). 0: a tenth of the strut thickness.")
+           .ge(0.0)}));
   {
     auto l = list("Output/Probes", "Output->Probes", "Points whose displacement history is recorded. Probe names "
                   "head CSV columns: letters, digits, spaces and `_ . + -` only, at most 100 characters.");

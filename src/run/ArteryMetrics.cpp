@@ -11,6 +11,7 @@ namespace stentor {
 
 namespace {
 const char* const kLayers[] = {"plaque", "intima", "media", "adventitia"};
+constexpr std::size_t kLayerColumn = 6;  // the first layer's column (after the lumen's and the apposition's)
 }  // namespace
 
 ArteryMetrics::ArteryMetrics(const Model& model) : m_(model) {
@@ -38,6 +39,39 @@ ArteryMetrics::ArteryMetrics(const Model& model) : m_(model) {
   if (stations_.empty())
     throw InputError("'Output->Stent Metrics': no node of the artery's 'lumen' lies within the stent's axial span (0 to " +
                      std::to_string(z_hi) + ")");
+  // The stent against the wall: the lumen's facets, the outer nodes and their areas.
+  wall_ = std::make_unique<MasterSurface>(mesh, "lumen", "'Output->Stent Metrics'");
+  const std::vector<GId>& wn = wall_->nodes();
+  wall_->index([&](GId g) { return static_cast<int>(std::lower_bound(wn.begin(), wn.end(), g) - wn.begin()); });
+  outer_ = boundary_nodes(mesh, "outer");
+  outer_area_.assign(outer_.size(), 0.0);
+  for (const CellBlock* b : boundary_blocks(mesh, "outer")) {
+    const auto nn = static_cast<std::size_t>(b->nodes_per_cell);
+    for (std::size_t f = 0; f < b->num_cells(); ++f) {
+      const GId* c = &b->conn[f * nn];
+      // Triangle: half the cross product of two edges; quadrilateral: of its diagonals.
+      const double* p0 = mesh.coord(c[0]);
+      const bool quad = b->type == CellType::Quad4 || b->type == CellType::Quad8;
+      const double* p1 = mesh.coord(c[1]);
+      const double* p2 = mesh.coord(c[2]);
+      const double* p3 = quad ? mesh.coord(c[3]) : p0;
+      double d1[3], d2[3];
+      for (int k = 0; k < 3; ++k) {
+        d1[k] = quad ? p2[k] - p0[k] : p1[k] - p0[k];
+        d2[k] = quad ? p3[k] - p1[k] : p2[k] - p0[k];
+      }
+      const double area = 0.5 * std::sqrt(std::pow(d1[1] * d2[2] - d1[2] * d2[1], 2) + std::pow(d1[2] * d2[0] - d1[0] * d2[2], 2) +
+                                          std::pow(d1[0] * d2[1] - d1[1] * d2[0], 2));
+      for (std::size_t a = 0; a < nn; ++a)
+        outer_area_[static_cast<std::size_t>(std::lower_bound(outer_.begin(), outer_.end(), c[a]) - outer_.begin())] +=
+            area / static_cast<double>(nn);
+    }
+  }
+  for (GId g : outer_) {
+    const double* x = mesh.coord(g);
+    outer_w_.push_back(sector && (std::abs(x[1]) < tol || std::abs(st * x[0] - ct * x[1]) < tol) ? 0.5 : 1.0);
+  }
+  threshold_ = m_.cfg.output.metrics.malapposition_threshold > 0.0 ? m_.cfg.output.metrics.malapposition_threshold : 0.1 * s.thickness;
   layer_of_block_.assign(mesh.volumes.size(), -1);
   for (const char* name : kLayers) {
     bool found = false;
@@ -51,7 +85,8 @@ std::vector<std::string> ArteryMetrics::columns() const {
   const std::string L = length_unit_.empty() ? "" : " [" + length_unit_ + "]";
   const std::string S = stress_unit_.empty() ? "" : " [" + stress_unit_ + "]";
   const std::string A = length_unit_.empty() ? "" : " [" + length_unit_ + "^2]";
-  std::vector<std::string> c = {"lumen_D_mean" + L, "lumen_D_min" + L, "lumen_contact_area" + A};
+  std::vector<std::string> c = {"lumen_D_mean" + L, "lumen_D_min" + L, "lumen_contact_area" + A,
+                                "stent_wall_gap_max" + L, "malapposed_area [%]", "prolapse_max" + L};
   for (const std::string& l : layers_) c.insert(c.end(), {l + "_sigma1_max" + S, l + "_sigma1_p99" + S});
   return c;
 }
@@ -63,7 +98,7 @@ std::vector<std::string> ArteryMetrics::diameter_columns() const {
 
 std::vector<std::string> ArteryMetrics::stress_columns() const {
   const std::vector<std::string> c = columns();
-  return {c.begin() + 3, c.end()};
+  return {c.begin() + kLayerColumn, c.end()};
 }
 
 double ArteryMetrics::nearest_rank(std::vector<double>& v, double q) {
@@ -115,10 +150,78 @@ std::vector<double> ArteryMetrics::evaluate(const la::Vector& u) {
   // The lumen's area in contact (its slave nodes' reference tributary areas) times the
   // copies of the model that make the whole stent.
   const double area = m_.contact ? m_.contact->contact_area("lumen") * m_.cfg.mesh.stent.symmetry_copies() : 0.0;
-  now_ = {sum / static_cast<double>(stations_.size()), dmin, area};
+  const std::vector<double> xo = current_positions(m_, outer_, u);
+  double gap_max = 0.0, malapposed = 0.0;
+  apposition(xo, u, gap_max, malapposed);
+  now_ = {sum / static_cast<double>(stations_.size()), dmin, area, gap_max, malapposed, prolapse(x, xo)};
   if (D_mean0_ < 0.0) D_mean0_ = now_[0], D_min0_ = now_[1];
   layer_stresses(u, now_);
   return now_;
+}
+
+void ArteryMetrics::apposition(const std::vector<double>& xo, const la::Vector& u, double& gap_max, double& malapposed) const {
+  const std::vector<double> xw = current_positions(m_, wall_->nodes(), u);
+  wall_->build(xw);
+  const auto& facets = wall_->facets();
+  // The signed distance of xs to facet f: along its normal at the closest point inside it,
+  // or, where that is on its edge, the distance to it with the sign of the normal's side.
+  auto distance = [&](std::size_t f, const double* xs) {
+    const MasterSurface::Facet& fc = facets[f];
+    double xf[facet::kMaxNodes][3];
+    for (int a = 0; a < fc.nn; ++a)
+      for (int k = 0; k < 3; ++k) xf[a][k] = xw[3 * static_cast<std::size_t>(fc.node[a]) + static_cast<std::size_t>(k)];
+    double xi[2];
+    const bool inside = facet::project(fc.type, fc.nn, 3, xf, xs, xi);
+    facet::Frame<double> fr;
+    facet::frame(fc.type, fc.nn, 3, fc.orient, xf, xi, fr);
+    const double r[3] = {xs[0] - fr.xm[0], xs[1] - fr.xm[1], xs[2] - fr.xm[2]};
+    const double along = r[0] * fr.n[0] + r[1] * fr.n[1] + r[2] * fr.n[2];
+    return inside ? along : std::copysign(std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]), along);
+  };
+  double a_all = 0.0, a_off = 0.0;
+  gap_max = 0.0;
+  for (std::size_t i = 0; i < outer_.size(); ++i) {
+    const double* xs = &xo[3 * i];
+    const MasterSurface::Hit h = wall_->closest(3, xs, xw);
+    double d = 0.0;
+    if (h.facet >= 0) {
+      d = distance(static_cast<std::size_t>(h.facet), xs);
+    } else {  // farther from the wall than the search radius: the nearest of every facet
+      double best = HUGE_VAL;
+      for (std::size_t f = 0; f < facets.size(); ++f) {
+        const double df = distance(f, xs);
+        if (std::abs(df) < std::abs(best)) best = df;
+      }
+      d = facets.empty() ? 0.0 : best;
+    }
+    gap_max = std::max(gap_max, d);
+    a_all += outer_area_[i];
+    if (d > threshold_) a_off += outer_area_[i];
+  }
+  malapposed = a_all > 0.0 ? 100.0 * a_off / a_all : 0.0;
+}
+
+double ArteryMetrics::prolapse(const std::vector<double>& xl, const std::vector<double>& xo) const {
+  // Each station's current axial position (its nodes' weighted mean).
+  std::vector<double> zs(stations_.size(), 0.0);
+  for (std::size_t j = 0; j < stations_.size(); ++j) {
+    double w = 0.0;
+    for (std::size_t k = 0; k < stations_[j].idx.size(); ++k)
+      zs[j] += stations_[j].w[k] * xl[3 * stations_[j].idx[k] + 2], w += stations_[j].w[k];
+    zs[j] /= w;
+  }
+  double worst = 0.0;
+  for (std::size_t j = 0; j < stations_.size(); ++j) {
+    const double below = j > 0 ? zs[j] - zs[j - 1] : HUGE_VAL, above = j + 1 < zs.size() ? zs[j + 1] - zs[j] : HUGE_VAL;
+    const double band = 0.5 * std::min(below, above);
+    double rw = 0.0, w = 0.0;
+    for (std::size_t i = 0; i < outer_.size(); ++i)
+      if (std::abs(xo[3 * i + 2] - zs[j]) <= band) rw += outer_w_[i] * std::hypot(xo[3 * i], xo[3 * i + 1]), w += outer_w_[i];
+    if (w == 0.0) continue;  // no strut crosses this station
+    const double Rs = rw / w;
+    for (std::size_t k : stations_[j].idx) worst = std::max(worst, Rs - std::hypot(xl[3 * k], xl[3 * k + 1]));
+  }
+  return worst;
 }
 
 void ArteryMetrics::table(std::ostream& log) const {
@@ -128,10 +231,12 @@ void ArteryMetrics::table(std::ostream& log) const {
       << std::setprecision(2) << 100.0 * (now_[0] - D_mean0_) / D_mean0_ << " %), minimum lumen diameter " << std::setprecision(4) << D_min0_
       << " -> " << now_[1] << L << " (acute gain " << now_[1] - D_min0_ << L << "), lumen in contact " << now_[2]
       << (length_unit_.empty() ? "" : " " + length_unit_ + "^2") << "\n";
+  log << std::setprecision(4) << "  stent against the wall: largest gap " << now_[3] << L << ", malapposed " << std::setprecision(2) << now_[4]
+      << " % of the outer surface (gap > " << std::setprecision(4) << threshold_ << L << "), tissue prolapse " << now_[5] << L << "\n";
   if (layers_.empty()) return;
   log << "  artery: largest principal stress, max / 99th percentile of the cells:" << std::scientific << std::setprecision(3);
   for (std::size_t l = 0; l < layers_.size(); ++l)
-    log << (l ? "," : "") << " " << layers_[l] << " " << now_[3 + 2 * l] << " / " << now_[4 + 2 * l] << S;
+    log << (l ? "," : "") << " " << layers_[l] << " " << now_[kLayerColumn + 2 * l] << " / " << now_[kLayerColumn + 1 + 2 * l] << S;
   log << "\n" << std::defaultfloat;
 }
 

@@ -14,16 +14,30 @@
 // * per layer of the wall (the volume groups plaque, intima, media, adventitia that the
 //   mesh has), the largest principal Cauchy stress of its cells (cell averages): the
 //   largest value and the 99th percentile over the layer's cells (nearest rank), the
-//   percentile being less sensitive to one cell at a strut's edge.
+//   percentile being less sensitive to one cell at a strut's edge;
+// * the stent against the wall: each `outer` node's signed distance to the lumen surface
+//   (its closest point on the lumen's facets, along the facet's normal into the lumen:
+//   > 0 off the wall, 0 in contact), the largest (`stent_wall_gap_max`), and the share of the
+//   stent's outer surface farther than `malapposition threshold` from the wall
+//   (`malapposed_area`, %: the nodes' tributary areas, each facet's area shared equally
+//   among its nodes; the model's surface, so on a symmetry sector the whole stent's share);
+// * tissue prolapse: at each lumen station, the stent's contour radius R_s (the mean
+//   current distance from the axis of the `outer` nodes whose current axial position lies
+//   within the station's band, half-way to the neighbouring stations) less the radius of each
+//   lumen node of the station, where positive: the lumen inside the stent's contour (tissue
+//   between the struts, or a segment the stent did not open); `prolapse_max` is the largest
+//   over the stations that a strut crosses.
 //
 // Every rank computes the same values (the lumen group is whole on every rank; the cell
 // values are gathered), so they do not depend on the number of ranks.
 #pragma once
 #include <map>
+#include <memory>
 #include <ostream>
 #include <string>
 #include <vector>
 
+#include "contact/MasterSurface.hpp"
 #include "run/Model.hpp"
 
 namespace stentor {
@@ -55,10 +69,18 @@ class ArteryMetrics {
     std::vector<double> w;         // symmetry weights
   };
   void layer_stresses(const la::Vector& u, std::vector<double>& out) const;  // collective: max, p99 per layer
+  // Largest signed distance of the outer nodes to the lumen, and the malapposed share [%].
+  void apposition(const std::vector<double>& x_outer, const la::Vector& u, double& gap_max, double& malapposed) const;
+  double prolapse(const std::vector<double>& x_lumen, const std::vector<double>& x_outer) const;
 
   const Model& m_;
   std::vector<GId> lumen_;              // the lumen's nodes, sorted
   std::vector<Station> stations_;       // within the stent's reference span, by increasing z
+  std::unique_ptr<MasterSurface> wall_; // the lumen's facets (normals into the lumen)
+  std::vector<GId> outer_;              // the stent's outer nodes, sorted
+  std::vector<double> outer_area_;      // their tributary areas (reference)
+  std::vector<double> outer_w_;         // their symmetry weights (1/2 on a sector's plane)
+  double threshold_ = 0.0;              // malapposition threshold [length]
   std::vector<std::string> layers_;     // the wall's volume groups in the mesh
   std::vector<int> layer_of_block_;     // Mesh::volumes index -> index into layers_ or -1
   std::string length_unit_, stress_unit_;

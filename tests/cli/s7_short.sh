@@ -3,7 +3,8 @@
 # by a rigid balloon into the layered artery (the pair `lumen` -> stent `outer`) and
 # deflated; and the same deck with the wall's pair left out of the stages (the stent
 # expanded freely, the artery untouched).
-# Checks: both runs end at t = 1.5; the lumen's nodes never penetrate the stent (smallest
+# Checks: both runs end at t = 1.5; the stent against the wall (gap, malapposition,
+# prolapse: below); the lumen's nodes never penetrate the stent (smallest
 # gap >= -1e-9 mm) and rest on it after deflation; the lumen opened (minimum lumen diameter
 # from 3.1 to more than 3.4 mm) but not beyond the stent (mean lumen diameter <= the
 # stent's outer D_max); the wall pushes the stent back: its recoil exceeds the free
@@ -44,5 +45,26 @@ awk -v v="$v" 'BEGIN { exit !(v < 1e-12 && v > -1e-12) }' || fail "free run: int
 a=$(last $m "lumen_contact_area [mm^2]") af=$(last $fm "lumen_contact_area [mm^2]")
 echo "lumen area in contact $a mm^2 (free $af)"
 awk -v a="$a" -v f="$af" 'BEGIN { exit !(a > 0 && a < 3.14159265 * 3.1 && f == 0) }' || fail "contact area $a, free $f"
+# The stent against the wall. As cut (the first row) the stent's outer surface (r = 1.5 mm)
+# lies 0.05 mm inside the lumen (r = 1.55 mm at its nodes, flat facets between them): the
+# largest gap is 0.05 cos(half a facet's angle), all of the surface malapposed, no prolapse.
+# At the end the stent rests on the wall (gap < a tenth of the strut, 0.01 mm) and the lumen
+# bulges between the struts by less than the strut's thickness. The free run leaves the lumen
+# at r = 1.55 mm inside the stent: the prolapse is the stent contour's radius less 1.55 mm,
+# between the ring's smallest and largest outer radius less 1.55 mm.
+first() {  # first() CSV COLUMN
+  awk -F, -v c="$2" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == c) k = i; next } NR == 2 { print $k }' "$1"
+}
+g0=$(first $m "stent_wall_gap_max [mm]") a0=$(first $m "malapposed_area [%]") p0=$(first $m "prolapse_max [mm]")
+g=$(last $m "stent_wall_gap_max [mm]") ma=$(last $m "malapposed_area [%]") p=$(last $m "prolapse_max [mm]")
+pf=$(last $fm "prolapse_max [mm]") Dfmin=$(last $fm "D_min [mm]") Dfmax=$(last $fm "D_max [mm]")
+echo "stent against the wall: as cut gap $g0 mm, malapposed $a0 %, prolapse $p0 mm; at the end $g mm, $ma %, $p mm; free run prolapse $pf mm (D $Dfmin .. $Dfmax mm)"
+awk -v g="$g0" -v a="$a0" -v p="$p0" 'BEGIN { exit !(g > 0.0499 && g <= 0.05 + 1e-12 && a == 100 && p == 0) }' ||
+  fail "as cut: gap $g0, malapposed $a0 %, prolapse $p0"
+awk -v g="$g" -v a="$ma" -v p="$p" 'BEGIN { exit !(g >= 0 && g < 0.01 && a < 50 && p > 0 && p < 0.1) }' ||
+  fail "at the end: gap $g, malapposed $ma %, prolapse $p"
+awk -v p="$pf" -v lo="$Dfmin" -v hi="$Dfmax" 'BEGIN { exit !(p >= lo / 2 - 1.55 - 1e-9 && p <= hi / 2 - 1.55 + 1e-9 && p > 0.1) }' ||
+  fail "free run: prolapse $pf, not within the stent's radii less 1.55 mm ($Dfmin .. $Dfmax)"
 grep -q "artery (stented segment): lumen D mean 3.1000 -> " log.txt || fail "no artery paragraph in the log"
+grep -q "stent against the wall: largest gap " log.txt || fail "no apposition line in the log"
 echo "PASS"
