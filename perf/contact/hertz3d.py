@@ -23,6 +23,9 @@ plates by 2 delta). Frictionless, static, tet4 (gmsh), Ciarlet-Geymonat from E, 
       change of the multipliers' norm between augmentations), gaptol G, at most M
       augmentations per step; full Newton, residual test |R| <= 1e-10 |R0| (rtol 1e-20 on
       squared norms, as Stentor's static default), no energy or displacement test.
+  python3 perf/contact/hertz3d.py same-mesh STENTOR.h5 OUT.facets.json
+      Node and cell counts of Stentor's mesh (its HDF5 output) and of the .feb's, and the
+      largest coordinate difference in the same node numbering.
   python3 perf/contact/hertz3d.py stentor RESULTS_DIR LOG [--label K=V ...] --row FMT
   python3 perf/contact/hertz3d.py febio RUN_DIR LOG [--label K=V ...] --row FMT
       Measure one run and print FMT (str.format) with the fields below.
@@ -502,6 +505,20 @@ def measure_febio(run, log):
     return finish(f, E, nu, R, delta)
 
 
+def same_mesh(h5file, facets):
+    """Stentor's mesh (its HDF5 output) against the one written into the .feb: node count,
+    largest coordinate difference in the same numbering, cell count."""
+    import h5py
+    g = json.load(open(facets))
+    with h5py.File(h5file, "r") as h:
+        X = h["/mesh/coordinates"][()]
+        ncell = len(h["/mesh/cell_block"][()])
+    if len(X) != len(g["x"]) or ncell != g["cells"]:
+        return "different meshes: Stentor %d nodes, %d cells; .feb %d nodes, %d tets" % (len(X), ncell, len(g["x"]), g["cells"])
+    d = max(abs(X[i][c] - g["x"][i][c]) for i in range(len(X)) for c in range(3))
+    return "same mesh: %d nodes, %d tets, largest coordinate difference %.1e" % (len(X), ncell, d)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sp = ap.add_subparsers(dest="cmd")
@@ -541,6 +558,9 @@ def main():
     fb.add_argument("--symmetric", default="non-symmetric", choices=["symmetric", "non-symmetric"])
     fb.add_argument("--gmsh", default=os.environ.get("GMSH", "gmsh"))
     fb.add_argument("--msh")
+    sm = sp.add_parser("same-mesh")
+    sm.add_argument("h5")
+    sm.add_argument("facets")
     for name in ("stentor", "febio"):
         m = sp.add_parser(name)
         m.add_argument("dir")
@@ -554,6 +574,8 @@ def main():
         write_deck(a)
     elif a.cmd == "feb":
         write_feb(a)
+    elif a.cmd == "same-mesh":
+        print(same_mesh(a.h5, a.facets))
     else:
         f = measure_stentor(a.dir, a.log) if a.cmd == "stentor" else measure_febio(a.dir, a.log)
         labels = dict(kv.split("=", 1) for kv in a.label)

@@ -57,7 +57,9 @@ echo "Stentor: $S_SET"
 echo
 echo "| hc | nodes / tet4 | code | cores | Newton (aug.) | wall [s] | F | F/F_H(delta) - 1 | a | a/a_H(F) - 1 | p0 | p0/p0_H(F) - 1 | active |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-ROW="| {hc} | {nodes} / {cells} | {code} | {r} | {newton}{augs} | {wall} | {F} | {eF} | {a} | {ea} | {p0} | {ep} | {active} |"
+ROW="| {hc} | {nodes} / {cells} | {code} | {r} | {newton} | {wall} | {F} | {eF} | {a} | {ea} | {p0} | {ep} | {active} |"
+FROW="| {hc} | {nodes} / {cells} | {code} | {r} | {newton} ({aug}) | {wall} | {F} | {eF} | {a} | {ea} | {p0} | {ep} | {active} |"
+mesh_check=""
 for hc in $SIZES; do
   case_dir=$OUT/hc$hc
   rm -rf "$case_dir" && mkdir -p "$case_dir"
@@ -67,17 +69,20 @@ for hc in $SIZES; do
     res=$case_dir/stentor_np$r log=$case_dir/stentor_np$r.log
     if [ "$r" = 1 ]; then run=("$STENTOR"); else run=(mpirun --allow-run-as-root --oversubscribe -np "$r" $MPIFLAGS "$STENTOR"); fi
     (cd "$case_dir" && /usr/bin/time -f "TIME %e %U %S %M" $NICE "${run[@]}" --output "$res" hertz3d.xml) >"$log" 2>&1 || true
-    $H stentor "$res" "$log" --label "hc=$hc" --label "r=$r" --label "code=Stentor" --label "augs=" --row "$ROW"
+    $H stentor "$res" "$log" --label "hc=$hc" --label "r=$r" --label "code=Stentor" --row "$ROW" || true
   done
   if [ -n "$febio" ]; then
     $H feb "$case_dir/hertz3d.feb" --geo "$case_dir/hertz3d.geo" --delta "$DELTA" --steps "$STEPS" \
       --penalty "$FP" --atol "$FA" --gaptol "$FG" --maxaug "$FM" --symmetric "$FS" > "$case_dir/feb.log"
+    h5=$(ls "$case_dir"/stentor_np*/hertz3d.h5 2>/dev/null | head -1 || true)
+    [ -z "$h5" ] || mesh_check="$mesh_check hc $hc: $($H same-mesh "$h5" "$case_dir/hertz3d.facets.json");"
     for r in $RANKS; do
       dir=$case_dir/febio_t$r log=$case_dir/febio_t$r.screen
       mkdir -p "$dir" && cp "$case_dir/hertz3d.feb" "$case_dir/hertz3d.facets.json" "$dir/"
       (cd "$dir" && OMP_NUM_THREADS=$r MKL_NUM_THREADS=$r /usr/bin/time -f "TIME %e %U %S %M" \
         $NICE "$febio" -i hertz3d.feb -o hertz3d.log -silent </dev/null) >"$log" 2>&1 || true
-      $H febio "$dir" "$log" --label "hc=$hc" --label "r=$r" --label "code=FEBio" --row "${ROW/\{augs\}/ ({aug})}"
+      $H febio "$dir" "$log" --label "hc=$hc" --label "r=$r" --label "code=FEBio" --row "$FROW" || true
     done
   fi
 done
+[ -z "$mesh_check" ] || { echo; echo "Stentor's mesh (HDF5) against the .feb's:$mesh_check"; }
