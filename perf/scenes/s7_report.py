@@ -193,6 +193,15 @@ def tables(runs):
             f = col(h, "contact_%s_normal_force" % tool) * n
             k = int(np.argmax(f))
             print("largest %s force %.4f N at t = %.4g" % (tool, f[k], h[k]["time"]))
+    print("\n### The stent against the wall at each stage's end\n")
+    print("| run | stage end | t [s] | largest gap [mm] | malapposed [% of the outer surface] | tissue prolapse [mm] |")
+    print("|---|---|---|---|---|---|")
+    for run in runs:
+        m = run["metrics"]
+        for name, sr in zip(run["stages"], run["stage_rows"]):
+            t = sr["time"]
+            print("| %s | %s | %.4g | %.4f | %.2f | %.4f |" % (run["label"], name, t, at(m, t, "stent_wall_gap_max [mm]"),
+                                                              at(m, t, "malapposed_area [%]"), at(m, t, "prolapse_max [mm]")))
     print("\n### The layers' largest principal stress, max / 99th percentile [MPa]\n")
     hdr = "| run | t [s] | " + " | ".join(runs[0]["layers"]) + " |"
     print(hdr)
