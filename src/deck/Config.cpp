@@ -1700,6 +1700,7 @@ void DeckReader::resolve_output() {
   traits.dynamic = cfg_.any_dynamic();
   traits.contact = !cfg_.contact.empty();
   for (const auto& c : cfg_.contact) traits.master_surface |= !c.master.empty();
+  traits.stent_in_artery = cfg_.mesh.generator == "stent" && cfg_.mesh.artery.around_stent && o.metrics.enabled;
   for (const auto& b : cfg_.bodies)
     for (const auto& m : cfg_.materials)
       if (m.name == b.material) {

@@ -51,6 +51,8 @@ const std::vector<OutputField>& output_fields() {
        "Reaction on the master surface per reference area, recovered like contact_pressure."},
       {"contact_master_pressure", W::Node, 1, "stress", N::MasterSurface, true,
        "Contact pressure on the master side: the normal force (along the contact normal, compression > 0) per reference area, recovered like contact_pressure; equals it across a pair in equilibrium."},
+      {"wall_gap", W::Node, 1, "length", N::StentInArtery, true,
+       "The malapposition map: the signed distance of the stent's outer nodes to the lumen (> 0 off the wall, 0 in contact; NaN on other nodes), as the stent_wall_gap_max metric."},
   };
   return f;
 }
@@ -63,6 +65,7 @@ bool output_field_available(const OutputField& f, const OutputDeckTraits& d) {
     case N::MasterSurface: return d.master_surface;
     case N::Plasticity: return d.plastic;
     case N::Damage: return d.damage;
+    case N::StentInArtery: return d.stent_in_artery;
   }
   return false;
 }
@@ -75,6 +78,7 @@ std::string output_field_needs_text(OutputField::Needs n) {
     case N::MasterSurface: return "needs a contact pair with a 'master' surface";
     case N::Plasticity: return "needs a body of model 'Ciarlet-Geymonat plasticity' or 'neo-Hookean plasticity'";
     case N::Damage: return "needs a body of model 'neo-Hookean damage'";
+    case N::StentInArtery: return "needs 'Mesh->generator' = stent with 'Mesh->Artery' and 'Output->Stent Metrics'";
   }
   return "";
 }

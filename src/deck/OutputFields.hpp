@@ -13,7 +13,7 @@ namespace stentor {
 struct OutputField {
   enum class Where { Node, Cell };
   // What the deck must have for the field to exist.
-  enum class Needs { Nothing, Dynamics, Contact, MasterSurface, Plasticity, Damage };
+  enum class Needs { Nothing, Dynamics, Contact, MasterSurface, Plasticity, Damage, StentInArtery };
   const char* name;
   Where where;
   int components;        // 1, 3 (vector) or 6 (symmetric tensor xx, yy, zz, xy, yz, xz; stored as 3 x 3)
@@ -29,6 +29,7 @@ const std::vector<OutputField>& output_fields();
 // What a deck has, for OutputField::Needs.
 struct OutputDeckTraits {
   bool dynamic = false, contact = false, master_surface = false, plastic = false, damage = false;
+  bool stent_in_artery = false;  // a generated stent in a generated artery with Output->Stent Metrics
 };
 bool output_field_available(const OutputField& f, const OutputDeckTraits& d);
 // Why a field is not available ("needs ..."), for the error message.

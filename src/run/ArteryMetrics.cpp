@@ -150,16 +150,25 @@ std::vector<double> ArteryMetrics::evaluate(const la::Vector& u) {
   // The lumen's area in contact (its slave nodes' reference tributary areas) times the
   // copies of the model that make the whole stent.
   const double area = m_.contact ? m_.contact->contact_area("lumen") * m_.cfg.mesh.stent.symmetry_copies() : 0.0;
+  // The stent against the wall: the largest gap, the outer surface's share off the wall.
   const std::vector<double> xo = current_positions(m_, outer_, u);
-  double gap_max = 0.0, malapposed = 0.0;
-  apposition(xo, u, gap_max, malapposed);
+  const std::vector<double> gaps = wall_gaps(xo, u);
+  double gap_max = 0.0, a_all = 0.0, a_off = 0.0;
+  for (std::size_t i = 0; i < gaps.size(); ++i) {
+    gap_max = std::max(gap_max, gaps[i]);
+    a_all += outer_area_[i];
+    if (gaps[i] > threshold_) a_off += outer_area_[i];
+  }
+  const double malapposed = a_all > 0.0 ? 100.0 * a_off / a_all : 0.0;
   now_ = {sum / static_cast<double>(stations_.size()), dmin, area, gap_max, malapposed, prolapse(x, xo)};
   if (D_mean0_ < 0.0) D_mean0_ = now_[0], D_min0_ = now_[1];
   layer_stresses(u, now_);
   return now_;
 }
 
-void ArteryMetrics::apposition(const std::vector<double>& xo, const la::Vector& u, double& gap_max, double& malapposed) const {
+std::vector<double> ArteryMetrics::wall_gaps(const la::Vector& u) const { return wall_gaps(current_positions(m_, outer_, u), u); }
+
+std::vector<double> ArteryMetrics::wall_gaps(const std::vector<double>& xo, const la::Vector& u) const {
   const std::vector<double> xw = current_positions(m_, wall_->nodes(), u);
   wall_->build(xw);
   const auto& facets = wall_->facets();
@@ -178,27 +187,22 @@ void ArteryMetrics::apposition(const std::vector<double>& xo, const la::Vector& 
     const double along = r[0] * fr.n[0] + r[1] * fr.n[1] + r[2] * fr.n[2];
     return inside ? along : std::copysign(std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]), along);
   };
-  double a_all = 0.0, a_off = 0.0;
-  gap_max = 0.0;
+  std::vector<double> d(outer_.size(), 0.0);
   for (std::size_t i = 0; i < outer_.size(); ++i) {
     const double* xs = &xo[3 * i];
     const MasterSurface::Hit h = wall_->closest(3, xs, xw);
-    double d = 0.0;
     if (h.facet >= 0) {
-      d = distance(static_cast<std::size_t>(h.facet), xs);
+      d[i] = distance(static_cast<std::size_t>(h.facet), xs);
     } else {  // farther from the wall than the search radius: the nearest of every facet
       double best = HUGE_VAL;
       for (std::size_t f = 0; f < facets.size(); ++f) {
         const double df = distance(f, xs);
         if (std::abs(df) < std::abs(best)) best = df;
       }
-      d = facets.empty() ? 0.0 : best;
+      d[i] = facets.empty() ? 0.0 : best;
     }
-    gap_max = std::max(gap_max, d);
-    a_all += outer_area_[i];
-    if (d > threshold_) a_off += outer_area_[i];
   }
-  malapposed = a_all > 0.0 ? 100.0 * a_off / a_all : 0.0;
+  return d;
 }
 
 double ArteryMetrics::prolapse(const std::vector<double>& xl, const std::vector<double>& xo) const {

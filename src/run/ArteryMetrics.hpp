@@ -56,6 +56,10 @@ class ArteryMetrics {
   std::vector<double> evaluate(const la::Vector& u);
   // The paragraph of the stage's end (rank 0 writes; every rank may call).
   void table(std::ostream& log) const;
+  // The outer nodes' signed distances to the lumen at u (collective; the same on every
+  // rank), in the order of outer_nodes().
+  std::vector<double> wall_gaps(const la::Vector& u) const;
+  const std::vector<GId>& outer_nodes() const { return outer_; }
   void save(std::map<std::string, double>& out, const std::string& prefix) const;
   bool restore(const std::map<std::string, double>& in, const std::string& prefix);
 
@@ -69,8 +73,8 @@ class ArteryMetrics {
     std::vector<double> w;         // symmetry weights
   };
   void layer_stresses(const la::Vector& u, std::vector<double>& out) const;  // collective: max, p99 per layer
-  // Largest signed distance of the outer nodes to the lumen, and the malapposed share [%].
-  void apposition(const std::vector<double>& x_outer, const la::Vector& u, double& gap_max, double& malapposed) const;
+  // Signed distances of the outer nodes (at x_outer) to the lumen.
+  std::vector<double> wall_gaps(const std::vector<double>& x_outer, const la::Vector& u) const;
   double prolapse(const std::vector<double>& x_lumen, const std::vector<double>& x_outer) const;
 
   const Model& m_;

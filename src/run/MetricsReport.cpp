@@ -171,6 +171,13 @@ std::vector<std::string> MetricsReport::radius_columns() const {
   return c;
 }
 
+bool MetricsReport::wall_gaps(const la::Vector& u, std::vector<GId>& nodes, std::vector<double>& gaps) const {
+  if (!artery_) return false;
+  nodes = artery_->outer_nodes();
+  gaps = artery_->wall_gaps(u);
+  return true;
+}
+
 std::vector<std::string> MetricsReport::diameter_columns() const {
   std::vector<std::string> c = rings_ ? rings_->diameter_columns() : std::vector<std::string>{};
   if (artery_) {

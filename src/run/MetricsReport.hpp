@@ -43,6 +43,9 @@ class MetricsReport {
   std::vector<std::string> radius_columns() const;
   std::vector<std::string> stress_columns() const;
   std::vector<std::string> diameter_columns() const;  // a generated stent's outer diameters
+  // A generated stent in a generated artery: its outer nodes and their signed distances to
+  // the lumen at u (collective, the same on every rank); false (nothing) otherwise.
+  bool wall_gaps(const la::Vector& u, std::vector<GId>& nodes, std::vector<double>& gaps) const;
 
  private:
   int col(const std::string& name) const;

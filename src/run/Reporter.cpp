@@ -429,10 +429,23 @@ void Reporter::write_frame(XdmfWriter& w, double t, const la::Vector& u, bool ob
   const std::vector<std::vector<double>> nodal =
       recovered.empty() ? std::vector<std::vector<double>>{}
                         : recover_on_rows(m_.mesh, comm, w.node_rows(), cf.cell_ids, recovered, rk, cf.volume);
+  // The malapposition map: every rank has the outer nodes' distances; each fills its rows.
+  std::vector<double> wall_gap;
+  std::vector<GId> outer;
+  std::vector<double> gaps;
+  if (o.wants("wall_gap") && metrics_ && metrics_->wall_gaps(u, outer, gaps)) {
+    const RowRange rows = w.node_rows();
+    wall_gap.assign(rows.size(), std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t i = 0; i < outer.size(); ++i) {
+      const auto g = static_cast<std::size_t>(outer[i]);
+      if (g >= rows.begin && g < rows.begin + rows.size()) wall_gap[g - rows.begin] = gaps[i];
+    }
+  }
   std::string failure;
   try {
     w.begin_step(t);
     write_node_fields(w, u, nodal);
+    if (!wall_gap.empty()) w.node_field("wall_gap", 1, wall_gap);
     for (const CellColumn& c : cols) {
       w.cell_field(c.name, c.k, c.rows);
       if (c.name == "J" && o.wants("mpi_rank")) w.cell_field("mpi_rank", 1, owner);

@@ -4,7 +4,7 @@
 # deflated; and the same deck with the wall's pair left out of the stages (the stent
 # expanded freely, the artery untouched).
 # Checks: both runs end at t = 1.5; the stent against the wall (gap, malapposition,
-# prolapse: below); the lumen's nodes never penetrate the stent (smallest
+# prolapse, the wall_gap field: below); the lumen's nodes never penetrate the stent (smallest
 # gap >= -1e-9 mm) and rest on it after deflation; the lumen opened (minimum lumen diameter
 # from 3.1 to more than 3.4 mm) but not beyond the stent (mean lumen diameter <= the
 # stent's outer D_max); the wall pushes the stent back: its recoil exceeds the free
@@ -14,7 +14,10 @@ set -u
 . "$(dirname "$0")/lib.sh"
 stentor=$1 work=$2 deck=$3
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || fail "cannot make $work"
-"$stentor" --output out "$deck" > log.txt 2>&1 || { tail -30 log.txt; fail "the run failed"; }
+# The run with the malapposition map written (its last frame is checked below).
+sed 's|<Parameter name="fields" type="bool" value="false"/>|<Parameter name="field list" type="string" value="displacement wall_gap"/><Parameter name="every" type="int" value="1000"/>|' \
+  "$deck" > map.xml
+"$stentor" --output out map.xml > log.txt 2>&1 || { tail -30 log.txt; fail "the run failed"; }
 sed 's|value="balloon, wall"|value="balloon"|' "$deck" > free.xml
 "$stentor" --output free free.xml > free.txt 2>&1 || { tail -30 free.txt; fail "the free run failed"; }
 last() {  # last() CSV COLUMN
@@ -67,4 +70,15 @@ awk -v p="$pf" -v lo="$Dfmin" -v hi="$Dfmax" 'BEGIN { exit !(p >= lo / 2 - 1.55 
   fail "free run: prolapse $pf, not within the stent's radii less 1.55 mm ($Dfmin .. $Dfmax)"
 grep -q "artery (stented segment): lumen D mean 3.1000 -> " log.txt || fail "no artery paragraph in the log"
 grep -q "stent against the wall: largest gap " log.txt || fail "no apposition line in the log"
+# The map: the last frame's wall_gap is defined on the stent's outer nodes only (NaN
+# elsewhere) and its largest value is the metric's.
+/usr/bin/python3 - out/s7_short.h5 "$g" <<'PY' || fail "the wall_gap field"
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+last = max((k for k in f if k.startswith("step_")), key=lambda k: int(k[5:]))
+w = f[last + "/wall_gap"][:]
+n = int(np.sum(~np.isnan(w)))
+print("wall_gap: %d outer nodes of %d, largest %.17g (metric %s)" % (n, len(w), np.nanmax(w), sys.argv[2]))
+sys.exit(0 if 0 < n < len(w) and abs(np.nanmax(w) - float(sys.argv[2])) <= 1e-12 else 1)
+PY
 echo "PASS"
