@@ -23,7 +23,7 @@ node held in z.
         n.u = 0; FEBio eliminates the parent dof, no penalty);
       * the balloon: a thin tube of hex8 (radii R0 - 0.02 .. R0, theta -2 .. 24.5 deg in NT
         cells, one cell axially, longer than the stent) of a neo-Hookean with E = 1e-6
-        (its own forces are < 1e-9 N), every node prescribed: u = (X, Y, 0) dR/R0 ramped
+        (its own forces: about 1e-8 N), every node prescribed: u = (X, Y, 0) dR/R0 ramped
         linearly (the tube scaled radially: its outer facets' vertices on the cylinder of
         radius R0 + t dR; chord sag R (dtheta)^2 / 8 = 7e-7 mm at NT = 256);
       * contact: C = sliding-node-on-facet (the default: primary = `inner`'s nodes, secondary
