@@ -1618,6 +1618,7 @@ void DeckReader::read_linear(const ParameterList& pl) {
   check_list(pl, "Linear Solver", {&ls});
   auto& l = cfg_.linear;
   l.method = get_string(pl, ls, "method");
+  l.direct_solver = get_string(pl, ls, "direct solver");
   l.preconditioner = get_string(pl, ls, "preconditioner");
   l.tolerance = get_double(pl, ls, "tolerance");
   l.max_iterations = get_int(pl, ls, "max iterations");
@@ -1633,8 +1634,9 @@ void DeckReader::read_linear(const ParameterList& pl) {
     fail("'Linear Solver->preconditioner' = muelu needs Trilinos with MueLu, which this build lacks; use schwarz");
 #endif
 #ifndef STENTOR_HAVE_AMESOS2
-  if (l.method == "direct")
-    fail("'Linear Solver->method' = direct needs Trilinos with Amesos2, which this build lacks; use gmres");
+  if (l.method == "direct" && l.direct_solver != "mumps")
+    fail("'Linear Solver->method' = direct needs Trilinos with Amesos2 for KLU2, which this build lacks; use gmres, or "
+         "'direct solver' = mumps");
   if (l.subdomain_solver == "KLU2")
     fail("'Linear Solver->subdomain solver' = KLU2 needs Trilinos with Amesos2, which this build lacks; use RILUK or ILUT");
 #endif

@@ -201,6 +201,7 @@ struct NewtonConfig {
 
 struct LinearSolverConfig {
   std::string method = "gmres";          // "Linear Solver"->"method": "gmres" | "direct"
+  std::string direct_solver = "auto";    // "direct solver": "auto" | "klu2" | "mumps"
   std::string preconditioner = "auto";   // "preconditioner": "auto" | "schwarz" | "muelu" | "none" (auto: muelu if built)
   double tolerance = 1e-10;              // "tolerance": relative residual of each linear solve
   int max_iterations = 1000;             // "max iterations"

@@ -662,7 +662,13 @@ std::vector<ListSpec> build_schema() {
         "Linear Solver", "Linear Solver",
         "Linear solves inside Newton. The optional sublists `Belos`, `Ifpack2`, `MueLu` and "
         "`Amesos2` are passed to Trilinos unchanged and override the values here.",
-        {str("method", "gmres", "Krylov (Belos GMRES) or sparse direct (Amesos2).").one_of({"gmres", "direct"}),
+        {str("method", "gmres", "Krylov (Belos GMRES) or sparse direct (`direct solver`).").one_of({"gmres", "direct"}),
+         str("direct solver", "auto",
+             "The sparse direct solver of `method` = direct. `klu2`: Amesos2's KLU2, a serial LU: on several ranks "
+             "every Newton iteration gathers the matrix on one rank. `mumps`: MUMPS (the MPI build of Debian's "
+             "libmumps-dev), which factors the matrix across the ranks with a fill-reducing ordering (docs/solvers.md). "
+             "`auto`: mumps on several ranks, klu2 on one.")
+             .one_of({"auto", "klu2", "mumps"}),
          str("preconditioner", "auto",
              "Additive Schwarz (Ifpack2), algebraic multigrid (MueLu) or none. `auto`: `muelu` where "
              "this build's Trilinos has MueLu (Debian's does), else `schwarz`; the log's `solver` line says which.")

@@ -15,6 +15,7 @@
 
 #include "parallel/Agreement.hpp"
 #include "solver/MueLuPreconditioner.hpp"
+#include "solver/MumpsSolver.hpp"
 #include "solver/ReusePolicy.hpp"
 #include "solver/SolverParams.hpp"
 #include <Teuchos_DefaultMpiComm.hpp>
@@ -43,6 +44,8 @@ struct LinearSolver::Impl {
   la::RCP<la::Operator> mg;  // muelu (a MueLu::TpetraOperator)
   bool prec_initialized = false;
   bool auto_chosen = false;  // preconditioner = auto, resolved for this build
+  bool use_mumps = false;    // the direct method's solver: MUMPS (else KLU2)
+  std::unique_ptr<MumpsSolver> mumps;
 #ifdef STENTOR_HAVE_AMESOS2
   la::RCP<Amesos2::Solver<la::CrsMatrix, la::MV>> direct;
   la::RCP<la::CrsMatrix> Ac;  // A gathered on rank 0, on a one-process communicator (more than one rank)
@@ -170,9 +173,19 @@ LinearSolver::LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la
     impl_->auto_chosen = true;
   }
   impl_->belos_params = belos_parameters(cfg);
+  // The direct solver: MUMPS on several ranks (it factors across them), KLU2 on one
+  // (`auto`), or the one asked for.
+#ifdef STENTOR_HAVE_MUMPS
+  impl_->use_mumps = cfg.direct_solver == "mumps" || (cfg.direct_solver == "auto" && comm->getSize() > 1);
+#else
+  if (cfg.direct_solver == "mumps")
+    throw InputError("'Linear Solver->direct solver' = mumps needs MUMPS (Debian's libmumps-dev), which this build lacks; use klu2");
+#endif
 #ifndef STENTOR_HAVE_AMESOS2
-  if (cfg.method == "direct")
-    throw InputError("Linear Solver->method: 'direct' needs Trilinos with Amesos2, which this build lacks; use 'gmres'");
+  if (cfg.direct_solver == "klu2")
+    throw InputError("'Linear Solver->direct solver' = klu2 needs Trilinos with Amesos2, which this build lacks");
+  if (!impl_->use_mumps && cfg.method == "direct")
+    throw InputError("Linear Solver->method: 'direct' needs Trilinos with Amesos2 or MUMPS, which this build lacks; use 'gmres'");
 #endif
 }
 
@@ -238,7 +251,10 @@ bool LinearSolver::fall_back(const std::string& why) {
     m.cfg.preconditioner = "schwarz";
     m.cfg.subdomain_solver = "RILUK";
   } else {
-#ifdef STENTOR_HAVE_AMESOS2
+#if defined(STENTOR_HAVE_AMESOS2) || defined(STENTOR_HAVE_MUMPS)
+#ifndef STENTOR_HAVE_AMESOS2
+    if (!m.use_mumps) return false;
+#endif
     m.cfg.method = "direct";
 #else
     return false;
@@ -264,6 +280,13 @@ void LinearSolver::setup_once(const la::RCP<la::CrsMatrix>& A) {
   const bool same = (m.A.get() == A.get());
   m.A = A;
   m.A_last = A;
+  if (m.cfg.method == "direct" && m.use_mumps) {
+#ifdef STENTOR_HAVE_MUMPS
+    if (!m.mumps) m.mumps = std::make_unique<MumpsSolver>(m.comm);
+    m.mumps->factor(*A);
+#endif
+    return;
+  }
   if (m.cfg.method == "direct") {
 #ifdef STENTOR_HAVE_AMESOS2
     if (m.comm->getSize() > 1) {
@@ -413,6 +436,14 @@ LinearSolver::Result LinearSolver::solve_once(const la::Vector& b, la::Vector& x
   Impl& m = *impl_;
   Result res;
   x.putScalar(0.0);
+  if (m.cfg.method == "direct" && m.use_mumps) {
+#ifdef STENTOR_HAVE_MUMPS
+    m.mumps->solve(b, x);
+#endif
+    res.converged = true;
+    res.iterations = 1;
+    return res;
+  }
   if (m.cfg.method == "direct") {
 #ifdef STENTOR_HAVE_AMESOS2
     if (m.gathered) {
@@ -481,6 +512,7 @@ LinearSolver::Result LinearSolver::solve_once(const la::Vector& b, la::Vector& x
 
 std::string LinearSolver::description() const {
   const auto& c = impl_->cfg;
+  if (c.method == "direct" && impl_->use_mumps) return "direct (MUMPS, " + std::to_string(impl_->comm->getSize()) + " rank(s))";
   if (c.method == "direct") return "direct (Amesos2 KLU2)";
   std::ostringstream tol;
   tol << c.tolerance;

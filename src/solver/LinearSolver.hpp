@@ -1,15 +1,16 @@
 // The linear solve inside each Newton iteration: Belos GMRES preconditioned by MueLu
 // (smoothed aggregation; the default where Trilinos has it) or Ifpack2 additive Schwarz
-// (ILU subdomain solves), or a direct solve (Amesos2 KLU2). The matrix graph never
-// changes, so symbolic work (Schwarz overlap, ILU pattern, KLU symbolic factorization)
-// is done once; numeric work once per Newton iteration.
+// (ILU subdomain solves), or a direct solve (Amesos2 KLU2, or MUMPS across the ranks:
+// solver/MumpsSolver.hpp). The matrix graph never changes, so symbolic work (Schwarz
+// overlap, ILU pattern, KLU symbolic factorization, MUMPS analysis) is done once; numeric
+// work once per Newton iteration.
 //
 // Fallback: when the preconditioner set-up or a solve throws on any rank (e.g. MueLu's
 // "damping factor needs to be finite" on a matrix with zero diagonal entries, an ILU
 // breakdown, Belos's "residual norms is NaN"), or a GMRES solve ends with a non-finite
 // residual or solution, or gains less than one digit (relative residual > 0.1) in its first
 // cycle with a preconditioner built for this very matrix, the solver moves one step down the chain
-// muelu -> schwarz (RILUK) -> direct (KLU2) for the rest of the run, solves the same
+// muelu -> schwarz (RILUK) -> direct (`direct solver`) for the rest of the run, solves the same
 // system again, and prints one warning line on rank 0. On several ranks the ranks vote
 // after every set-up and solve (parallel/Agreement.hpp), so all of them take the same
 // branch, whichever rank threw; a rank stuck inside a collective of the package ends the
