@@ -666,8 +666,9 @@ std::vector<ListSpec> build_schema() {
          str("direct solver", "auto",
              "The sparse direct solver of `method` = direct. `klu2`: Amesos2's KLU2, a serial LU: on several ranks "
              "every Newton iteration gathers the matrix on one rank. `mumps`: MUMPS (the MPI build of Debian's "
-             "libmumps-dev), which factors the matrix across the ranks with a fill-reducing ordering (docs/solvers.md). "
-             "`auto`: mumps on several ranks, klu2 on one.")
+             "libmumps-dev), which factors the matrix across the ranks with a fill-reducing ordering: faster on "
+             "several ranks and in 3D, but on several ranks its results vary at round-off from run to run (a restart "
+             "there is not bit for bit; docs/solvers.md). `auto`: klu2.")
              .one_of({"auto", "klu2", "mumps"}),
          str("preconditioner", "auto",
              "Additive Schwarz (Ifpack2), algebraic multigrid (MueLu) or none. `auto`: `muelu` where "

@@ -173,10 +173,10 @@ LinearSolver::LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la
     impl_->auto_chosen = true;
   }
   impl_->belos_params = belos_parameters(cfg);
-  // The direct solver: MUMPS on several ranks (it factors across them), KLU2 on one
-  // (`auto`), or the one asked for.
+  // The direct solver: KLU2 unless MUMPS is asked for (`auto` is KLU2: MUMPS' results on
+  // several ranks vary at round-off from run to run, docs/solvers.md).
 #ifdef STENTOR_HAVE_MUMPS
-  impl_->use_mumps = cfg.direct_solver == "mumps" || (cfg.direct_solver == "auto" && comm->getSize() > 1);
+  impl_->use_mumps = cfg.direct_solver == "mumps";
 #else
   if (cfg.direct_solver == "mumps")
     throw InputError("'Linear Solver->direct solver' = mumps needs MUMPS (Debian's libmumps-dev), which this build lacks; use klu2");

@@ -5,7 +5,9 @@
 // choice: METIS or SCOTCH/PORD), factors it across the ranks, and solves with the
 // right-hand side gathered on rank 0 and the solution scattered back (vectors only: the
 // factors stay distributed). The analysis (ordering, symbolic factorization) is done once per
-// nonzero pattern, the numeric factorization at every setup.
+// nonzero pattern, the numeric factorization at every setup. On several ranks MUMPS sums the
+// fronts' contributions in the order they arrive, so its results vary at round-off from run
+// to run (one rank: repeatable); hence it is asked for, not the default.
 //
 // Failures (a singular matrix, MUMPS out of its workspace after one retry with four times
 // the relaxation) throw std::runtime_error with MUMPS' INFOG(1) and INFOG(2) named, on every
