@@ -16,6 +16,7 @@
 #include "parallel/Agreement.hpp"
 #include "solver/MueLuPreconditioner.hpp"
 #include "solver/MumpsSolver.hpp"
+#include "solver/RootGather.hpp"
 #include "solver/ReusePolicy.hpp"
 #include "solver/SolverParams.hpp"
 #include <Teuchos_DefaultMpiComm.hpp>
@@ -51,45 +52,39 @@ struct LinearSolver::Impl {
   la::RCP<la::CrsMatrix> Ac;  // A gathered on rank 0, on a one-process communicator (more than one rank)
   bool gathered = false;
 
-  la::RCP<la::CrsMatrix> contiguous_copy(const la::CrsMatrix& A) const {
-    const auto om = A.getRowMap();
-    const auto inv = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
-    auto cmap = Teuchos::rcp(new la::Map(inv, om->getNodeNumElements(), 0, comm));
-    // New global id of every column, carried as doubles (exact below 2^53).
-    la::Vector ids(om), ids_col(A.getColMap());
-    {
-      auto h = ids.getLocalViewHost(Tpetra::Access::OverwriteAll);
-      for (size_t i = 0; i < om->getNodeNumElements(); ++i) h(i, 0) = static_cast<double>(cmap->getGlobalElement(static_cast<la::LO>(i)));
-    }
-    ids_col.doImport(ids, la::Import(om, A.getColMap()), Tpetra::INSERT);
-    auto ch = ids_col.getLocalViewHost(Tpetra::Access::ReadOnly);
+  std::unique_ptr<RootGather> rows;  // the gathered path's numbering
+
+  // A gathered on rank 0 as a matrix of a one-process communicator, rows and columns in
+  // the contiguous numbering (null on the other ranks). Amesos2's KLU2 (Trilinos 13.2)
+  // solved our distributed systems wrongly (|Ax - b| ~ |b| on 2 ranks, with contiguous or
+  // non-contiguous maps alike), and its multi-process input path even with every row on
+  // rank 0.
+  la::RCP<la::CrsMatrix> gathered_copy(const la::CrsMatrix& A) {
+    if (!rows) rows = std::make_unique<RootGather>(*A.getRowMap(), comm);
+    const std::vector<la::GO> col = rows->column_numbers(A);
+    const auto cmap = rows->contiguous_map();
     auto Ac = Teuchos::rcp(new la::CrsMatrix(cmap, A.getNodeMaxNumRowEntries()));
     std::vector<la::GO> gcols;
     std::vector<la::SC> gvals;
-    for (size_t i = 0; i < om->getNodeNumElements(); ++i) {
+    for (size_t i = 0; i < cmap->getNodeNumElements(); ++i) {
       la::CrsMatrix::local_inds_host_view_type cols;
       la::CrsMatrix::values_host_view_type vals;
       A.getLocalRowView(static_cast<la::LO>(i), cols, vals);
       gcols.resize(cols.extent(0));
       gvals.resize(cols.extent(0));
       for (size_t k = 0; k < cols.extent(0); ++k) {
-        gcols[k] = static_cast<la::GO>(ch(cols(k), 0));
+        gcols[k] = col[static_cast<size_t>(cols(k))];
         gvals[k] = vals(k);
       }
-      Ac->insertGlobalValues(cmap->getGlobalElement(static_cast<la::LO>(i)), Teuchos::ArrayView<const la::GO>(gcols),
-                             Teuchos::ArrayView<const la::SC>(gvals));
+      Ac->insertGlobalValues(rows->row(i), Teuchos::ArrayView<const la::GO>(gcols), Teuchos::ArrayView<const la::SC>(gvals));
     }
     Ac->fillComplete(cmap, cmap);
-    // Everything on rank 0 (KLU2 is a serial solver; its distributed input path gives
-    // wrong answers here), still numbered 0..N-1.
-    const size_t n = cmap->getGlobalNumElements();
+    const size_t n = rows->size();
     auto map0 = Teuchos::rcp(new la::Map(n, comm->getRank() == 0 ? n : 0, 0, comm));
     auto A0 = Teuchos::rcp(new la::CrsMatrix(map0, 0));
     A0->doImport(*Ac, la::Import(cmap, map0), Tpetra::INSERT);
     A0->fillComplete(map0, map0);
     if (comm->getRank() != 0) return Teuchos::null;
-    // On rank 0, the same rows as a matrix of a one-process communicator: KLU2's
-    // multi-process input path gave wrong answers even with every row on rank 0.
     auto self = Teuchos::rcp(new Teuchos::MpiComm<int>(MPI_COMM_SELF));
     auto smap = Teuchos::rcp(new la::Map(n, 0, self));
     auto As = Teuchos::rcp(new la::CrsMatrix(smap, A0->getNodeMaxNumRowEntries()));
@@ -290,10 +285,8 @@ void LinearSolver::setup_once(const la::RCP<la::CrsMatrix>& A) {
   if (m.cfg.method == "direct") {
 #ifdef STENTOR_HAVE_AMESOS2
     if (m.comm->getSize() > 1) {
-      // Amesos2's KLU2 (Trilinos 13.2) solved our distributed systems wrongly (measured:
-      // |Ax - b| ~ |b| on 2 ranks, with contiguous or non-contiguous maps alike). Factor
-      // a copy gathered on rank 0 instead: renumbered contiguously, then imported.
-      m.Ac = m.contiguous_copy(*A);
+      // Factor a copy gathered on rank 0 (Impl::gathered_copy says why).
+      m.Ac = m.gathered_copy(*A);
       m.gathered = true;
       if (m.Ac.is_null()) return;  // ranks other than 0 only send and receive
       m.direct = Amesos2::create<la::CrsMatrix, la::MV>("KLU2", m.Ac);
@@ -447,39 +440,21 @@ LinearSolver::Result LinearSolver::solve_once(const la::Vector& b, la::Vector& x
   if (m.cfg.method == "direct") {
 #ifdef STENTOR_HAVE_AMESOS2
     if (m.gathered) {
-      // Renumber b contiguously (same local rows, same order), gather it on rank 0,
-      // solve there, and send the solution back the same way.
-      const auto om = b.getMap();
-      const auto inv = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
-      auto cmap = Teuchos::rcp(new la::Map(inv, om->getNodeNumElements(), 0, m.comm));
-      const size_t n = cmap->getGlobalNumElements();
-      auto map0 = Teuchos::rcp(new la::Map(n, m.comm->getRank() == 0 ? n : 0, 0, m.comm));
-      la::Vector bc(cmap), xc(cmap), b0(map0), x0(map0);
-      {
-        auto bh = b.getLocalViewHost(Tpetra::Access::ReadOnly);
-        auto ch = bc.getLocalViewHost(Tpetra::Access::OverwriteAll);
-        for (size_t i = 0; i < b.getLocalLength(); ++i) ch(i, 0) = bh(i, 0);
-      }
-      const la::Import to0(cmap, map0);
-      b0.doImport(bc, to0, Tpetra::INSERT);
+      // b gathered on rank 0 in the contiguous numbering, solved there, x sent back.
+      std::vector<double> v = m.rows->to_root(b);
       if (!m.Ac.is_null()) {
         la::Vector bs(m.Ac->getRowMap()), xs(m.Ac->getRowMap());
         {
-          auto h0 = b0.getLocalViewHost(Tpetra::Access::ReadOnly);
           auto hs = bs.getLocalViewHost(Tpetra::Access::OverwriteAll);
-          for (size_t i = 0; i < n; ++i) hs(i, 0) = h0(i, 0);
+          for (size_t i = 0; i < v.size(); ++i) hs(i, 0) = v[i];
         }
         m.direct->setX(Teuchos::rcpFromRef(static_cast<la::MV&>(xs)));
         m.direct->setB(Teuchos::rcpFromRef(static_cast<const la::MV&>(bs)));
         m.direct->solve();
-        auto h0 = x0.getLocalViewHost(Tpetra::Access::OverwriteAll);
         auto hs = xs.getLocalViewHost(Tpetra::Access::ReadOnly);
-        for (size_t i = 0; i < n; ++i) h0(i, 0) = hs(i, 0);
+        for (size_t i = 0; i < v.size(); ++i) v[i] = hs(i, 0);
       }
-      xc.doExport(x0, to0, Tpetra::INSERT);
-      auto xh = x.getLocalViewHost(Tpetra::Access::OverwriteAll);
-      auto ch = xc.getLocalViewHost(Tpetra::Access::ReadOnly);
-      for (size_t i = 0; i < x.getLocalLength(); ++i) xh(i, 0) = ch(i, 0);
+      m.rows->from_root(v, x);
     } else {
       m.direct->setX(Teuchos::rcpFromRef(static_cast<la::MV&>(x)));
       m.direct->setB(Teuchos::rcpFromRef(static_cast<const la::MV&>(b)));

@@ -9,11 +9,13 @@
 #include <Kokkos_Core.hpp>
 #endif
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "parallel/RawComm.hpp"
+#include "solver/RootGather.hpp"
 
 namespace stentor {
 
@@ -21,10 +23,9 @@ struct MumpsSolver::Impl {
   la::RCP<const la::Comm> comm;
   DMUMPS_STRUC_C id{};
   bool analysed = false;
-  std::vector<MUMPS_INT> irn, jcn;  // the owned rows' triplets, 1-based contiguous ids
+  std::vector<MUMPS_INT> irn, jcn;  // the owned rows' triplets, 1-based contiguous numbers
   std::vector<double> a;
-  la::RCP<const la::Map> cmap, map0;  // contiguous ids (each rank its rows, in order); all rows on rank 0
-  la::RCP<la::Import> to0;
+  std::unique_ptr<RootGather> rows;
   std::vector<double> rhs;  // rank 0: the gathered right-hand side, then the solution
 
   void call(int job, const char* what) {
@@ -55,37 +56,26 @@ struct MumpsSolver::Impl {
   // differ from the last call's on any rank (collective).
   bool triplets(const la::CrsMatrix& A) {
     const auto om = A.getRowMap();
-    const size_t nrows = om->getNodeNumElements();
-    if (cmap.is_null() || cmap->getNodeNumElements() != nrows) {
-      const auto inv = Teuchos::OrdinalTraits<Tpetra::global_size_t>::invalid();
-      cmap = Teuchos::rcp(new la::Map(inv, nrows, 0, comm));
-      const auto n = static_cast<size_t>(cmap->getGlobalNumElements());
-      map0 = Teuchos::rcp(new la::Map(n, comm->getRank() == 0 ? n : 0, 0, comm));
-      to0 = Teuchos::rcp(new la::Import(cmap, map0));
-    }
-    la::Vector ids(om), ids_col(A.getColMap());
-    {
-      auto h = ids.getLocalViewHost(Tpetra::Access::OverwriteAll);
-      for (size_t i = 0; i < nrows; ++i) h(i, 0) = static_cast<double>(cmap->getGlobalElement(static_cast<la::LO>(i)));
-    }
-    ids_col.doImport(ids, la::Import(om, A.getColMap()), Tpetra::INSERT);
+    int refit = (!rows || !rows->fits(*om)) ? 1 : 0, any_refit = 0;  // a collective decision
+    MPI_Allreduce(&refit, &any_refit, 1, MPI_INT, MPI_MAX, raw_mpi_comm(*comm));
+    if (any_refit) rows = std::make_unique<RootGather>(*om, comm);
+    const std::vector<la::GO> col = rows->column_numbers(A);
     std::vector<MUMPS_INT> ni, nj;
     a.clear();
-    auto ch = ids_col.getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (size_t i = 0; i < nrows; ++i) {
+    for (size_t i = 0; i < om->getNodeNumElements(); ++i) {
       la::CrsMatrix::local_inds_host_view_type cols;
       la::CrsMatrix::values_host_view_type vals;
       A.getLocalRowView(static_cast<la::LO>(i), cols, vals);
       for (size_t k = 0; k < cols.extent(0); ++k) {
-        ni.push_back(static_cast<MUMPS_INT>(cmap->getGlobalElement(static_cast<la::LO>(i)) + 1));
-        nj.push_back(static_cast<MUMPS_INT>(ch(cols(k), 0) + 1.0));
+        ni.push_back(static_cast<MUMPS_INT>(rows->row(i) + 1));
+        nj.push_back(static_cast<MUMPS_INT>(col[static_cast<size_t>(cols(k))] + 1));
         a.push_back(vals(k));
       }
     }
     int changed = (ni != irn || nj != jcn) ? 1 : 0, any = 0;
     MPI_Allreduce(&changed, &any, 1, MPI_INT, MPI_MAX, raw_mpi_comm(*comm));
     irn.swap(ni), jcn.swap(nj);
-    id.n = static_cast<MUMPS_INT>(cmap->getGlobalNumElements());
+    id.n = static_cast<MUMPS_INT>(rows->size());
     id.nnz_loc = static_cast<MUMPS_INT8>(a.size());
     id.irn_loc = irn.data();
     id.jcn_loc = jcn.data();
@@ -132,31 +122,12 @@ void MumpsSolver::factor(const la::CrsMatrix& A) {
 
 void MumpsSolver::solve(const la::Vector& b, la::Vector& x) {
   Impl& m = *impl_;
-  la::Vector bc(m.cmap), b0(m.map0), x0(m.map0), xc(m.cmap);
-  {
-    auto bh = b.getLocalViewHost(Tpetra::Access::ReadOnly);
-    auto ch = bc.getLocalViewHost(Tpetra::Access::OverwriteAll);
-    for (size_t i = 0; i < b.getLocalLength(); ++i) ch(i, 0) = bh(i, 0);
-  }
-  b0.doImport(bc, *m.to0, Tpetra::INSERT);
-  const size_t n = m.map0->getNodeNumElements();  // all rows on rank 0, none elsewhere
-  m.rhs.resize(n);
-  {
-    auto h = b0.getLocalViewHost(Tpetra::Access::ReadOnly);
-    for (size_t i = 0; i < n; ++i) m.rhs[i] = h(i, 0);
-  }
+  m.rhs = m.rows->to_root(b);  // all rows on rank 0, none elsewhere
   m.id.nrhs = 1;
   m.id.lrhs = m.id.n;
   m.id.rhs = m.rhs.data();
   m.call(3, "solve");
-  {
-    auto h = x0.getLocalViewHost(Tpetra::Access::OverwriteAll);
-    for (size_t i = 0; i < n; ++i) h(i, 0) = m.rhs[i];
-  }
-  xc.doExport(x0, *m.to0, Tpetra::INSERT);
-  auto xh = x.getLocalViewHost(Tpetra::Access::OverwriteAll);
-  auto ch = xc.getLocalViewHost(Tpetra::Access::ReadOnly);
-  for (size_t i = 0; i < x.getLocalLength(); ++i) xh(i, 0) = ch(i, 0);
+  m.rows->from_root(m.rhs, x);
 }
 
 }  // namespace stentor
