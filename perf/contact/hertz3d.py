@@ -344,19 +344,6 @@ def write_feb(a):
 
 
 # ---------------------------------------------------------------- measurements
-def read(path):
-    try:
-        with open(path, errors="replace") as f:
-            return f.read()
-    except OSError:
-        return ""
-
-
-def time_line(log):
-    m = re.findall(r"TIME ([\d.]+) ([\d.]+) ([\d.]+) (\d+)", febio_tools.ESCAPES.sub("", read(log)))
-    return m[-1] if m else None
-
-
 def finish(f, E, nu, R, delta):
     h = hertz(E, nu, R, delta=delta, F=f["F"] if f.get("F") else None)
     f["a_rd"] = "%.5f" % h["a_d"]
@@ -394,7 +381,7 @@ def measure_stentor(res, log):
     mu, lam = 2 * C1, 4 * D
     nu = lam / (2 * (lam + mu))
     E = mu * 2 * (1 + nu)
-    text = febio_tools.ESCAPES.sub("", read(log))
+    text = febio_tools.ESCAPES.sub("", febio_tools.read_text(log))
     m = re.search(r"mesh\s+\S+: 3D, (\d+) nodes, (\d+) cells", text)
     if m:
         f["nodes"], f["cells"] = m.group(1), m.group(2)
@@ -403,10 +390,10 @@ def measure_stentor(res, log):
     f["status"] = "yes" if m else "no"
     m = re.search(r"^\s+mesh\s+([\d.]+) s", text, re.M)
     f["mesh"] = m.group(1) if m else "?"
-    t = time_line(log)
+    t = febio_tools.time_line(text)
     if t:
         f["wall"] = t[0]
-    hist = read(os.path.join(res, "hertz3d_history.csv")).splitlines()
+    hist = febio_tools.read_text(os.path.join(res, "hertz3d_history.csv")).splitlines()
     if len(hist) < 2 or f["status"] != "yes":
         return finish(f, E, nu, 1.0, delta)
     head = hist[0].split(",")
@@ -446,18 +433,13 @@ def tri_r2_integral(p):
 
 
 def last_record(path):
-    """{id: value} of the last record of an FEBio log-file data file (FECore/DataRecord.cpp)."""
-    blocks = read(path).split("*Step")
-    if len(blocks) < 2:
+    """(time, {id: value}) of the last record of an FEBio log-file data file; (None, None)
+    without one."""
+    recs = febio_tools.records(path)
+    if not recs:
         return None, None
-    lines = blocks[-1].splitlines()
-    tm = re.search(r"\*Time\s*=\s*(\S+)", blocks[-1])
-    rows = {}
-    for l in lines[1:]:
-        if l.strip() and not l.startswith("*"):
-            parts = re.split(r"[,\s]+", l.strip())
-            rows[int(parts[0])] = float(parts[1])
-    return (float(tm.group(1)) if tm else None), rows
+    tm, rows = recs[-1]
+    return tm, {k: v[0] for k, v in rows.items()}
 
 
 def measure_febio(run, log):
@@ -468,8 +450,8 @@ def measure_febio(run, log):
     E, nu, R, delta = geo["E"], geo["nu"], geo["R"], geo["delta"]
     f["nodes"], f["cells"] = str(geo["nodes"]), str(geo["cells"])
     f["mesh"] = "-"
-    flog = read(base + ".log")
-    screen = febio_tools.ESCAPES.sub("", read(log))
+    flog = febio_tools.read_text(base + ".log")
+    screen = febio_tools.ESCAPES.sub("", febio_tools.read_text(log))
     both = screen + "\n" + flog
     normal = "N O R M A L   T E R M I N A T I O N" in both
     f["status"] = "yes" if normal else "no"
@@ -477,7 +459,7 @@ def measure_febio(run, log):
     f["newton"] = its[-1] if its and normal else "failed"
     # augmentations: FEBio prints the contact's table once per augmentation
     f["aug"] = str(len(re.findall(r"sliding interface # \d+", flog or screen)))
-    t = time_line(log)
+    t = febio_tools.time_line(screen)
     if t:
         f["wall"] = t[0]
     if not normal:
@@ -505,20 +487,6 @@ def measure_febio(run, log):
     return finish(f, E, nu, R, delta)
 
 
-def same_mesh(h5file, facets):
-    """Stentor's mesh (its HDF5 output) against the one written into the .feb: node count,
-    largest coordinate difference in the same numbering, cell count."""
-    import h5py
-    g = json.load(open(facets))
-    with h5py.File(h5file, "r") as h:
-        X = h["/mesh/coordinates"][()]
-        ncell = len(h["/mesh/cell_block"][()])
-    if len(X) != len(g["x"]) or ncell != g["cells"]:
-        return "different meshes: Stentor %d nodes, %d cells; .feb %d nodes, %d tets" % (len(X), ncell, len(g["x"]), g["cells"])
-    d = max(abs(X[i][c] - g["x"][i][c]) for i in range(len(X)) for c in range(3))
-    return "same mesh: %d nodes, %d tets, largest coordinate difference %.1e" % (len(X), ncell, d)
-
-
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sp = ap.add_subparsers(dest="cmd")
@@ -529,25 +497,19 @@ def main():
     g.add_argument("--R", type=float, default=1.0)
     g.add_argument("--delta", type=float, default=5e-3)
     g.add_argument("--grade", type=float, default=0.3)
-    d = sp.add_parser("deck")
-    d.add_argument("out")
-    d.add_argument("--geo", required=True)
-    d.add_argument("--size", type=float, default=0.15)
-    d.add_argument("--delta", type=float, default=5e-3)
-    d.add_argument("--R", type=float, default=1.0)
-    d.add_argument("--E", type=float, default=E_DEFAULT)
-    d.add_argument("--nu", type=float, default=NU_DEFAULT)
-    d.add_argument("--steps", type=int, default=2)
+    # The problem, the same for both codes' inputs.
+    problem = argparse.ArgumentParser(add_help=False)
+    problem.add_argument("out")
+    problem.add_argument("--geo", required=True)
+    problem.add_argument("--size", type=float, default=0.15)
+    problem.add_argument("--delta", type=float, default=5e-3)
+    problem.add_argument("--R", type=float, default=1.0)
+    problem.add_argument("--E", type=float, default=E_DEFAULT)
+    problem.add_argument("--nu", type=float, default=NU_DEFAULT)
+    problem.add_argument("--steps", type=int, default=2)
+    d = sp.add_parser("deck", parents=[problem])
     d.add_argument("--solver", default="direct", choices=["direct", "gmres"])
-    fb = sp.add_parser("feb")
-    fb.add_argument("out")
-    fb.add_argument("--geo", required=True)
-    fb.add_argument("--size", type=float, default=0.15)
-    fb.add_argument("--delta", type=float, default=5e-3)
-    fb.add_argument("--R", type=float, default=1.0)
-    fb.add_argument("--E", type=float, default=E_DEFAULT)
-    fb.add_argument("--nu", type=float, default=NU_DEFAULT)
-    fb.add_argument("--steps", type=int, default=2)
+    fb = sp.add_parser("feb", parents=[problem])
     fb.add_argument("--penalty", type=float, default=100.0)
     fb.add_argument("--atol", type=float, default=1e-2)
     fb.add_argument("--gaptol", type=float, default=0.0)
@@ -575,7 +537,7 @@ def main():
     elif a.cmd == "feb":
         write_feb(a)
     elif a.cmd == "same-mesh":
-        print(same_mesh(a.h5, a.facets))
+        print(febio_tools.same_mesh(a.h5, a.facets, "tets"))
     else:
         f = measure_stentor(a.dir, a.log) if a.cmd == "stentor" else measure_febio(a.dir, a.log)
         labels = dict(kv.split("=", 1) for kv in a.label)

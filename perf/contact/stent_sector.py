@@ -306,33 +306,6 @@ def write_feb(a):
 
 
 # ---------------------------------------------------------------- measurements
-def read(path):
-    try:
-        with open(path, errors="replace") as f:
-            return f.read()
-    except OSError:
-        return ""
-
-
-def time_line(log):
-    m = re.findall(r"TIME ([\d.]+) ([\d.]+) ([\d.]+) (\d+)", febio_tools.ESCAPES.sub("", read(log)))
-    return m[-1] if m else None
-
-
-def records(path):
-    """[(time, {id: [values]})] of an FEBio log-file data file."""
-    out = []
-    for b in read(path).split("*Step")[1:]:
-        tm = re.search(r"\*Time\s*=\s*(\S+)", b)
-        rows = {}
-        for l in b.splitlines()[1:]:
-            if l.strip() and not l.startswith("*"):
-                parts = [q for q in re.split(r"[,\s]+", l.strip()) if q]
-                rows[int(parts[0])] = [float(q) for q in parts[1:]]
-        out.append((float(tm.group(1)) if tm else None, rows))
-    return out
-
-
 def outer_diameters(geo, u):
     d = []
     for v in geo["outer"]:
@@ -344,13 +317,13 @@ def outer_diameters(geo, u):
 def measure_stentor(res, log, out, geo_json):
     import h5py
     f = {"code": "Stentor", "status": "failed"}
-    text = febio_tools.ESCAPES.sub("", read(log))
+    text = febio_tools.ESCAPES.sub("", febio_tools.read_text(log))
     m = re.search(r"Summary: (\d+) steps, (\d+) cut-backs, (\d+) Newton iterations", text)
-    t = time_line(log)
+    t = febio_tools.time_line(text)
     f["wall"] = float(t[0]) if t else None
     if m:
         f["newton"], f["cutbacks"] = int(m.group(3)), int(m.group(2))
-    hist = read(os.path.join(res, "sector_history.csv")).splitlines()
+    hist = febio_tools.read_text(os.path.join(res, "sector_history.csv")).splitlines()
     geo = json.load(open(geo_json))
     if m and len(hist) >= 2:
         head = hist[0].split(",")
@@ -373,20 +346,20 @@ def measure_febio(run, log, out, geo_json):
     feb = next(os.path.join(run, n) for n in os.listdir(run) if n.endswith(".feb"))
     base = os.path.splitext(feb)[0]
     geo = json.load(open(geo_json))
-    flog = read(base + ".log")
-    screen = febio_tools.ESCAPES.sub("", read(log))
+    flog = febio_tools.read_text(base + ".log")
+    screen = febio_tools.ESCAPES.sub("", febio_tools.read_text(log))
     both = screen + "\n" + flog
     normal = "N O R M A L   T E R M I N A T I O N" in both
     its = re.findall(r"Total number of equilibrium iterations \.+ : (\d+)", flog or screen)
-    t = time_line(log)
+    t = febio_tools.time_line(screen)
     f["wall"] = float(t[0]) if t else None
     f["aug"] = len(re.findall(r"sliding interface # \d+", flog or screen))
     gaps = re.findall(r"(?:gap function|maximum gap)\s*:\s*(\S+)", flog or screen)
     f["gap"] = float(gaps[-1]) if gaps else None
     if its and normal:
         f["newton"] = int(its[-1])
-    R = records(base + ".R.txt")
-    U = records(base + ".u.txt")
+    R = febio_tools.records(base + ".R.txt")
+    U = febio_tools.records(base + ".u.txt")
     if normal and R and U:
         curve = []
         for tm, rows in R:
@@ -432,18 +405,6 @@ def table(a):
             du = max(abs(f["u"][i][c] - ref["u"][i][c]) for i in range(len(ref["u"])) for c in range(3))
             row["du"] = "%.1e" % du
         print(a.row.format(**row))
-
-
-def same_mesh(h5file, geo_json):
-    import h5py
-    g = json.load(open(geo_json))
-    with h5py.File(h5file, "r") as h:
-        X = h["/mesh/coordinates"][()]
-        ncell = len(h["/mesh/cell_block"][()])
-    if len(X) != len(g["x"]) or ncell != g["cells"]:
-        return "different meshes: Stentor %d nodes, %d cells; .feb %d nodes, %d hex8" % (len(X), ncell, len(g["x"]), g["cells"])
-    d = max(abs(X[i][c] - g["x"][i][c]) for i in range(len(X)) for c in range(3))
-    return "same mesh: %d nodes, %d hex8, largest coordinate difference %.1e mm" % (len(X), ncell, d)
 
 
 def main():
@@ -500,7 +461,7 @@ def main():
     elif a.cmd == "table":
         table(a)
     else:
-        print(same_mesh(a.h5, a.geo))
+        print(febio_tools.same_mesh(a.h5, a.geo, "hex8", " mm"))
 
 
 if __name__ == "__main__":

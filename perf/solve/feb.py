@@ -89,6 +89,7 @@ corners 1 and 2 (and the mid-edge nodes with them); gmsh's tets have not needed 
 """
 import argparse
 import os
+import json
 import re
 import shutil
 import subprocess
@@ -449,6 +450,45 @@ def read_text(path):
         return ""
 
 
+def time_line(screen):
+    """The last `TIME wall user sys maxrss_kb` line of /usr/bin/time in a screen output with
+    its escapes removed, as strings; None without one."""
+    m = re.findall(r"^TIME ([\d.]+) ([\d.]+) ([\d.]+) (\d+)", screen, re.M)
+    return m[-1] if m else None
+
+
+def records(path):
+    """[(time, {id: [values]})], one per record of an FEBio log-file data file
+    (FECore/DataRecord.cpp: "*Step", "*Time", "*Data" lines, then one "id<delim>values" line
+    per item)."""
+    out = []
+    for b in read_text(path).split("*Step")[1:]:
+        tm = re.search(r"\*Time\s*=\s*(\S+)", b)
+        rows = {}
+        for l in b.splitlines()[1:]:
+            if l.strip() and not l.startswith("*"):
+                parts = [q for q in re.split(r"[,\s]+", l.strip()) if q]
+                rows[int(parts[0])] = [float(q) for q in parts[1:]]
+        out.append((float(tm.group(1)) if tm else None, rows))
+    return out
+
+
+def same_mesh(h5file, geo_json, cells, unit=""):
+    """Stentor's mesh (its HDF5 output) against the one a .feb was written from (the JSON
+    beside it: "x", the node coordinates, and "cells", their count): node and cell counts,
+    the largest coordinate difference in the same numbering. `cells`: the cells' name."""
+    import h5py
+    with open(geo_json) as fh:
+        g = json.load(fh)
+    with h5py.File(h5file, "r") as h:
+        X = h["/mesh/coordinates"][()]
+        ncell = len(h["/mesh/cell_block"][()])
+    if len(X) != len(g["x"]) or ncell != g["cells"]:
+        return "different meshes: Stentor %d nodes, %d cells; .feb %d nodes, %d %s" % (len(X), ncell, len(g["x"]), g["cells"], cells)
+    d = max(abs(X[i][c] - g["x"][i][c]) for i in range(len(X)) for c in range(3))
+    return "same mesh: %d nodes, %d %s, largest coordinate difference %.1e%s" % (len(X), ncell, cells, d, unit)
+
+
 def feb_settings(feb):
     """From the .feb: DOF, the reaction file, the linear solver type, the convergence tests."""
     text = read_text(feb)
@@ -472,12 +512,9 @@ def feb_settings(feb):
 def reaction_sum(rxfile):
     """Sum of the last record's values in a node_data file (FECore/DataRecord.cpp: "*Step",
     "*Time", "*Data" lines, then one "id<delim>value" line per node)."""
-    blocks = read_text(rxfile).split("*Step")
-    rows = [l for l in blocks[-1].splitlines()[1:] if l.strip() and not l.startswith("*")]
-    if len(blocks) < 2 or not rows:
-        return "?"
     try:
-        return "%.10g" % sum(float(re.split(r"[,\s]+", l.strip())[1]) for l in rows)
+        recs = records(rxfile)
+        return "%.10g" % sum(v[0] for v in recs[-1][1].values()) if recs and recs[-1][1] else "?"
     except (IndexError, ValueError):
         return "?"
 
@@ -489,9 +526,9 @@ def parse_febio(feb, log):
     screen = ESCAPES.sub("", read_text(log))
     flog = read_text(os.path.splitext(feb)[0] + ".log")
     both = screen + "\n" + flog
-    m = re.findall(r"^TIME ([\d.]+) ([\d.]+) ([\d.]+) (\d+)", screen, re.M)
+    m = time_line(screen)
     if m:
-        wall, user, sys_, rss = m[-1]
+        wall, user, sys_, rss = m
         f["wall"] = wall
         f["cpu"] = "%.1f" % (float(user) + float(sys_))
         f["rss"] = "%.0f" % (int(rss) / 1024)
