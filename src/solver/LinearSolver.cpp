@@ -46,6 +46,7 @@ struct LinearSolver::Impl {
   bool prec_initialized = false;
   bool auto_chosen = false;  // preconditioner = auto, resolved for this build
   bool use_mumps = false;    // the direct method's solver: MUMPS (else KLU2)
+  bool direct_available = false;  // this build has the direct solver the deck asks for
   std::unique_ptr<MumpsSolver> mumps;
 #ifdef STENTOR_HAVE_AMESOS2
   la::RCP<Amesos2::Solver<la::CrsMatrix, la::MV>> direct;
@@ -172,11 +173,14 @@ LinearSolver::LinearSolver(const LinearSolverConfig& cfg, const la::RCP<const la
   // several ranks vary at round-off from run to run, docs/solvers.md).
 #ifdef STENTOR_HAVE_MUMPS
   impl_->use_mumps = cfg.direct_solver == "mumps";
+  impl_->direct_available = impl_->use_mumps;
 #else
   if (cfg.direct_solver == "mumps")
     throw InputError("'Linear Solver->direct solver' = mumps needs MUMPS (Debian's libmumps-dev), which this build lacks; use klu2");
 #endif
-#ifndef STENTOR_HAVE_AMESOS2
+#ifdef STENTOR_HAVE_AMESOS2
+  impl_->direct_available = true;
+#else
   if (cfg.direct_solver == "klu2")
     throw InputError("'Linear Solver->direct solver' = klu2 needs Trilinos with Amesos2, which this build lacks");
   if (!impl_->use_mumps && cfg.method == "direct")
@@ -246,14 +250,8 @@ bool LinearSolver::fall_back(const std::string& why) {
     m.cfg.preconditioner = "schwarz";
     m.cfg.subdomain_solver = "RILUK";
   } else {
-#if defined(STENTOR_HAVE_AMESOS2) || defined(STENTOR_HAVE_MUMPS)
-#ifndef STENTOR_HAVE_AMESOS2
-    if (!m.use_mumps) return false;
-#endif
+    if (!m.direct_available) return false;
     m.cfg.method = "direct";
-#else
-    return false;
-#endif
   }
   m.auto_chosen = false;
   m.mg = Teuchos::null;
