@@ -24,53 +24,6 @@ const char* kAxes[3] = {"x", "y", "z"};
 
 using contact::dot3;
 
-// Tributary (lumped) reference area of each node of a boundary group: the row sums of the
-// facet mass matrix scaled diagonally (HRZ), so quadratic facets get positive areas. They
-// scale the deck's per-area c_normal and c_tangent; the output's contact pressure is a
-// projection on the surface instead (mesh/SurfaceProjection.hpp). Axisymmetric: the areas of
-// the revolved facets (dA = 2 pi r ds).
-std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group, bool axisymmetric) {
-  std::map<GId, double> area;
-  for (const CellBlock* b : boundary_blocks(mesh, group)) {
-    if (cell_dim(b->type) != mesh.dim - 1) continue;
-    const int nn = b->nodes_per_cell;
-    // Degree 4: N_a^2 of a quadratic facet, exactly (3 Gauss points per direction, 6 on a triangle).
-    double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
-    const int nq = quadrature(b->type, 4, qp, qw);
-    for (std::size_t f = 0; f < b->num_cells(); ++f) {
-      std::vector<double> m2(static_cast<std::size_t>(nn), 0.0);
-      double A = 0.0;
-      for (int q = 0; q < nq; ++q) {
-        double N[kMaxCellNodes], dN[kMaxCellNodes][3];
-        shape_functions(b->type, qp[q], N, dN);
-        double t1[3] = {0, 0, 0}, t2[3] = {0, 0, 0};
-        for (int a = 0; a < nn; ++a)
-          for (int c = 0; c < 3; ++c) {
-            const double x = mesh.coord(b->conn[f * nn + a])[c];
-            t1[c] += dN[a][0] * x;
-            t2[c] += dN[a][1] * x;
-          }
-        double J = std::sqrt(dot3(t1, t1));
-        if (axisymmetric) {
-          double r = 0.0;
-          for (int a = 0; a < nn; ++a) r += N[a] * mesh.coord(b->conn[f * nn + a])[0];
-          J *= 2.0 * 3.14159265358979323846 * r;
-        }
-        if (mesh.dim == 3) {
-          const double cr[3] = {t1[1] * t2[2] - t1[2] * t2[1], t1[2] * t2[0] - t1[0] * t2[2], t1[0] * t2[1] - t1[1] * t2[0]};
-          J = std::sqrt(dot3(cr, cr));
-        }
-        A += qw[q] * J;
-        for (int a = 0; a < nn; ++a) m2[static_cast<std::size_t>(a)] += qw[q] * J * N[a] * N[a];
-      }
-      double s = 0.0;
-      for (double v : m2) s += v;
-      for (int a = 0; a < nn; ++a) area[b->conn[f * nn + a]] += A * m2[static_cast<std::size_t>(a)] / s;
-    }
-  }
-  return area;
-}
-
 }  // namespace
 
 std::unique_ptr<Contact> Contact::create(const Config& cfg, const Mesh& mesh, const Distribution& dist, const Assembler& assembler) {

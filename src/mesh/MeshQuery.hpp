@@ -2,6 +2,7 @@
 // InputError "physical group 'left' not found in mesh <file>; available boundary
 // groups: bottom, left, ..." so a misspelled deck name is easy to fix.
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -26,5 +27,11 @@ std::vector<GId> boundary_nodes(const Mesh& m, const std::string& group);
 
 // Sorted, unique node ids of all cells of the named volume group; throws if missing.
 std::vector<GId> volume_nodes(const Mesh& m, const std::string& group);
+
+// Tributary (lumped) reference area of each node of a boundary group's facets: the row sums
+// of the facet mass matrix scaled diagonally (HRZ), so quadratic facets get positive areas
+// (contact's per-area c_normal and c_tangent, the artery metrics' malapposed area).
+// Axisymmetric: the areas of the revolved facets (dA = 2 pi r ds).
+std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group, bool axisymmetric = false);
 
 }  // namespace stentor

@@ -44,30 +44,9 @@ ArteryMetrics::ArteryMetrics(const Model& model) : m_(model) {
   const std::vector<GId>& wn = wall_->nodes();
   wall_->index([&](GId g) { return static_cast<int>(std::lower_bound(wn.begin(), wn.end(), g) - wn.begin()); });
   outer_ = boundary_nodes(mesh, "outer");
-  outer_area_.assign(outer_.size(), 0.0);
-  for (const CellBlock* b : boundary_blocks(mesh, "outer")) {
-    const auto nn = static_cast<std::size_t>(b->nodes_per_cell);
-    for (std::size_t f = 0; f < b->num_cells(); ++f) {
-      const GId* c = &b->conn[f * nn];
-      // Triangle: half the cross product of two edges; quadrilateral: of its diagonals.
-      const double* p0 = mesh.coord(c[0]);
-      const bool quad = b->type == CellType::Quad4 || b->type == CellType::Quad8;
-      const double* p1 = mesh.coord(c[1]);
-      const double* p2 = mesh.coord(c[2]);
-      const double* p3 = quad ? mesh.coord(c[3]) : p0;
-      double d1[3], d2[3];
-      for (int k = 0; k < 3; ++k) {
-        d1[k] = quad ? p2[k] - p0[k] : p1[k] - p0[k];
-        d2[k] = quad ? p3[k] - p1[k] : p2[k] - p0[k];
-      }
-      const double area = 0.5 * std::sqrt(std::pow(d1[1] * d2[2] - d1[2] * d2[1], 2) + std::pow(d1[2] * d2[0] - d1[0] * d2[2], 2) +
-                                          std::pow(d1[0] * d2[1] - d1[1] * d2[0], 2));
-      for (std::size_t a = 0; a < nn; ++a)
-        outer_area_[static_cast<std::size_t>(std::lower_bound(outer_.begin(), outer_.end(), c[a]) - outer_.begin())] +=
-            area / static_cast<double>(nn);
-    }
-  }
+  const std::map<GId, double> area = tributary_areas(mesh, "outer");
   for (GId g : outer_) {
+    outer_area_.push_back(area.at(g));
     const double* x = mesh.coord(g);
     outer_w_.push_back(sector && (std::abs(x[1]) < tol || std::abs(st * x[0] - ct * x[1]) < tol) ? 0.5 : 1.0);
   }
@@ -159,7 +138,7 @@ std::vector<double> ArteryMetrics::evaluate(const la::Vector& u) {
     a_all += outer_area_[i];
     if (gaps[i] > threshold_) a_off += outer_area_[i];
   }
-  const double malapposed = a_all > 0.0 ? 100.0 * a_off / a_all : 0.0;
+  const double malapposed = a_all > 0.0 ? 100.0 * (a_off / a_all) : 0.0;
   now_ = {sum / static_cast<double>(stations_.size()), dmin, area, gap_max, malapposed, prolapse(x, xo)};
   if (D_mean0_ < 0.0) D_mean0_ = now_[0], D_min0_ = now_[1];
   layer_stresses(u, now_);

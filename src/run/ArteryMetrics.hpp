@@ -19,8 +19,8 @@
 //   (its closest point on the lumen's facets, along the facet's normal into the lumen:
 //   > 0 off the wall, 0 in contact), the largest (`stent_wall_gap_max`), and the share of the
 //   stent's outer surface farther than `malapposition threshold` from the wall
-//   (`malapposed_area`, %: the nodes' tributary areas, each facet's area shared equally
-//   among its nodes; the model's surface, so on a symmetry sector the whole stent's share);
+//   (`malapposed_area`, %: the nodes' reference tributary areas, mesh/MeshQuery.hpp; the
+//   model's surface, so on a symmetry sector the whole stent's share);
 // * tissue prolapse: at each lumen station, the stent's contour radius R_s (the mean
 //   current distance from the axis of the `outer` nodes whose current axial position lies
 //   within the station's band, half-way to the neighbouring stations) less the radius of each

@@ -226,7 +226,7 @@ void Reporter::print_solvers() {
   out_ << "  dofs     " << m_.dist->owned_map()->getGlobalNumElements() << "\n"
        << "  analysis " << analysis_text() << "\n"
        << "  solver   " << m_.linear->description() << "\n";
-  if (m_.nranks > 1 && cfg_.linear.method == "direct" && m_.linear->description().find("KLU2") != std::string::npos)
+  if (m_.nranks > 1 && cfg_.linear.method == "direct" && cfg_.linear.direct_solver != "mumps")  // auto: KLU2
     out_ << "warning: 'Linear Solver->method' = direct on " << m_.nranks
          << " ranks: KLU2 gathers the matrix and solves it on one rank at every Newton iteration, so more ranks "
             "make the run slower, not faster; on several ranks use 'direct solver' = mumps, or method = gmres (with "
