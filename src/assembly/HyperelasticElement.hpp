@@ -178,8 +178,8 @@ KOKKOS_INLINE_FUNCTION void gonzalez_dPdF(const Mat3& Fv, const Mat3& F1, const 
 }
 
 // Energy-dissipative midpoint step of a law with history (docs/plasticity.md, "Dynamics"):
-// the law's own dynamic_update (plasticity: the return-map stress at a mean-value point of the
-// step's incremental potential, the return map inside the step) or, for a law without one, the update at
+// the law's own dynamic_update (plasticity: the discrete gradient of the step's incremental
+// potential, the return map inside the step) or, for a law without one, the update at
 // C_{n+1} (state h_{n+1}, Psi_{n+1}, D) with Gonzalez's discrete gradient Sigma(C_n, C_{n+1})
 // of the frozen-state potential C -> Psi(C, h_n). Either way
 // Psi_{n+1} - Psi_n = 1/2 Sigma : (C_{n+1} - C_n) - D, P = F_{n+1/2} Sigma and A from

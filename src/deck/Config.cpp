@@ -1061,7 +1061,7 @@ void DeckReader::read_inelastic(const ParameterList& sub, const ListSpec& ls, co
   needs("damage energy scale", m.damage(), "neo-Hookean damage");
   if (m.plastic()) {
     read_hardening(sub, ls, path, m);
-    m.lagged_plastic_dynamics = get_string(sub, ls, "plastic dynamic step") == "lagged";
+    m.plastic_dynamic_step = get_string(sub, ls, "plastic dynamic step");
   } else {
     for (const char* k : {"hardening law", "saturation stress", "saturation rate", "hardening table strains",
                           "hardening table stresses"})

@@ -94,9 +94,9 @@ struct MaterialConfig {
   std::string hardening_law = "linear";
   double saturation_stress = 0, saturation_rate = 0;
   std::vector<double> table_strains, table_stresses;
-  // "plastic dynamic step" = lagged: the Gonzalez step's stress at the frozen plastic state of the
-  // step's start (default `incremental potential`: the incremental potential's discrete gradient).
-  bool lagged_plastic_dynamics = false;
+  // "plastic dynamic step": incremental potential (default), mean value or lagged
+  // (docs/plasticity.md, "Dynamics").
+  std::string plastic_dynamic_step = "incremental potential";
   // neo-Hookean damage (material/Damage.hpp): "saturation damage" d_inf in [0, 1) and
   // "damage energy scale" beta [Pa] > 0 of d = d_inf (1 - exp(-alpha / beta)).
   double saturation_damage = 0, damage_energy_scale = 0;

@@ -398,12 +398,14 @@ std::vector<ListSpec> build_schema() {
            .dflt_doc("none"),
        str("plastic dynamic step", "incremental potential",
            "Stress of the momentum equation in the `gonzalez` dynamic step of `Ciarlet-Geymonat plasticity` and "
-           "`neo-Hookean plasticity` (docs/plasticity.md, Dynamics): `incremental potential`, the return-map "
-           "stress at a mean-value point of the step's incremental potential (the plastic flow of the step inside "
-           "the stress, on the yield surface; plastic dissipation Y dalpha); `lagged`, the discrete gradient of the elastic energy at the plastic "
-           "state of the step's start (the flow enters the stress one step late, overshooting the yield surface). "
-           "Both keep the energy balance exact.")
-           .one_of({"incremental potential", "lagged"}),
+           "`neo-Hookean plasticity` (docs/plasticity.md, Dynamics): `incremental potential`, the discrete gradient "
+           "of the step's incremental potential (the plastic flow of the step inside the stress, off the yield "
+           "surface by O(dt^2); plastic dissipation Y dalpha); `mean value`, the return-map stress at a mean-value "
+           "point of the same potential (on the yield surface, but its Newton iteration can stall where the "
+           "hardening is weak: the point is then not unique); `lagged`, the discrete gradient of the elastic energy "
+           "at the plastic state of the step's start (the flow enters the stress one step late, overshooting the "
+           "yield surface by O(dt); cheapest). All keep the energy balance exact.")
+           .one_of({"incremental potential", "mean value", "lagged"}),
        dbl("saturation damage", 0.0,
            "d_inf [-] of `neo-Hookean damage` (required there, not allowed with other models): the damage d = "
            "d_inf (1 - exp(-alpha / beta)) tends to it as the largest virgin energy alpha grows; 0 is the "

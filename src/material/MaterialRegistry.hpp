@@ -59,13 +59,20 @@ inline NonlinearHardening nonlinear_hardening(const MaterialConfig& m) {
   return NonlinearHardening{};
 }
 
+// The deck's `plastic dynamic step`.
+inline PlasticDynamicStep plastic_dynamic_step(const MaterialConfig& m) {
+  if (m.plastic_dynamic_step == "lagged") return PlasticDynamicStep::kLagged;
+  if (m.plastic_dynamic_step == "mean value") return PlasticDynamicStep::kMeanValue;
+  return PlasticDynamicStep::kIncrementalPotential;
+}
+
 // The law of a deck material.
 inline Material make_material(const MaterialConfig& m) {
   if (m.model == "Ciarlet-Geymonat plasticity")
     return CiarletGeymonatPlasticity{CiarletGeymonat{m.C1, m.C2, m.D}, m.yield_stress, m.hardening,
-                                     m.lagged_plastic_dynamics, nonlinear_hardening(m)};
+                                     plastic_dynamic_step(m), nonlinear_hardening(m)};
   if (m.model == "neo-Hookean plasticity")
-    return NeoHookeanPlasticity{NeoHookean{m.mu, m.lambda}, m.yield_stress, m.hardening, m.lagged_plastic_dynamics,
+    return NeoHookeanPlasticity{NeoHookean{m.mu, m.lambda}, m.yield_stress, m.hardening, plastic_dynamic_step(m),
                                 nonlinear_hardening(m)};
   if (m.model == "neo-Hookean damage")
     return NeoHookeanDamage{NeoHookean{m.mu, m.lambda}, m.saturation_damage, m.damage_energy_scale};

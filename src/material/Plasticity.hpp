@@ -84,11 +84,12 @@
 // where the elastic-predictor work W(Ce^tr) - W(Ce_n) = 1/2 Sigma : (C_{n+1} - C_n) exactly
 // with Sigma the Gonzalez discrete gradient (DiscreteGradient.hpp) of the frozen-state
 // potential C -> W(G^T C G) (FrozenPlasticPotential below): the lagged dynamic step.
-// The default dynamic step (dynamic_update) takes the return-map stress at a mean-value point of
-// the incremental potential W_inc(C) = Psi(C, return map) + Y dg instead (IncrementalPotential
-// below), whose gradient is the return-map stress: the plastic flow of the step is in the
-// momentum stress, which is an admissible stress (on the yield surface where it flows), and
-// Dp = Y dg exactly.
+// The default dynamic step (dynamic_update) takes the discrete gradient of the incremental
+// potential W_inc(C) = Psi(C, return map) + Y dg instead (IncrementalPotential below), whose
+// gradient is the return-map stress: the plastic flow of the step is in the momentum stress
+// (off the yield surface by O(|dC|^2)), and Dp = Y dg exactly. The `mean value` option takes the
+// return-map stress at a mean-value point of W_inc (an admissible stress, on the surface where it
+// flows), which is unique only where W_inc is convex along the step's segment.
 #pragma once
 #include <cmath>
 
@@ -278,6 +279,13 @@ using FrozenPlasticPotential = FrozenPotential<CiarletGeymonat>;
 template <class Elastic>
 struct IncrementalPotential;
 
+// The stress of the momentum equation in the Gonzalez dynamic step of the plasticity laws
+// (docs/plasticity.md, "Dynamics"): the discrete gradient of the incremental potential W_inc of
+// the step (the return map inside the step; the default), the return-map stress at a
+// mean-value point of W_inc on the step's segment, or the discrete gradient of the elastic
+// potential at the plastic state of the step's start (lagged).
+enum class PlasticDynamicStep : int { kIncrementalPotential = 0, kMeanValue = 1, kLagged = 2 };
+
 // Isotropic elasticity (Elastic: CiarletGeymonat or NeoHookean) with von Mises (Hill-norm)
 // multiplicative plasticity and isotropic hardening sigma_y(alpha) = Y + H alpha + kappa(alpha)
 // (kappa: IsotropicHardening.hpp, none by default). Y, H and the moduli in the same stress
@@ -287,10 +295,8 @@ struct MultiplicativePlasticity {
   Elastic elastic;
   double Y;        // initial yield stress, > 0 [Pa]
   double H = 0.0;  // linear isotropic hardening modulus, >= 0 [Pa]; 0: perfect plasticity
-  // The Gonzalez dynamic step (dynamic_update): false, the discrete gradient of the incremental
-  // potential (stress from the return map inside the step); true, the lagged step (discrete
-  // gradient of the elastic potential at the frozen state h_n). Deck: `plastic dynamic step`.
-  bool lagged_dynamics = false;
+  // The stress of the Gonzalez dynamic step (dynamic_update). Deck: `plastic dynamic step`.
+  PlasticDynamicStep dynamic_step = PlasticDynamicStep::kIncrementalPotential;
   // Nonlinear part kappa of the hardening (Voce or a table; none: linear hardening).
   NonlinearHardening nonlinear = {};
 
@@ -336,21 +342,21 @@ struct MultiplicativePlasticity {
   // Energy-dissipative dynamic step from C0 = C_n to C1 = C_{n+1} (docs/plasticity.md,
   // "Dynamics"): the state h_{n+1} of the return map at C1, Psi_{n+1} and the step's dissipation,
   // with r.S = Sigma the stress of the momentum equation (P = F_{n+1/2} Sigma) and, WithTangent,
-  // D = dSigma/dC1 (r.CC unset). Default: Sigma = S(C0 + s dC), the return-map stress from h_n
-  // at the mean-value point s of the incremental potential W_inc(C; h_n) on the segment
-  // (IncrementalPotential::mean_value_stress); where the segment's three samples C0, Cm, C1 are
-  // elastic (W_inc smooth there), or |dC| < kGonzalezGuard, Gonzalez's discrete gradient of
-  // W_inc (= that of the frozen elastic potential, bit for bit the lagged step's below
-  // |dC| = 1e-3). lagged_dynamics: Gonzalez's discrete gradient of the frozen elastic potential
-  // W(G^T C G) (FrozenPotential). Both close
+  // D = dSigma/dC1 (r.CC unset). Default (kIncrementalPotential): Gonzalez's discrete gradient of
+  // the incremental potential W_inc(C; h_n) (= that of the frozen elastic potential, bit for bit
+  // the lagged step's, where the three samples C0, Cm, C1 are elastic and |dC| < 1e-3).
+  // kMeanValue: Sigma = S(C0 + s dC), the return-map stress from h_n at a mean-value point s of
+  // W_inc on the segment (IncrementalPotential::mean_value_stress), Gonzalez's form where the
+  // three samples are elastic, |dC| < kGonzalezGuard or no root is bracketed. kLagged: Gonzalez's
+  // discrete gradient of the frozen elastic potential W(G^T C G) (FrozenPotential). All close
   //   Psi_{n+1} - Psi_n = 1/2 Sigma : (C1 - C0) - Dp,  Dp >= 0;
-  // the incremental one with Dp = Y dg (+ a gap >= 0 that is 0 when h_n is admissible at C0).
+  // the first two with Dp = Y dg (+ a gap >= 0 that is 0 when h_n is admissible at C0).
   // mean_point (if given) receives s, or -1 where Gonzalez's form was taken.
   template <bool WithTangent, class HIn, class HOut>
   KOKKOS_INLINE_FUNCTION PointResponse dynamic_update(const Mat3& C0, const Mat3& C1, const HIn& hn,
                                                       const HOut& h1, Ten4& D,
                                                       double* mean_point = nullptr) const {
-    if (lagged_dynamics) {
+    if (dynamic_step == PlasticDynamicStep::kLagged) {
       PointResponse r = update<false>(C1, hn, h1);
       const FrozenPotential<Elastic> frozen = frozen_potential(hn);
       if constexpr (WithTangent)
@@ -366,7 +372,8 @@ struct MultiplicativePlasticity {
     pot.remember(C1, r, st.dgamma);
     r.dissipation = Y * st.dgamma + pot.start_gap(C0);
     double s = -1.0;  // the mean-value point, -1 where Gonzalez's form is taken
-    if (!(std::sqrt(ddot(C1 - C0, C1 - C0)) >= kGonzalezGuard) || pot.smooth_between(C0, C1) ||
+    if (dynamic_step != PlasticDynamicStep::kMeanValue || !(std::sqrt(ddot(C1 - C0, C1 - C0)) >= kGonzalezGuard) ||
+        pot.smooth_between(C0, C1) ||
         !pot.template mean_value_stress<WithTangent>(C0, C1, r.S, D, s)) {
       if constexpr (WithTangent)
         gonzalez_stress_and_tangent(pot, C0, C1, r.S, D);

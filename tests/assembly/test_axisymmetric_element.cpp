@@ -413,7 +413,7 @@ TEST(AxisymmetricElement, DamageHomogeneousStateAndTangent) {
 // differences of the residual (the residual is not dE/du: the step dissipates).
 TEST(AxisymmetricElement, CiarletGeymonatPlasticityTangent) {
   using P = CiarletGeymonatPlasticity;
-  const P law{CiarletGeymonat{0.4, 0.1, 0.65}, 0.02, 0.1, false, NonlinearHardening{}};
+  const P law{CiarletGeymonat{0.4, 0.1, 0.65}, 0.02, 0.1, stentor::PlasticDynamicStep::kIncrementalPotential, NonlinearHardening{}};
   std::vector<double> virgin;
   for (int i = 0; i < P::kNumHist; ++i) virgin.push_back(P::kHistory[i].initial);
   law_fd(law, virgin, false, "Ciarlet-Geymonat plasticity");

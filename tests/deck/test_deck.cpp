@@ -641,13 +641,12 @@ TEST_F(Deck, PlasticityParameters) {
   expect_error(replace(kMinimalDeck, d, plastic + Y + "<Parameter name=\"hardening\" type=\"double\" value=\"-1\"/>" + d),
                {"'Materials->steel->hardening' must be >= 0, got -1"});
   expect_error(replace(kMinimalDeck, d, Y + d), {"'Materials->steel->yield stress' needs 'model' = Ciarlet-Geymonat plasticity"});
-  // The dynamic step: the incremental potential by default, `lagged` on request.
-  EXPECT_FALSE(c.materials[0].lagged_plastic_dynamics);
+  // The dynamic step: the incremental potential by default, `mean value` or `lagged` on request.
+  EXPECT_EQ(c.materials[0].plastic_dynamic_step, "incremental potential");
   const std::string step = "<Parameter name=\"plastic dynamic step\" type=\"string\" value=\"";
-  EXPECT_TRUE(read_deck(write(replace(kMinimalDeck, d, plastic + Y + step + "lagged\"/>" + d))).materials[0].lagged_plastic_dynamics);
-  EXPECT_FALSE(read_deck(write(replace(kMinimalDeck, d, plastic + Y + step + "incremental potential\"/>" + d)))
-                   .materials[0]
-                   .lagged_plastic_dynamics);
+  for (const char* v : {"incremental potential", "mean value", "lagged"})
+    EXPECT_EQ(read_deck(write(replace(kMinimalDeck, d, plastic + Y + step + v + "\"/>" + d))).materials[0].plastic_dynamic_step,
+              v);
   expect_error(replace(kMinimalDeck, d, plastic + Y + step + "frozen\"/>" + d),
                {"'Materials->steel->plastic dynamic step' must be one of"});
   expect_error(replace(kMinimalDeck, d, step + "lagged\"/>" + d),
