@@ -727,6 +727,14 @@ void Reporter::summary(const RunState& s) {
     if (lt.stale_rebuilds > 0)
       out_ << "    (" << lt.stale_rebuilds << " reused preconditioner(s) rebuilt: GMRES gained less than one digit in a cycle)\n";
     if (lt.fallbacks > 0) out_ << "    (linear solver fell back " << lt.fallbacks << " time(s): " << m_.linear->description() << " at the end)\n";
+#ifdef STENTOR_HAVE_MUMPS
+    // KLU2 has no supernodes: on a 3D mesh its factorizations can be most of the run, where
+    // MUMPS is several times faster (docs/solvers.md, "The direct solvers").
+    if (m_.dim == 3 && m_.linear->description() == "direct (Amesos2 KLU2)" && lt.setup > 2.0 && 3.0 * lt.setup > wall)
+      out_ << "note: KLU2's factorizations took " << lt.setup << " s of the run's " << wall
+           << " s; on 3D meshes 'Linear Solver->direct solver' = mumps is usually several times faster "
+              "(docs/solvers.md), or method = gmres\n";
+#endif
   }
   out_ << std::defaultfloat;
 }
