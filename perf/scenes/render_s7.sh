@@ -4,7 +4,7 @@
 # (inputs/s7_ring_artery.xml), twice on one rank: as it is (the wall frictionless) and with
 # Coulomb friction mu = 0.1 on the stent-wall pair (`Contact->wall`), each from a copy of
 # the deck in the run folder with Output->field list = "displacement, von_mises,
-# equivalent_plastic_strain, principal_stress" and fields at t = 0 and the stages' ends
+# equivalent_plastic_strain, principal_stress, wall_gap" and fields at t = 0 and the stages' ends
 # only (every = 1000), then renders from their HDF5 output with ParaView's pvbatch
 # (perf/scenes/render_stent.py, the sector put back together: 16 copies around)
 #   docs/scenes/s7_artery_deployment.png  the ring and the artery cut open along the axis,
@@ -13,6 +13,9 @@
 #                                         largest principal stress
 #   docs/scenes/s7_artery_end.png         the same seen 40 deg off the axis from the
 #                                         proximal end: the stress through the wall
+#   docs/scenes/s7_wall_gap.png           the malapposition map: the stent's outer surface
+#                                         coloured by its gap to the lumen, expanded and
+#                                         deflated
 # and with matplotlib (perf/scenes/s7_report.py), from the metrics and history CSVs,
 #   docs/scenes/s7_diameters_forces.png   the stent's and the lumen's diameters and the
 #                                         contact forces against time, both runs
@@ -22,7 +25,8 @@
 # usage: perf/scenes/render_s7.sh [build-dir]   (default build)
 # env: S7_RUNS (where the runs go, default <build-dir>/scenes/s7), S7_SKIP_RUNS=1 (render
 #      the runs already there again), S7_OUT (where the PNGs go, default docs/scenes),
-#      S7_ARTERY_VMAX (the top of the wall's colour scale, default 20 kPa), S7_RUNS_ONLY=1
+#      S7_ARTERY_VMAX (the top of the wall's colour scale, default 20 kPa), S7_GAP_VMAX (the
+#      top of the gap's, default 80 µm), S7_RUNS_ONLY=1
 #      (the runs only, no pictures)
 # Needs ParaView's pvbatch and xvfb-run (Debian: paraview, python3-paraview, xvfb; ci/setup.sh
 # installs them) and Debian's python3-matplotlib, python3-h5py, python3-numpy.
@@ -37,7 +41,7 @@ for tool in pvbatch xvfb-run; do
 done
 
 DECK=s7_ring_artery
-FIELDS='<Parameter name="field list" type="string" value="displacement, von_mises, equivalent_plastic_strain, principal_stress"/>'
+FIELDS='<Parameter name="field list" type="string" value="displacement, von_mises, equivalent_plastic_strain, principal_stress, wall_gap"/>'
 FRICTION='<Parameter name="friction" type="double" value="0.1"/>'
 run() {  # run folder name, extra sed expression -> $RUNS/<name>/, log $RUNS/<name>.log, wall time printed
   local name=$1 extra=${2:-}
@@ -82,6 +86,14 @@ TITLE="S7: the ring in the artery cut open, seen 40 deg off the axis, frictionle
   VIEW=end TILT=40 AZIM=0 \
   render "$F" s7_ring_artery "$OUT/s7_artery_end.png" equivalent_plastic_strain "$EPS" \
   "1:crimped in the artery" "2.25:expanded (peak)" "2.75:deflated")
+# The malapposition map: the stent's outer surface coloured by its gap to the lumen
+# (the node field wall_gap, averaged per cell over its outer nodes; the other cells and the
+# artery, cut open, grey).
+GAP="stent: gap to the lumen [µm]"
+TITLE="S7: malapposition map, the gap from the stent's outer surface to the lumen, frictionless wall" \
+  CUT=+y COLS=2 PANEL=700,1000 SCALE=1000 VMIN=0 VMAX=${S7_GAP_VMAX:-80} CMAP=viridis \
+  render "$F" s7_ring_artery "$OUT/s7_wall_gap.png" wall_gap "$GAP" \
+  "2.25:expanded (peak)" "2.75:deflated"
 /usr/bin/python3 "$ROOT/perf/scenes/s7_report.py" "$OUT/s7_diameters_forces.png" "$OUT/s7_layer_stresses.png" \
   "$F:s7_ring_artery:frictionless" "$M:s7_ring_artery:friction 0.1" > "$RUNS/s7_tables.md"
 echo "tables: $RUNS/s7_tables.md"

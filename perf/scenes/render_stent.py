@@ -8,7 +8,9 @@ title, the panels' captions and one colour bar.
 
 usage: xvfb-run -a -s "-noreset -screen 0 1600x1200x24" pvbatch render_stent.py \
            RESULTS_DIR BASENAME OUT.png FIELD LABEL T1[:TITLE1] T2[:TITLE2] ...
-  FIELD   a cell field of the HDF5 (equivalent_plastic_strain, von_mises, ...)
+  FIELD   a cell field of the HDF5 (equivalent_plastic_strain, von_mises, ...), or a node
+          field (wall_gap, ...) averaged over each cell's nodes that carry a value (NaN
+          elsewhere); cells with none are drawn light grey
   LABEL   the colour bar's label, with units, e.g. "von Mises stress [MPa]"
   Ti      the output time to show (the nearest output step); TITLEi its caption. When
           <BASENAME>_metrics.csv is there the caption gets the stent's mean outer diameter
@@ -188,8 +190,20 @@ def main():
     maps = symmetry_copies(x0, deck.get("half length", "false").lower() == "true")
     centroid0 = x0[conn].mean(axis=1)
 
+    def cell_values(k, name, sc):
+        """The first component of field `name` at output step k per cell, times sc: a cell
+        field as it is, a node field averaged over the cell's nodes that are not NaN."""
+        v = h5["step_%d/%s" % (k, name)][()]
+        v = v.reshape(len(v), -1)[:, 0]
+        if len(v) == len(x0) and len(v) != len(conn):
+            at = v[conn]
+            n = np.sum(~np.isnan(at), axis=1)
+            with np.errstate(invalid="ignore"):
+                v = np.where(n > 0, np.nansum(at, axis=1) / np.maximum(n, 1), np.nan)
+        return v * sc
+
     def field_at(k):
-        return h5["step_%d/%s" % (k, field)][()].reshape(len(conn), -1)[:, 0] * scale
+        return cell_values(k, field, scale)
 
     # crown close-up: the cell of the largest value at CROWN_T, and the cells near it
     keep = [np.ones(len(conn), bool) for _ in maps]
@@ -200,7 +214,7 @@ def main():
         keep = [~in_artery | (sign * apply_map(centroid0, m)[:, axis] > 0) for m in maps]
     if view_kind == "crown":
         kc = int(np.argmin([abs(t - float(os.environ.get("CROWN_T", shots[-1][0]))) for t in times]))
-        hot = int(np.argmax(field_at(kc)))
+        hot = int(np.nanargmax(field_at(kc)))
         radius = float(os.environ.get("RADIUS", "0.45"))
         keep = [np.linalg.norm(apply_map(centroid0, m) - centroid0[hot], axis=1) < radius for m in maps]
         print("crown close-up: cell %d, reference centroid (%.4f, %.4f, %.4f), %s = %.4g at t = %g"
@@ -217,8 +231,7 @@ def main():
         if artery_field:  # the stent's cells in step_k.vtu, the artery's in artery_k.vtu
             sk = [kp & ~in_artery for kp in keep]
             ak = [kp & in_artery for kp in keep]
-            va = h5["step_%d/%s" % (k, artery_field)][()].reshape(len(conn), -1)[:, 0] \
-                * float(os.environ.get("ARTERY_SCALE", "1"))
+            va = cell_values(k, artery_field, float(os.environ.get("ARTERY_SCALE", "1")))
             csa = [(conn[:, HEX_FLIP] if flips(m) else conn)[kp] for m, kp in zip(maps, ak)]
             write_grid(os.path.join(tmp, "artery_%d.vtu" % k), xs, csa, [va[kp] for kp in ak], "artery_value")
             art_all.append(np.concatenate([va[kp] for kp in ak]))
@@ -232,11 +245,11 @@ def main():
     allv = np.concatenate(vals_all)
     if artery_field:
         alla = np.concatenate(art_all)
-        avmin = float(os.environ.get("ARTERY_VMIN", min(0.0, alla.min())))
-        avmax = float(os.environ.get("ARTERY_VMAX", alla.max() or 1.0))
+        avmin = float(os.environ.get("ARTERY_VMIN", min(0.0, np.nanmin(alla))))
+        avmax = float(os.environ.get("ARTERY_VMAX", np.nanmax(alla) or 1.0))
         acmap = matplotlib.colormaps[os.environ.get("ARTERY_CMAP", "Blues")]
-    vmin = float(os.environ.get("VMIN", min(0.0, allv.min())))
-    vmax = float(os.environ.get("VMAX", allv.max() or 1.0))
+    vmin = float(os.environ.get("VMIN", min(0.0, np.nanmin(allv))))
+    vmax = float(os.environ.get("VMAX", np.nanmax(allv) or 1.0))
 
     view = pv.CreateView("RenderView")
     view.ViewSize = size
@@ -253,6 +266,7 @@ def main():
     samples = np.linspace(0.0, 1.0, 65)
     points = [float(c) for s in samples for c in (vmin + s * (vmax - vmin), *cmap(s)[:3])]
     lut.ColorSpace = "RGB"
+    lut.NanColor = [0.82, 0.82, 0.82]  # cells without a value of a node field
 
     # one scale for every panel: the largest extent over the shown times
     rmax = max(np.hypot(apply_map(x, maps[0])[:, 0], apply_map(x, maps[0])[:, 1]).max() for x in xs_all)
@@ -363,13 +377,13 @@ def main():
         ax.set_title(cap, fontsize=9, pad=2)
     fig.suptitle(os.environ.get("TITLE", deck.get("title", base)), fontsize=11, y=0.995)
     norm = colors.Normalize(vmin, vmax)
-    extend = "max" if vmax < allv.max() - 1e-12 * abs(allv.max()) else "neither"
+    extend = "max" if vmax < np.nanmax(allv) - 1e-12 * abs(np.nanmax(allv)) else "neither"
     cax = fig.add_axes([1 - 0.95 / width, 0.15, 0.16 / width, 0.65 * top])
     fig.colorbar(cm.ScalarMappable(norm, cmap), cax=cax, label=label, extend=extend)
     if artery_field:  # the stent's bar moves left, the artery's takes the right
         cax.set_position([1 - 2.05 / width, 0.15, 0.16 / width, 0.65 * top])
-        aext = "max" if avmax < alla.max() - 1e-12 * abs(alla.max()) else "neither"
-        if avmin > alla.min() + 1e-12 * abs(alla.min()):
+        aext = "max" if avmax < np.nanmax(alla) - 1e-12 * abs(np.nanmax(alla)) else "neither"
+        if avmin > np.nanmin(alla) + 1e-12 * abs(np.nanmin(alla)):
             aext = "both" if aext == "max" else "min"
         bax = fig.add_axes([1 - 0.95 / width, 0.15, 0.16 / width, 0.65 * top])
         fig.colorbar(cm.ScalarMappable(colors.Normalize(avmin, avmax), acmap), cax=bax,
@@ -384,7 +398,7 @@ def main():
         except ImportError:
             pass
     print("wrote %s (output steps %s; %s from %.4g to %.4g, shown %.4g to %.4g)"
-          % (out, ", ".join(str(k) for k in steps), field, allv.min(), allv.max(), vmin, vmax))
+          % (out, ", ".join(str(k) for k in steps), field, np.nanmin(allv), np.nanmax(allv), vmin, vmax))
     if artery_field:
         print("artery: %s from %.4g to %.4g, shown %.4g to %.4g" % (artery_field, alla.min(), alla.max(), avmin, avmax))
 
