@@ -536,6 +536,236 @@ std::string Assembler::describe_failed(GId gid, std::size_t block, int cell) con
   return os.str();
 }
 
+// The solid cells of every local block: each cell's residual (and, with_tangent, its tangent
+// into Kl) scattered into r_overlap_, one kernel launch per block compiled for the block's law;
+// the sums of the strain energy, the viscous and the plastic dissipation; the failed cell of
+// smallest global id (bad_local = -1: none).
+Assembler::CellSums Assembler::assemble_cells(const StepInput& in, bool has_old, bool with_tangent, const DeviceMatrix& Kl) {
+  const int dim = dim_;
+  const Kinematics kin = kin_;
+  auto flags = dirichlet_flag_;
+  auto fails = failures_;
+  auto bad = bad_cell_;
+  auto X = dist_.coords();
+  CellSums sums;
+  auto uv = u_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
+  auto u0v = u0_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
+  auto rv = r_overlap_->getLocalViewDevice(Tpetra::Access::ReadWrite);
+  for (std::size_t bi = 0; bi < dist_.blocks().size(); ++bi) {
+    const auto& lb = dist_.blocks()[bi];
+    const std::size_t nc = lb.cell_ids.size();
+    if (nc == 0) continue;
+    const QuadRule q = make_rule(lb.type, stiffness_quadrature_degree(lb.type));
+    ElementTime et;
+    et.eval = in.eval;
+    et.dt = in.dt;
+    // Viscosity needs a step (dt > 0): the initial-state assembly (dt = 0) has none (it was 0/0 = NaN).
+    et.eta = in.dt > 0.0 ? block_eta_[static_cast<std::size_t>(lb.volume_block)] : 0.0;
+    et.has_old = has_old && (in.eval != StressEval::EndPoint || et.eta > 0.0);
+    const CellType type = lb.type;
+    const ElementTechnology tech = block_tech_[static_cast<std::size_t>(lb.volume_block)];
+    const int nn = lb.nodes_per_cell;
+    auto conn = lb.conn;
+    double e_block = 0.0;
+    Kokkos::View<double*, la::ExecSpace> dsum("dissipation", 2);  // viscous, plastic
+    // One launch per block, compiled for the block's law type; a block whose law has
+    // Gauss-point history reads its committed rows and writes its trial rows (cell c:
+    // rows c * ngp ...).
+    auto launch = [&](const auto& law) {
+      constexpr bool H = kHasHistory<std::decay_t<decltype(law)>>;
+      HistoryView hn, h1;
+      int ngp = 0, nh = 0;
+      if (H) {
+        hn = history_[bi].committed;
+        h1 = history_[bi].trial;
+        ngp = history_[bi].ngp;
+        nh = static_cast<int>(hn.extent(1));
+      }
+      auto body = [=](const int c, double& e, auto tangent_tag, auto atomic_tag) {
+        constexpr bool T = decltype(tangent_tag)::value;
+        constexpr bool A = decltype(atomic_tag)::value;
+        double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], U0e[kMaxCellNodes][3], re[kMaxCellDofs];
+        double ke[T ? kMaxCellDofs : 1][kMaxCellDofs];
+        int dofs[kMaxCellDofs];
+        gather_cell(c, nn, dim, conn, X, uv, Xe, Ue, dofs);
+        if (et.has_old)
+          for (int a = 0; a < nn; ++a)
+            for (int d = 0; d < 3; ++d) U0e[a][d] = d < dim ? u0v(dofs[a * dim] + d, 0) : 0.0;
+        double ec = 0.0, dc = 0.0, pc = 0.0;
+        int status;
+        if constexpr (H)
+          status = solid_element<T>(dim, kin, tech, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc,
+                                    CellHistory{&hn(c * ngp, 0), &h1(c * ngp, 0), nh}, &pc);
+        else
+          status = solid_element<T>(dim, kin, tech, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc);
+        if (status != kElementOk) {
+          Kokkos::atomic_increment(&fails(status == kElementInverted ? 0 : status == kElementLocalFailure ? 2 : 1));
+          Kokkos::atomic_fetch_min(&bad(0), c);
+          return;
+        }
+        e += ec;
+        if (dc != 0.0) Kokkos::atomic_add(&dsum(0), dc);
+        if (H && pc != 0.0) Kokkos::atomic_add(&dsum(1), pc);
+        scatter<T, A>(nn * dim, dofs, re, ke, rv, Kl, flags);
+      };
+      if (colors_.empty()) {
+        // Atomic sums: all cells in one kernel.
+        if (with_tangent)
+          Kokkos::parallel_reduce(
+              "stentor::solid_residual_tangent", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
+              KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::true_type{}, std::true_type{}); }, e_block);
+        else
+          Kokkos::parallel_reduce(
+              "stentor::solid_residual", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
+              KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::false_type{}, std::true_type{}); }, e_block);
+      } else {
+        // One kernel per colour: its cells share no node, so plain sums are race-free.
+        const BlockColors& bc = colors_[bi];
+        auto cells = bc.cells;
+        for (std::size_t k = 0; k + 1 < bc.offsets.size(); ++k) {
+          double e_color = 0.0;
+          const Kokkos::RangePolicy<la::ExecSpace> range(bc.offsets[k], bc.offsets[k + 1]);
+          if (with_tangent)
+            Kokkos::parallel_reduce(
+                "stentor::solid_residual_tangent_colored", range,
+                KOKKOS_LAMBDA(const int i, double& e) { body(cells(i), e, std::true_type{}, std::false_type{}); }, e_color);
+          else
+            Kokkos::parallel_reduce(
+                "stentor::solid_residual_colored", range,
+                KOKKOS_LAMBDA(const int i, double& e) { body(cells(i), e, std::false_type{}, std::false_type{}); }, e_color);
+          e_block += e_color;
+        }
+      }
+    };
+    Kokkos::deep_copy(bad, std::numeric_limits<int>::max());
+    std::visit(launch, block_law_[static_cast<std::size_t>(lb.volume_block)]);
+    auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), bad);
+    if (bh(0) != std::numeric_limits<int>::max() && lb.cell_ids[static_cast<std::size_t>(bh(0))] < sums.bad_gid) {
+      sums.bad_gid = lb.cell_ids[static_cast<std::size_t>(bh(0))];
+      sums.bad_block = bi;
+      sums.bad_local = bh(0);
+    }
+    auto dh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dsum);
+    sums.energy += e_block;
+    sums.dissipation += dh(0);
+    sums.plastic += dh(1);
+  }
+  return sums;
+}
+
+// Follower pressures p on the current surface (configuration u_n + theta (u - u_n);
+// assembly/PressureElement.hpp) into rext_overlap_ (and Kl).
+void Assembler::assemble_pressures(const StepInput& in, bool has_old, bool with_tangent, const DeviceMatrix& Kl) {
+  const int dim = dim_;
+  const Kinematics kin = kin_;
+  auto flags = dirichlet_flag_;
+  auto X = dist_.coords();
+  auto uv = u_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
+  auto u0v = u0_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
+  auto rxv = rext_overlap_->getLocalViewDevice(Tpetra::Access::ReadWrite);
+  const double theta = has_old ? in.pressure_theta : 1.0;
+  for (const auto& pl : pressures_) {
+    const double p = pl.cavity >= 0 ? cavities_[static_cast<std::size_t>(pl.cavity)].p : pl.pressure * pl.ramp(in.load_time, in.end_time);
+    const std::size_t nf = pl.conn.extent(0);
+    if (nf == 0 || p == 0.0) continue;
+    const QuadRule q = make_rule(pl.type, 2 * cell_order(pl.type) + 1);
+    const CellType type = pl.type;
+    const int nn = pl.nn;
+    auto conn = pl.conn;
+    auto orient = pl.orientation;
+    const bool T = with_tangent;
+    Kokkos::parallel_for(
+        "stentor::follower_pressure", Kokkos::RangePolicy<la::ExecSpace>(0, nf), KOKKOS_LAMBDA(const int f) {
+          double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], re[kMaxCellDofs], ke[kMaxCellDofs][kMaxCellDofs];
+          int dofs[kMaxCellDofs];
+          gather_cell(f, nn, dim, conn, X, uv, Xe, Ue, dofs);
+          if (theta != 1.0)
+            for (int a = 0; a < nn; ++a)
+              for (int d = 0; d < dim; ++d) Ue[a][d] = theta * Ue[a][d] + (1.0 - theta) * u0v(dofs[a * dim] + d, 0);
+          const int nd = nn * dim;
+          pressure_element(dim, kin, type, nn, Xe, Ue, p * orient(f), theta, q, re, ke);
+          if (T)
+            scatter<true, true>(nd, dofs, re, ke, rxv, Kl, flags);
+          else
+            scatter<false, true>(nd, dofs, re, ke, rxv, Kl, flags);
+        });
+  }
+}
+
+// The reactions of the Dirichlet sets from the owned residual r, then its constrained rows
+// zeroed (and those of the planes projected).
+void Assembler::constrain_residual(la::Vector& r) {
+  std::vector<double> loc(3 * reactions_.size(), 0.0), glob(loc.size(), 0.0);
+  {
+    auto rh = r.getLocalViewHost(Tpetra::Access::ReadWrite);
+    for (std::size_t k = 0; k < owned_dirichlet_dofs_.size(); ++k) {
+      const la::LO i = owned_dirichlet_dofs_[k];
+      loc[3 * static_cast<std::size_t>(owned_reaction_set_[k]) + static_cast<std::size_t>(i % dim_)] += rh(i, 0);
+    }
+    dirichlet_r_.resize(owned_dirichlet_dofs_.size());
+    for (std::size_t k = 0; k < owned_dirichlet_dofs_.size(); ++k) {
+      dirichlet_r_[k] = rh(owned_dirichlet_dofs_[k], 0);
+      rh(owned_dirichlet_dofs_[k], 0) = 0.0;
+    }
+  }
+  project_plane_rows(r, loc);
+  if (!loc.empty()) Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), glob.data());
+  for (std::size_t s = 0; s < reactions_.size(); ++s) reactions_[s] = {glob[3 * s], glob[3 * s + 1], glob[3 * s + 2]};
+}
+
+// The owned tangent from Kl: identity rows for the owned constrained dofs, the overlap's
+// owned rows moved into K_ and its ghost rows exported (ADD), s K + c M on the free rows, the
+// planes' rows projected, the cavities' rank-one terms.
+void Assembler::finish_tangent(const StepInput& in, const DeviceMatrix& Kl) {
+  auto flags = dirichlet_flag_;
+  // Identity on owned constrained rows (owned dofs are a prefix of the overlap dofs).
+  const la::LO ndir = static_cast<la::LO>(owned_dirichlet_dofs_.size());
+  Kokkos::View<la::LO*, la::ExecSpace> rows("dirichlet_rows", ndir);
+  auto rh = Kokkos::create_mirror_view(rows);
+  for (la::LO i = 0; i < ndir; ++i) rh(i) = owned_dirichlet_dofs_[static_cast<std::size_t>(i)];
+  Kokkos::deep_copy(rows, rh);
+  Kokkos::parallel_for(
+      "stentor::dirichlet_rows", Kokkos::RangePolicy<la::ExecSpace>(0, ndir), KOKKOS_LAMBDA(const int i) {
+        const la::LO row = rows(i);
+        const double one = 1.0;
+        Kl.replaceValues(row, &row, 1, &one, true, true);
+      });
+  K_->resumeFill();
+  {
+    // Owned rows: scatter the overlap values to their precomputed positions (all
+    // distinct, so no atomics); ghost rows: copy the overlap value tail, export (ADD).
+    auto Kw = K_->getLocalMatrixDevice();
+    auto Kg = K_ghost_->getLocalMatrixDevice();
+    auto posv = owned_value_pos_;
+    Kokkos::deep_copy(Kw.values, 0.0);
+    const std::size_t n_owned_entries = posv.extent(0);
+    Kokkos::parallel_for(
+        "stentor::owned_rows_to_owned_matrix", Kokkos::RangePolicy<la::ExecSpace>(0, n_owned_entries),
+        KOKKOS_LAMBDA(const std::size_t j) { Kw.values(posv(j)) = Kl.values(j); });
+    Kokkos::deep_copy(Kg.values, Kokkos::subview(Kl.values, Kokkos::make_pair(n_owned_entries, Kl.values.extent(0))));
+    Kokkos::fence();
+    K_->doExport(*K_ghost_, *ghost_exporter_, Tpetra::ADD);
+  }
+  if (in.scale != 1.0 || in.mass_coeff != 0.0) {
+    // K = s K + c M on unconstrained rows (K and M share one graph, so their local
+    // value arrays line up entry by entry).
+    auto Kv = K_->getLocalMatrixDevice();
+    const double s = in.scale, c = in.mass_coeff;
+    DeviceMatrix Mv;
+    if (c != 0.0) Mv = mass()->getLocalMatrixDevice();
+    auto oflag = flags;  // owned dofs are the first rows of the overlap flags
+    Kokkos::parallel_for(
+        "stentor::tangent_plus_mass", Kokkos::RangePolicy<la::ExecSpace>(0, Kv.numRows()), KOKKOS_LAMBDA(const int row) {
+          if (oflag(row)) return;
+          for (auto j = Kv.graph.row_map(row); j < Kv.graph.row_map(row + 1); ++j)
+            Kv.values(j) = s * Kv.values(j) + (c != 0.0 ? c * Mv.values(j) : 0.0);
+        });
+  }
+  project_plane_matrix();
+  K_->fillComplete(dist_.owned_map(), dist_.owned_map());
+  update_cavity_gradients();
+}
+
 Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, la::Vector& r, bool with_tangent) {
   u_overlap_->doImport(u, *dist_.importer(), Tpetra::INSERT);
   const bool has_old = in.u_old != nullptr;
@@ -544,156 +774,13 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
   rext_overlap_->putScalar(0.0);
   Kokkos::deep_copy(failures_, 0);
   update_cavities(in);
-  const int dim = dim_;
-  const Kinematics kin = kin_;
-  auto flags = dirichlet_flag_;
-  auto fails = failures_;
-  auto bad = bad_cell_;
-  GId bad_gid = std::numeric_limits<GId>::max();
-  std::size_t bad_block = 0;
-  int bad_local = -1;
-  auto X = dist_.coords();
   DeviceMatrix Kl;
   if (with_tangent) {
     Kl = K_overlap_->getLocalMatrixDevice();
     Kokkos::deep_copy(Kl.values, 0.0);
   }
-  double energy = 0.0, dissipation = 0.0, plastic = 0.0;
-  {
-    auto uv = u_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
-    auto u0v = u0_overlap_->getLocalViewDevice(Tpetra::Access::ReadOnly);
-    auto rv = r_overlap_->getLocalViewDevice(Tpetra::Access::ReadWrite);
-    auto rxv = rext_overlap_->getLocalViewDevice(Tpetra::Access::ReadWrite);
-    for (std::size_t bi = 0; bi < dist_.blocks().size(); ++bi) {
-      const auto& lb = dist_.blocks()[bi];
-      const std::size_t nc = lb.cell_ids.size();
-      if (nc == 0) continue;
-      const QuadRule q = make_rule(lb.type, stiffness_quadrature_degree(lb.type));
-      ElementTime et;
-      et.eval = in.eval;
-      et.dt = in.dt;
-      // Viscosity needs a step (dt > 0): the initial-state assembly (dt = 0) has none (it was 0/0 = NaN).
-      et.eta = in.dt > 0.0 ? block_eta_[static_cast<std::size_t>(lb.volume_block)] : 0.0;
-      et.has_old = has_old && (in.eval != StressEval::EndPoint || et.eta > 0.0);
-      const CellType type = lb.type;
-      const ElementTechnology tech = block_tech_[static_cast<std::size_t>(lb.volume_block)];
-      const int nn = lb.nodes_per_cell;
-      auto conn = lb.conn;
-      double e_block = 0.0;
-      Kokkos::View<double*, la::ExecSpace> dsum("dissipation", 2);  // viscous, plastic
-      // One launch per block, compiled for the block's law type; a block whose law has
-      // Gauss-point history reads its committed rows and writes its trial rows (cell c:
-      // rows c * ngp ...).
-      auto launch = [&](const auto& law) {
-        constexpr bool H = kHasHistory<std::decay_t<decltype(law)>>;
-        HistoryView hn, h1;
-        int ngp = 0, nh = 0;
-        if (H) {
-          hn = history_[bi].committed;
-          h1 = history_[bi].trial;
-          ngp = history_[bi].ngp;
-          nh = static_cast<int>(hn.extent(1));
-        }
-        auto body = [=](const int c, double& e, auto tangent_tag, auto atomic_tag) {
-          constexpr bool T = decltype(tangent_tag)::value;
-          constexpr bool A = decltype(atomic_tag)::value;
-          double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], U0e[kMaxCellNodes][3], re[kMaxCellDofs];
-          double ke[T ? kMaxCellDofs : 1][kMaxCellDofs];
-          int dofs[kMaxCellDofs];
-          gather_cell(c, nn, dim, conn, X, uv, Xe, Ue, dofs);
-          if (et.has_old)
-            for (int a = 0; a < nn; ++a)
-              for (int d = 0; d < 3; ++d) U0e[a][d] = d < dim ? u0v(dofs[a * dim] + d, 0) : 0.0;
-          double ec = 0.0, dc = 0.0, pc = 0.0;
-          int status;
-          if constexpr (H)
-            status = solid_element<T>(dim, kin, tech, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc,
-                                      CellHistory{&hn(c * ngp, 0), &h1(c * ngp, 0), nh}, &pc);
-          else
-            status = solid_element<T>(dim, kin, tech, type, nn, Xe, Ue, U0e, law, et, q, re, ke, ec, dc);
-          if (status != kElementOk) {
-            Kokkos::atomic_increment(&fails(status == kElementInverted ? 0 : status == kElementLocalFailure ? 2 : 1));
-            Kokkos::atomic_fetch_min(&bad(0), c);
-            return;
-          }
-          e += ec;
-          if (dc != 0.0) Kokkos::atomic_add(&dsum(0), dc);
-          if (H && pc != 0.0) Kokkos::atomic_add(&dsum(1), pc);
-          scatter<T, A>(nn * dim, dofs, re, ke, rv, Kl, flags);
-        };
-        if (colors_.empty()) {
-          // Atomic sums: all cells in one kernel.
-          if (with_tangent)
-            Kokkos::parallel_reduce(
-                "stentor::solid_residual_tangent", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
-                KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::true_type{}, std::true_type{}); }, e_block);
-          else
-            Kokkos::parallel_reduce(
-                "stentor::solid_residual", Kokkos::RangePolicy<la::ExecSpace>(0, nc),
-                KOKKOS_LAMBDA(const int c, double& e) { body(c, e, std::false_type{}, std::true_type{}); }, e_block);
-        } else {
-          // One kernel per colour: its cells share no node, so plain sums are race-free.
-          const BlockColors& bc = colors_[bi];
-          auto cells = bc.cells;
-          for (std::size_t k = 0; k + 1 < bc.offsets.size(); ++k) {
-            double e_color = 0.0;
-            const Kokkos::RangePolicy<la::ExecSpace> range(bc.offsets[k], bc.offsets[k + 1]);
-            if (with_tangent)
-              Kokkos::parallel_reduce(
-                  "stentor::solid_residual_tangent_colored", range,
-                  KOKKOS_LAMBDA(const int i, double& e) { body(cells(i), e, std::true_type{}, std::false_type{}); }, e_color);
-            else
-              Kokkos::parallel_reduce(
-                  "stentor::solid_residual_colored", range,
-                  KOKKOS_LAMBDA(const int i, double& e) { body(cells(i), e, std::false_type{}, std::false_type{}); }, e_color);
-            e_block += e_color;
-          }
-        }
-      };
-      Kokkos::deep_copy(bad, std::numeric_limits<int>::max());
-      std::visit(launch, block_law_[static_cast<std::size_t>(lb.volume_block)]);
-      auto bh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), bad);
-      if (bh(0) != std::numeric_limits<int>::max() && lb.cell_ids[static_cast<std::size_t>(bh(0))] < bad_gid) {
-        bad_gid = lb.cell_ids[static_cast<std::size_t>(bh(0))];
-        bad_block = bi;
-        bad_local = bh(0);
-      }
-      auto dh = Kokkos::create_mirror_view_and_copy(Kokkos::HostSpace(), dsum);
-      energy += e_block;
-      dissipation += dh(0);
-      plastic += dh(1);
-    }
-
-    // Follower pressure p on the current surface (configuration u_n + theta (u - u_n)):
-    // assembly/PressureElement.hpp.
-    const double theta = has_old ? in.pressure_theta : 1.0;
-    for (const auto& pl : pressures_) {
-      const double p = pl.cavity >= 0 ? cavities_[static_cast<std::size_t>(pl.cavity)].p : pl.pressure * pl.ramp(in.load_time, in.end_time);
-      const std::size_t nf = pl.conn.extent(0);
-      if (nf == 0 || p == 0.0) continue;
-      const QuadRule q = make_rule(pl.type, 2 * cell_order(pl.type) + 1);
-      const CellType type = pl.type;
-      const int nn = pl.nn;
-      auto conn = pl.conn;
-      auto orient = pl.orientation;
-      const bool T = with_tangent;
-      Kokkos::parallel_for(
-          "stentor::follower_pressure", Kokkos::RangePolicy<la::ExecSpace>(0, nf), KOKKOS_LAMBDA(const int f) {
-            double Xe[kMaxCellNodes][3], Ue[kMaxCellNodes][3], re[kMaxCellDofs], ke[kMaxCellDofs][kMaxCellDofs];
-            int dofs[kMaxCellDofs];
-            gather_cell(f, nn, dim, conn, X, uv, Xe, Ue, dofs);
-            if (theta != 1.0)
-              for (int a = 0; a < nn; ++a)
-                for (int d = 0; d < dim; ++d) Ue[a][d] = theta * Ue[a][d] + (1.0 - theta) * u0v(dofs[a * dim] + d, 0);
-            const int nd = nn * dim;
-            pressure_element(dim, kin, type, nn, Xe, Ue, p * orient(f), theta, q, re, ke);
-            if (T)
-              scatter<true, true>(nd, dofs, re, ke, rxv, Kl, flags);
-            else
-              scatter<false, true>(nd, dofs, re, ke, rxv, Kl, flags);
-          });
-    }
-  }
+  const CellSums sums = assemble_cells(in, has_old, with_tangent, Kl);
+  assemble_pressures(in, has_old, with_tangent, Kl);
   // Dead loads: -f_ext contribution = -ramp(t) f.
   for (const auto& dl : dead_) rext_overlap_->update(-dl.ramp(in.load_time, in.end_time), *dl.f, 1.0);
   r_overlap_->update(1.0, *rext_overlap_, 1.0);
@@ -704,14 +791,14 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
   if (global_fail[1] > 0)
     throw std::runtime_error(std::to_string(global_fail[1]) + " cells have a non-positive reference Jacobian (mesh check missed them)");
   Stats st;
-  double loc3[3] = {energy, dissipation, plastic}, glob3[3] = {0, 0, 0};
+  double loc3[3] = {sums.energy, sums.dissipation, sums.plastic}, glob3[3] = {0, 0, 0};
   Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, 3, loc3, glob3);
   st.energy = glob3[0];
   st.dissipation = glob3[1];
   st.plastic_dissipation = glob3[2];
   st.inverted = global_fail[0] + global_fail[2];  // a failed return map is inadmissible like an inverted cell
   if (st.inverted > 0) {
-    st.first_failed = describe_failed(bad_gid, bad_block, bad_local);
+    st.first_failed = describe_failed(sums.bad_gid, sums.bad_block, sums.bad_local);
     return st;
   }
 
@@ -727,73 +814,8 @@ Assembler::Stats Assembler::assemble(const la::Vector& u, const StepInput& in, l
     mass()->apply(*work_, r, Teuchos::NO_TRANS, in.mass_coeff, 1.0);
   }
   if (in.extra) r.update(1.0, *in.extra, 1.0);
-  {
-    // Reactions, then zero the constrained rows (and project those of the planes).
-    std::vector<double> loc(3 * reactions_.size(), 0.0), glob(loc.size(), 0.0);
-    {
-      auto rh = r.getLocalViewHost(Tpetra::Access::ReadWrite);
-      for (std::size_t k = 0; k < owned_dirichlet_dofs_.size(); ++k) {
-        const la::LO i = owned_dirichlet_dofs_[k];
-        loc[3 * static_cast<std::size_t>(owned_reaction_set_[k]) + static_cast<std::size_t>(i % dim_)] += rh(i, 0);
-      }
-      dirichlet_r_.resize(owned_dirichlet_dofs_.size());
-      for (std::size_t k = 0; k < owned_dirichlet_dofs_.size(); ++k) {
-        dirichlet_r_[k] = rh(owned_dirichlet_dofs_[k], 0);
-        rh(owned_dirichlet_dofs_[k], 0) = 0.0;
-      }
-    }
-    project_plane_rows(r, loc);
-    if (!loc.empty()) Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_SUM, static_cast<int>(loc.size()), loc.data(), glob.data());
-    for (std::size_t s = 0; s < reactions_.size(); ++s) reactions_[s] = {glob[3 * s], glob[3 * s + 1], glob[3 * s + 2]};
-  }
-  if (with_tangent) {
-    // Identity on owned constrained rows (owned dofs are a prefix of the overlap dofs).
-    const la::LO ndir = static_cast<la::LO>(owned_dirichlet_dofs_.size());
-    Kokkos::View<la::LO*, la::ExecSpace> rows("dirichlet_rows", ndir);
-    auto rh = Kokkos::create_mirror_view(rows);
-    for (la::LO i = 0; i < ndir; ++i) rh(i) = owned_dirichlet_dofs_[static_cast<std::size_t>(i)];
-    Kokkos::deep_copy(rows, rh);
-    Kokkos::parallel_for(
-        "stentor::dirichlet_rows", Kokkos::RangePolicy<la::ExecSpace>(0, ndir), KOKKOS_LAMBDA(const int i) {
-          const la::LO row = rows(i);
-          const double one = 1.0;
-          Kl.replaceValues(row, &row, 1, &one, true, true);
-        });
-    K_->resumeFill();
-    {
-      // Owned rows: scatter the overlap values to their precomputed positions (all
-      // distinct, so no atomics); ghost rows: copy the overlap value tail, export (ADD).
-      auto Kw = K_->getLocalMatrixDevice();
-      auto Kg = K_ghost_->getLocalMatrixDevice();
-      auto posv = owned_value_pos_;
-      Kokkos::deep_copy(Kw.values, 0.0);
-      const std::size_t n_owned_entries = posv.extent(0);
-      Kokkos::parallel_for(
-          "stentor::owned_rows_to_owned_matrix", Kokkos::RangePolicy<la::ExecSpace>(0, n_owned_entries),
-          KOKKOS_LAMBDA(const std::size_t j) { Kw.values(posv(j)) = Kl.values(j); });
-      Kokkos::deep_copy(Kg.values, Kokkos::subview(Kl.values, Kokkos::make_pair(n_owned_entries, Kl.values.extent(0))));
-      Kokkos::fence();
-      K_->doExport(*K_ghost_, *ghost_exporter_, Tpetra::ADD);
-    }
-    if (in.scale != 1.0 || in.mass_coeff != 0.0) {
-      // K = s K + c M on unconstrained rows (K and M share one graph, so their local
-      // value arrays line up entry by entry).
-      auto Kv = K_->getLocalMatrixDevice();
-      const double s = in.scale, c = in.mass_coeff;
-      DeviceMatrix Mv;
-      if (c != 0.0) Mv = mass()->getLocalMatrixDevice();
-      auto oflag = flags;  // owned dofs are the first rows of the overlap flags
-      Kokkos::parallel_for(
-          "stentor::tangent_plus_mass", Kokkos::RangePolicy<la::ExecSpace>(0, Kv.numRows()), KOKKOS_LAMBDA(const int row) {
-            if (oflag(row)) return;
-            for (auto j = Kv.graph.row_map(row); j < Kv.graph.row_map(row + 1); ++j)
-              Kv.values(j) = s * Kv.values(j) + (c != 0.0 ? c * Mv.values(j) : 0.0);
-          });
-    }
-    project_plane_matrix();
-    K_->fillComplete(dist_.owned_map(), dist_.owned_map());
-    update_cavity_gradients();
-  }
+  constrain_residual(r);
+  if (with_tangent) finish_tangent(in, Kl);
   return st;
 }
 

@@ -18,6 +18,7 @@
 // docs/performance.md compares the two.
 #pragma once
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -262,6 +263,20 @@ class Assembler {
   std::vector<std::string> block_names_;        // per mesh volume block: its physical name
   // The failed cell of smallest global id over the ranks (Stats::first_failed); collective.
   std::string describe_failed(GId gid, std::size_t block, int cell) const;
+
+  // assemble()'s parts (Assembler.cpp): the solid cells, the follower pressures, the owned
+  // residual's constrained rows and reactions, the owned tangent.
+  using DeviceMatrix = la::CrsMatrix::local_matrix_device_type;
+  struct CellSums {
+    double energy = 0.0, dissipation = 0.0, plastic = 0.0;
+    GId bad_gid = std::numeric_limits<GId>::max();  // the failed cell of smallest global id
+    std::size_t bad_block = 0;
+    int bad_local = -1;
+  };
+  CellSums assemble_cells(const StepInput& in, bool has_old, bool with_tangent, const DeviceMatrix& Kl);
+  void assemble_pressures(const StepInput& in, bool has_old, bool with_tangent, const DeviceMatrix& Kl);
+  void constrain_residual(la::Vector& r);
+  void finish_tangent(const StepInput& in, const DeviceMatrix& Kl);
   std::vector<la::LO> owned_dirichlet_dofs_;
   std::vector<double> owned_dirichlet_value_;           // full value (times ramp of its set)
   std::vector<int> owned_dirichlet_set_;                // the set whose value is prescribed (the last)
