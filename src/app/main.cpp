@@ -60,9 +60,8 @@ const char* kUsage =
 #ifndef STENTOR_VERSION
 #define STENTOR_VERSION "unknown"
 #endif
-#ifndef STENTOR_GIT_DESCRIBE
-#define STENTOR_GIT_DESCRIBE ""
-#endif
+// STENTOR_GIT_DESCRIBE: `git describe` of the sources at build time (cmake/GitDescribe.cmake).
+#include "stentor_git.h"
 
 std::string version_text() {
   const std::string git = STENTOR_GIT_DESCRIBE;
