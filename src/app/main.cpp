@@ -186,6 +186,12 @@ int main(int argc, char** argv) {
     }
   }
   stentor::RunOptions opts;
+  {  // "stentor X (git Y); Trilinos ..., Kokkos ..., HDF5 ...": version_text() on one line
+    std::string v = version_text();
+    v.pop_back();
+    v.replace(v.find('\n'), 1, "; ");
+    opts.version = v;
+  }
   std::string deck;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];

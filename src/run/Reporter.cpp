@@ -170,6 +170,7 @@ Reporter::Reporter(const Model& model, const RunOptions& opts, Timers& timers, s
     : m_(model), cfg_(model.cfg), timers_(timers), out_(model.rank == 0 ? std::cout : null_stream_), start_(start) {
   out_dir_ = opts.output_dir.empty() ? cfg_.output.directory : opts.output_dir;
   overwrite_ = opts.overwrite;
+  version_ = opts.version;
 }
 
 Reporter::~Reporter() = default;
@@ -178,6 +179,7 @@ void Reporter::print_model() {
   const Mesh& mesh = m_.mesh;
   out_ << "Stentor: " << (cfg_.problem.title.empty() ? cfg_.deck_path : cfg_.problem.title) << "\n"
        << "  deck     " << cfg_.deck_path << "\n"
+       << (version_.empty() ? std::string() : "  version  " + version_ + "\n")
        << "  mesh     " << mesh.source << ": " << m_.dim << "D, " << mesh.num_nodes() << " nodes, " << mesh.num_volume_cells()
        << " cells (";
   for (std::size_t b = 0; b < mesh.volumes.size(); ++b)

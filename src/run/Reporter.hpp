@@ -108,6 +108,7 @@ class Reporter {
   std::ostream& out_;
   std::string out_dir_;
   bool overwrite_ = false;  // RunOptions::overwrite
+  std::string version_;     // RunOptions::version: the run header's `version` line
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point interval_start_;  // begin_interval()
   double interval_t0_ = 0.0, interval_t1_ = 1.0;

@@ -18,6 +18,7 @@ struct RunOptions {
   bool check_only = false;  // validate deck + mesh + groups, then stop
   bool overwrite = false;   // write into a non-empty output folder that is not Stentor's (see io/OutputDir.hpp)
   std::string restart_file; // continue from this checkpoint (Output->checkpoint every) instead of t = 0
+  std::string version;      // the program's version (stentor --version), printed in the run's header
 };
 
 // What a run leaves in memory, for tests and programs that embed Stentor.

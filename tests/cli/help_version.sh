@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# The command line users meet first (issue 13).
+# The command line users meet first.
 #   help     `stentor --help`: exit 0, Stentor's usage first (not Kokkos's 40 lines; Kokkos's
 #            own help stays behind --kokkos-help), --version listed; a deck given with it
 #            is not run
 #   version  `stentor --version`: exit 0, "stentor X.Y.Z[ (git DESCRIBE)]", then the
 #            Trilinos, Kokkos and HDF5 versions it was built with
 #   times    a run of 10 steps of 0.1: the log shows t 0.3 (not 0.30000000000000004),
-#            no time with noise digits, and the history CSV writes 0.1 as 0.1
+#            no time with noise digits, and the history CSV writes 0.1 as 0.1; the run's
+#            header names the version (the --version text on one line)
 # usage: help_version.sh MODE STENTOR WORKDIR [DECK]
 set -u
 . "$(dirname "$0")/lib.sh"
@@ -44,6 +45,8 @@ case $mode in
     [ "$rc" -eq 0 ] || fail "exit status $rc"
     grep -Eq '^  step +3  t 0\.3 +dt 0\.1 ' log.txt || fail "step 3 is not logged as 't 0.3  dt 0.1'"
     grep -E '(^| )(t|dt|t =|t=) ?[0-9]+\.[0-9]{7,}' log.txt && fail "the log prints a time with noise digits"
+    want="  version  $("$stentor" --version | paste -sd';' | sed 's/;/; /')"
+    grep -qxF "$want" log.txt || fail "the run's header does not name the version ('$want')"
     csv=$(ls results/*_history.csv)
     awk -F, 'NR == 2 && $2 != "0.1" { print "history time " $2 ", expected 0.1"; exit 1 }
              NR == 4 && $2 != "0.30000000000000004" { print "history time " $2 ", expected 0.30000000000000004 (t = 0.1 + 0.1 + 0.1, exact)"; exit 1 }' "$csv" ||
