@@ -257,18 +257,7 @@ def write_feb(a):
     x, nb = m["x"], len(m["x"]) - 1
     # the fixed block under the plane: 4 x 4 x 1 hex8
     n, lo, hi, t = 4, -0.05 * a.R, 0.35 * a.R, 0.05 * a.R
-    bx = [lo + (hi - lo) * i / n for i in range(n + 1)]
-    bnode = {}
-    for k, z in enumerate((-t, 0.0)):
-        for j in range(n + 1):
-            for i in range(n + 1):
-                bnode[i, j, k] = nb + 1 + len(bnode)
-    bcoord = {v: (bx[i], bx[j], (-t, 0.0)[k]) for (i, j, k), v in bnode.items()}
-    hexes = [[bnode[i, j, 0], bnode[i + 1, j, 0], bnode[i + 1, j + 1, 0], bnode[i, j + 1, 0],
-              bnode[i, j, 1], bnode[i + 1, j, 1], bnode[i + 1, j + 1, 1], bnode[i, j + 1, 1]]
-             for j in range(n) for i in range(n)]
-    quads = [[bnode[i, j, 1], bnode[i + 1, j, 1], bnode[i + 1, j + 1, 1], bnode[i, j + 1, 1]]
-             for j in range(n) for i in range(n)]  # counter-clockwise seen from +z: normal +z
+    bcoord, hexes, quads = febio_tools.rigid_slab(n, lo, hi, -t, nb + 1)
     fmt = febio_tools.fmt
     base = os.path.splitext(os.path.basename(a.out))[0]
     dt = 1.0 / a.steps

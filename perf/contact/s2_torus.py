@@ -197,18 +197,7 @@ def write_feb(a):
     if set(surf_nodes) != set(m["sets"]["surface"]):
         raise SystemExit("s2_torus.py: the tets' boundary is not the physical surface 'surface'")
     x0, x1, zb, n = SLAB
-    bx = [x0 + (x1 - x0) * i / n for i in range(n + 1)]
-    bnode = {}
-    for k in range(2):
-        for j in range(n + 1):
-            for i in range(n + 1):
-                bnode[i, j, k] = nb + 1 + len(bnode)
-    bcoord = {v: (bx[i], bx[j], (zb, 0.0)[k]) for (i, j, k), v in bnode.items()}
-    hexes = [[bnode[i, j, 0], bnode[i + 1, j, 0], bnode[i + 1, j + 1, 0], bnode[i, j + 1, 0],
-              bnode[i, j, 1], bnode[i + 1, j, 1], bnode[i + 1, j + 1, 1], bnode[i, j + 1, 1]]
-             for j in range(n) for i in range(n)]
-    quads = [[bnode[i, j, 1], bnode[i + 1, j, 1], bnode[i + 1, j + 1, 1], bnode[i, j + 1, 1]]
-             for j in range(n) for i in range(n)]  # counter-clockwise seen from +z: normal +z
+    bcoord, hexes, quads = febio_tools.rigid_slab(n, x0, x1, zb, nb + 1)
     fmt = febio_tools.fmt
     base = os.path.splitext(os.path.basename(a.out))[0]
     dt = a.end / a.steps

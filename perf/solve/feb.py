@@ -312,6 +312,25 @@ def shown_path(path):
     return path if rel.startswith("..") else rel
 
 
+def rigid_slab(n, lo, hi, z_bottom, first):
+    """An n x n x 1 block of hex8 over [lo, hi]^2 x [z_bottom, 0] (a rigid floor for FEBio):
+    ({node id: (x, y, z)}, hex8 connectivities, the top face's quad4s, counter-clockwise
+    seen from +z so their normal is +z); node ids from `first` on."""
+    bx = [lo + (hi - lo) * i / n for i in range(n + 1)]
+    node = {}
+    for k in range(2):
+        for j in range(n + 1):
+            for i in range(n + 1):
+                node[i, j, k] = first + len(node)
+    coord = {v: (bx[i], bx[j], (z_bottom, 0.0)[k]) for (i, j, k), v in node.items()}
+    hexes = [[node[i, j, 0], node[i + 1, j, 0], node[i + 1, j + 1, 0], node[i, j + 1, 0],
+              node[i, j, 1], node[i + 1, j, 1], node[i + 1, j + 1, 1], node[i, j + 1, 1]]
+             for j in range(n) for i in range(n)]
+    quads = [[node[i, j, 1], node[i + 1, j, 1], node[i + 1, j + 1, 1], node[i, j + 1, 1]]
+             for j in range(n) for i in range(n)]
+    return coord, hexes, quads
+
+
 def fmt(v):
     return "%.17g" % v
 
