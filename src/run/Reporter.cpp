@@ -228,7 +228,7 @@ void Reporter::print_solvers() {
   out_ << "  dofs     " << m_.dist->owned_map()->getGlobalNumElements() << "\n"
        << "  analysis " << analysis_text() << "\n"
        << "  solver   " << m_.linear->description() << "\n";
-  if (m_.nranks > 1 && cfg_.linear.method == "direct" && cfg_.linear.direct_solver != "mumps")  // auto: KLU2
+  if (m_.nranks > 1 && klu2())
     out_ << "warning: 'Linear Solver->method' = direct on " << m_.nranks
          << " ranks: KLU2 gathers the matrix and solves it on one rank at every Newton iteration, so more ranks "
             "make the run slower, not faster; on several ranks use 'direct solver' = mumps, or method = gmres (with "
@@ -732,7 +732,7 @@ void Reporter::summary(const RunState& s) {
 #ifdef STENTOR_HAVE_MUMPS
     // KLU2 has no supernodes: on a 3D mesh its factorizations can be most of the run, where
     // MUMPS is several times faster (docs/solvers.md, "The direct solvers").
-    if (m_.dim == 3 && m_.linear->description() == "direct (Amesos2 KLU2)" && lt.setup > 2.0 && 3.0 * lt.setup > wall)
+    if (m_.dim == 3 && klu2() && lt.setup > 2.0 && 3.0 * lt.setup > wall)
       out_ << "note: KLU2's factorizations took " << lt.setup << " s of the run's " << wall
            << " s; on 3D meshes 'Linear Solver->direct solver' = mumps is usually several times faster "
               "(docs/solvers.md), or method = gmres\n";

@@ -109,6 +109,8 @@ class Reporter {
   std::string out_dir_;
   bool overwrite_ = false;  // RunOptions::overwrite
   std::string version_;     // RunOptions::version: the run header's `version` line
+  // The deck's linear solver is KLU2 (method = direct, direct solver auto or klu2).
+  bool klu2() const { return cfg_.linear.method == "direct" && cfg_.linear.direct_solver != "mumps"; }
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point interval_start_;  // begin_interval()
   double interval_t0_ = 0.0, interval_t1_ = 1.0;
