@@ -18,6 +18,7 @@
 #include "RadialTubeReference.hpp"
 #include "material/HolzapfelGasserOgden.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 using namespace stentor::testing::radial;
@@ -25,7 +26,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "artery";
+fs::path work_dir() { return stentor::testing::test_dir("artery"); }
 
 std::vector<Layer> layers(const Config& cfg) {
   const ArteryConfig& a = cfg.mesh.artery;
@@ -99,7 +100,7 @@ TEST(ArteryInflation, LayeredWallMatchesTheRadialSolution) {
     for (auto& l : c.loads)
       if (l.type == LoadConfig::Type::Pressure) l.value = f * p_full;
     RunOptions opts;
-    opts.output_dir = (kDir / ("p" + std::to_string(f) + "_k" + std::to_string(k))).string();
+    opts.output_dir = (work_dir() / ("p" + std::to_string(f) + "_k" + std::to_string(k))).string();
     RunResult res;
     ASSERT_EQ(run_simulation(c, opts, &res), 0);
     ASSERT_TRUE(res.converged);

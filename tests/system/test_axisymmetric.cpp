@@ -40,6 +40,7 @@
 #include "CsvSeries.hpp"
 #include "H5Results.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 using stentor::testing::AssemblerFixture;
@@ -50,11 +51,11 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "axisymmetric";
+fs::path work_dir() { return stentor::testing::test_dir("axisymmetric"); }
 
 std::string write_file(const std::string& name, const std::string& text) {
-  fs::create_directories(kDir);
-  const fs::path p = kDir / name;
+  fs::create_directories(work_dir());
+  const fs::path p = work_dir() / name;
   std::ofstream(p) << text;
   return p.string();
 }
@@ -144,7 +145,7 @@ std::string dirichlet(const std::string& name, const std::string& group, const s
 
 RunResult run(const Config& cfg, const std::string& tag) {
   RunOptions opts;
-  opts.output_dir = (kDir / tag).string();
+  opts.output_dir = (work_dir() / tag).string();
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
   EXPECT_TRUE(res.converged) << tag;
@@ -574,10 +575,10 @@ TEST(Axisymmetric, ImpulsivelyLoadedRingConservesEnergy) {
   s.initial = "<Parameter name=\"velocity\" type=\"Array(double)\" value=\"{0.3, 0}\"/>";
   const Config cfg = make_deck(s, "ring_dyn");
   RunOptions opts;
-  opts.output_dir = (kDir / "ring_dyn").string();
+  opts.output_dir = (work_dir() / "ring_dyn").string();
   RunResult res;
   ASSERT_EQ(run_simulation(cfg, opts, &res), 0);
-  const Series e = read_csv(kDir / "ring_dyn" / "run_energy.csv");
+  const Series e = read_csv(work_dir() / "ring_dyn" / "run_energy.csv");
   const double E0 = e["total"][0], E0_exact = 0.5 * 0.3 * 0.3 * 2 * kPi * 1.1 * 0.04;
   double bal = 0, drift = 0, strain = 0;
   for (std::size_t i = 0; i < e.rows(); ++i) {
@@ -669,7 +670,7 @@ TEST(Axisymmetric, ContactPressureOnARigidPlaneIsTheTraction) {
     const std::string tag = quads ? "contact_quad4" : "contact_tri6";
     const Config cfg = make_deck(s, tag);
     run(cfg, tag);
-    stentor::testing::H5Results h5(kDir / tag / "run.h5");
+    stentor::testing::H5Results h5(work_dir() / tag / "run.h5");
     const std::string step = "/step_" + std::to_string(h5.times().size() - 1) + "/";
     const auto X = h5.read("/mesh/coordinates"), pr = h5.read(step + "contact_pressure");
     ASSERT_EQ(3 * pr.size(), X.size());
@@ -698,10 +699,10 @@ TEST(Axisymmetric, RingImpactOnARigidPlaneConservesEnergy) {
   s.contact = plane_obstacle("floor", "bottom", 0.0);
   const Config cfg = make_deck(s, "ring_impact");
   RunOptions opts;
-  opts.output_dir = (kDir / "ring_impact").string();
+  opts.output_dir = (work_dir() / "ring_impact").string();
   RunResult res;
   ASSERT_EQ(run_simulation(cfg, opts, &res), 0);
-  const Series e = read_csv(kDir / "ring_impact" / "run_energy.csv");
+  const Series e = read_csv(work_dir() / "ring_impact" / "run_energy.csv");
   const double E0 = e["total"][0];
   double bal = 0, drift = 0, vz_end = 0;
   for (std::size_t i = 0; i < e.rows(); ++i) {
@@ -753,7 +754,7 @@ Physical Curve("upper_top") = {7};
   s.contact = "<ParameterList name=\"stack\"><Parameter name=\"slave\" type=\"string\" value=\"upper_base\"/>"
               "<Parameter name=\"master\" type=\"string\" value=\"lower_top\"/></ParameterList>";
   run(make_deck(s, "stacked"), "stacked");
-  stentor::testing::H5Results h5(kDir / "stacked" / "run.h5");
+  stentor::testing::H5Results h5(work_dir() / "stacked" / "run.h5");
   const std::string step = "/step_" + std::to_string(h5.times().size() - 1) + "/";
   const auto X = h5.read("/mesh/coordinates"), pr = h5.read(step + "contact_pressure"), st = h5.read(step + "contact_status"),
              tm = h5.read(step + "contact_master_traction");
@@ -837,7 +838,7 @@ TEST(Axisymmetric, MortarPatchTestOfStackedAnnuliWithNonMatchingMeshes) {
     const std::string tag = ri == 0.0 ? "mortar_solids_quad4" : quads ? "mortar_annuli_quad4" : "mortar_annuli_tri3";
     const Config cfg = make_deck(s, tag);
     const RunResult res = run(cfg, tag);
-    stentor::testing::H5Results h5(kDir / tag / "run.h5");
+    stentor::testing::H5Results h5(work_dir() / tag / "run.h5");
     const std::string step = "/step_" + std::to_string(h5.times().size() - 1) + "/";
     const auto X = h5.read("/mesh/coordinates"), pr = h5.read(step + "contact_pressure"), st = h5.read(step + "contact_status"),
                tm = h5.read(step + "contact_master_traction");
@@ -911,7 +912,7 @@ TubeResult tubes(const std::string& disc, int nz_inner, int nz_outer) {
           "<Parameter name=\"boundary\" type=\"string\" value=\"bore\"/><Parameter name=\"pressure\" type=\"double\" value=\"0.1\"/></ParameterList>";
   s.contact = contact_pair("fit", "in_out", "out_in", disc);
   const RunResult res = run(make_deck(s, tag), tag);
-  stentor::testing::H5Results h5(kDir / tag / "run.h5");
+  stentor::testing::H5Results h5(work_dir() / tag / "run.h5");
   const std::string step = "/step_" + std::to_string(h5.times().size() - 1) + "/";
   const auto X = h5.read("/mesh/coordinates"), pr = h5.read(step + "contact_pressure"), st = h5.read(step + "contact_status"),
              u = h5.read(step + "displacement");
@@ -1077,8 +1078,8 @@ TEST(Axisymmetric, StentMetricsOfAHomogeneouslyExpandedTube) {
   const double a = 0.2, b = -0.05, f2 = 0.9, mu = 1.0, lambda = 3.0;
   const Config cfg = read_deck(stent_metrics_tube_deck(a, b, f2));
   run(cfg, "metrics_tube");
-  const Series s = read_csv(kDir / "metrics_tube" / "tube_metrics.csv");
-  const Series st = read_csv(kDir / "metrics_tube" / "tube_stages.csv");
+  const Series s = read_csv(work_dir() / "metrics_tube" / "tube_metrics.csv");
+  const Series st = read_csv(work_dir() / "metrics_tube" / "tube_stages.csv");
   ASSERT_EQ(s.rows(), 4u);  // t = 0, 2 steps of "expand", 1 of "recoil"
   ASSERT_EQ(st.rows(), 2u);
   double err = 0.0;
@@ -1124,7 +1125,7 @@ TEST(Axisymmetric, S4AxiCoarseRecoilIsTheElasticSpringBack) {
   cfg.mesh.file = std::string(STENTOR_SOURCE_DIR) + "/tests/cli/decks/s4_axi_coarse.geo";
   cfg.output.fields = false;
   run(cfg, "s4_axi_coarse");
-  const Series st = read_csv(kDir / "s4_axi_coarse" / "s4_axi_stages.csv");
+  const Series st = read_csv(work_dir() / "s4_axi_coarse" / "s4_axi_stages.csv");
   ASSERT_EQ(st.rows(), 3u);  // inflation, deflation, withdrawal
   const double E = 196000.0, Y = 205.0, H = 694.45, w = 0.1, rm0 = 1.40;
   double rm = 1.65;
@@ -1154,8 +1155,8 @@ TEST(Axisymmetric, S4AxiDynamicCoarseKeepsTheEnergyIdentity) {
   cfg.mesh.file = std::string(STENTOR_SOURCE_DIR) + "/tests/cli/decks/s4_axi_coarse.geo";
   cfg.output.fields = false;
   run(cfg, "s4_axi_dynamic_coarse");
-  const Series e = read_csv(kDir / "s4_axi_dynamic_coarse" / "s4_axi_dynamic_energy.csv");
-  const Series st = read_csv(kDir / "s4_axi_dynamic_coarse" / "s4_axi_dynamic_stages.csv");
+  const Series e = read_csv(work_dir() / "s4_axi_dynamic_coarse" / "s4_axi_dynamic_energy.csv");
+  const Series st = read_csv(work_dir() / "s4_axi_dynamic_coarse" / "s4_axi_dynamic_stages.csv");
   ASSERT_GT(e.rows(), 30u);
   ASSERT_EQ(st.rows(), 3u);
   double Emax = 0, bal = 0, Kmax = 0;

@@ -44,6 +44,7 @@
 #include "geometry/Generators.hpp"
 #include "mesh/GmshReader.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 using namespace stentor::testing::radial;
@@ -51,7 +52,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "balloon_inflation";
+fs::path work_dir() { return stentor::testing::test_dir("balloon_inflation"); }
 
 struct Balloon {
   double length = 1.2;          // the whole balloon's
@@ -137,8 +138,8 @@ Config deck(const Balloon& b, double p, const std::string& name) {
     <Parameter name="field list" type="string" value="displacement"/></ParameterList>
 </ParameterList>
 )";
-  fs::create_directories(kDir);
-  const fs::path f = kDir / (name + ".xml");
+  fs::create_directories(work_dir());
+  const fs::path f = work_dir() / (name + ".xml");
   std::ofstream(f) << text;
   return read_deck(f.string());
 }
@@ -155,7 +156,7 @@ struct State {
 std::vector<State> run(const Balloon& b, double p_max, const std::string& name) {
   const Config cfg = deck(b, p_max, name);
   RunOptions opts;
-  opts.output_dir = (kDir / name).string();
+  opts.output_dir = (work_dir() / name).string();
   opts.overwrite = true;
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << name;
@@ -163,7 +164,7 @@ std::vector<State> run(const Balloon& b, double p_max, const std::string& name) 
   std::printf("[balloon] %s: %zu balloon cells, %d steps, %d cut-backs, %d Newton iterations\n", name.c_str(),
               static_cast<std::size_t>(cfg.mesh.balloon.cells(cfg.mesh.stent)), res.steps, res.cutbacks,
               res.newton_iterations);
-  const stentor::testing::H5Results h5(kDir / name / "balloon.h5");
+  const stentor::testing::H5Results h5(work_dir() / name / "balloon.h5");
   EXPECT_GE(h5.f, 0) << name;
   const std::vector<double> x = h5.read("/mesh/coordinates"), t = h5.times();
   const double inside = cfg.mesh.stent.inner_radius();
@@ -412,7 +413,7 @@ TEST(BalloonInflation, FluidCavityHoldsItsVolumeAndMatchesTheRadialSolution) {
   const double zmid = 0.5 * cfg.mesh.stent.total_length();
   const std::vector<Layer> L{{cylindrical_law(m.mu, m.lambda, m.k1, m.k2, m.fibre_angle * 3.14159265358979323846 / 180.0), Ri, Ro}};
   const std::vector<State> st = run(b, 0.0, "cavity");
-  const stentor::testing::Series h = stentor::testing::read_csv(kDir / "cavity" / "balloon_history.csv");
+  const stentor::testing::Series h = stentor::testing::read_csv(work_dir() / "cavity" / "balloon_history.csv");
   ASSERT_EQ(st.size(), 4u);
   ASSERT_EQ(h.rows(), 4u);
   double worst_law = 0.0, worst_poly = 0.0, worst_ref = 0.0;
@@ -444,7 +445,7 @@ TEST(BalloonInflation, FluidCavityHoldsItsVolumeAndMatchesTheRadialSolution) {
 TEST(BalloonInflation, FluidCavityPassesTheLimitPointOfAHeldBalloon) {
   const Balloon b{6.6, 0.2, 2, "all", 20, 5.0, 2200.0};
   const std::vector<State> st = run(b, 0.0, "cavity_limit");
-  const stentor::testing::Series h = stentor::testing::read_csv(kDir / "cavity_limit" / "balloon_history.csv");
+  const stentor::testing::Series h = stentor::testing::read_csv(work_dir() / "cavity_limit" / "balloon_history.csv");
   ASSERT_GE(h.rows(), 20u);
   const std::vector<double>& p = h["pressure_inflation"];
   const std::size_t top = static_cast<std::size_t>(std::max_element(p.begin(), p.begin() + static_cast<long>(p.size() / 2 + 2)) - p.begin());

@@ -25,6 +25,7 @@
 
 #include "CsvSeries.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 using stentor::testing::read_csv;
@@ -33,7 +34,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "contact";
+fs::path work_dir() { return stentor::testing::test_dir("contact"); }
 const std::string kInputs = std::string(STENTOR_SOURCE_DIR) + "/inputs/";
 
 
@@ -45,7 +46,7 @@ struct Outcome {
 
 Outcome run(const Config& cfg, const std::string& tag) {
   RunOptions opts;
-  const fs::path dir = kDir / tag;
+  const fs::path dir = work_dir() / tag;
   opts.output_dir = dir.string();
   Outcome r;
   r.status = run_simulation(cfg, opts, &r.res);
@@ -364,9 +365,9 @@ TEST(Contact, SameHistoryOnOneAndTwoRanks) {
   const std::string exe = std::string(STENTOR_BINARY_DIR) + "/stentor";
   const std::string deck = kInputs + "contact_block_impact.xml";
   Series h[2], e[2];
-  fs::create_directories(kDir);  // the shell writes <dir>.log there, before stentor creates <dir>
+  fs::create_directories(work_dir());  // the shell writes <dir>.log there, before stentor creates <dir>
   for (int np = 1; np <= 2; ++np) {
-    const fs::path dir = kDir / ("mpi" + std::to_string(np));
+    const fs::path dir = work_dir() / ("mpi" + std::to_string(np));
     // env -i: the test process is itself an MPI singleton; its OMPI_*/PMIX_* variables would
     // confuse the nested mpirun.
     const std::string cmd = "env -i PATH=\"$PATH\" HOME=\"$HOME\" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 mpirun --oversubscribe -np " +
@@ -406,7 +407,7 @@ TEST(Contact, StaticFreeTranslationStopsTheRun) {
     cfg.loads[0].vector = {0.0, -0.1, 0.0};
     cfg.contact[0].friction = mu;
     RunOptions opts;
-    opts.output_dir = (kDir / ("free_x_mu" + std::to_string(mu))).string();
+    opts.output_dir = (work_dir() / ("free_x_mu" + std::to_string(mu))).string();
     RunResult res;
     const int status = run_simulation(cfg, opts, &res);
     std::printf("[contact] block pressed in y only, mu = %g: exit %d after %d steps\n", mu, status, res.steps);

@@ -24,13 +24,14 @@
 
 #include "CsvSeries.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "contact_benchmarks";
+fs::path work_dir() { return stentor::testing::test_dir("contact_benchmarks"); }
 const std::string kInputs = std::string(STENTOR_SOURCE_DIR) + "/inputs/";
 
 // A copy of inputs/<geo> with each `from` (e.g. "hc = DefineNumber[0.004") replaced by `to`,
@@ -45,8 +46,8 @@ std::string geo_variant(const std::string& geo, const std::vector<std::pair<std:
     if (at == std::string::npos) throw std::runtime_error(geo + ": no '" + from + "'");
     t.replace(at, from.size(), to);
   }
-  fs::create_directories(kDir);
-  const fs::path p = kDir / name;
+  fs::create_directories(work_dir());
+  const fs::path p = work_dir() / name;
   std::ofstream(p) << t;
   return p.string();
 }
@@ -97,7 +98,7 @@ HertzCylinders hertz_cylinders(double hc, double ratio) {
   if (const char* d = std::getenv("STENTOR_HERTZ_DISCRETIZATION")) cfg.contact[0].discretization = d;
   RunOptions opts;
   const char* disc = std::getenv("STENTOR_HERTZ_DISCRETIZATION");
-  const fs::path dir = kDir / (tag + (disc ? std::string("_") + disc : std::string()));
+  const fs::path dir = work_dir() / (tag + (disc ? std::string("_") + disc : std::string()));
   opts.output_dir = dir.string();
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
@@ -277,7 +278,7 @@ IroningResult ironing(int nx, int ny, int nd, int steps) {
                               tag + ".geo");
   cfg.stepping.num_steps = steps;
   RunOptions opts;
-  const fs::path dir = kDir / tag;
+  const fs::path dir = work_dir() / tag;
   opts.output_dir = dir.string();
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
@@ -291,7 +292,7 @@ IroningResult ironing(int nx, int ny, int nd, int steps) {
   const std::size_t nn = res.mesh.num_nodes();
   // Per step, for the plots of perf/scenes/run_ironing.sh: cumulative frictional dissipation
   // (from the fields) and work of the die's supports (trapezoid, from the history).
-  std::ofstream csv(kDir / (tag + "_dissipation.csv"));  // beside the results folder (not one of its files)
+  std::ofstream csv(work_dir() / (tag + "_dissipation.csv"));  // beside the results folder (not one of its files)
   csv << "time,friction_dissipation,support_work,strain_energy,sum_abs_lambda_t,sum_abs_lambda_n\n";
   double D_cum = 0, W_cum = 0;
   for (std::size_t i = 0; i < t.size(); ++i) {

@@ -39,6 +39,7 @@
 #include "run/Simulation.hpp"
 #include "run/Stepper.hpp"
 #include "solver/Newton.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 
@@ -190,7 +191,7 @@ TEST(DeformableContact, TangentMatchesFiniteDifferencesStick) {
 namespace {
 
 namespace fs = std::filesystem;
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "contact_deformable";
+fs::path work_dir() { return stentor::testing::test_dir("contact_deformable"); }
 
 // two_blocks.geo with nl / nu divisions on the lower / upper side of the interface.
 // A copy of inputs/<geo> with `DefineNumber[<old>` defaults replaced, written to the test folder.
@@ -203,11 +204,11 @@ std::string geo_variant(const std::string& geo, const std::vector<std::pair<std:
     const auto at = t.find(from);
     if (at != std::string::npos) t.replace(at, from.size(), to);
   }
-  fs::create_directories(kDir);
+  fs::create_directories(work_dir());
   // Written under a name of this process and renamed: ctest runs tests of this file in
   // parallel processes, and several write the same variant (a reader must never see a
   // half-written file).
-  const fs::path p = kDir / name, tmp = kDir / (name + ".tmp" + std::to_string(::getpid()));
+  const fs::path p = work_dir() / name, tmp = work_dir() / (name + ".tmp" + std::to_string(::getpid()));
   std::ofstream(tmp) << t;
   fs::rename(tmp, p);
   return p.string();
@@ -258,7 +259,7 @@ PatchResult patch(int nl, int nu, bool symmetry = false, const std::string& disc
     for (auto& l : cfg.loads)
       if (l.name == "base_corner" || l.name == "top_corner") l.group = l.name == "base_corner" ? "lower_left" : "upper_left";
   RunOptions opts;
-  const fs::path dir = kDir / ("patch_" + std::to_string(nl) + "_" + std::to_string(nu) + (symmetry ? "_sym" : "") + "_" + discretization +
+  const fs::path dir = work_dir() / ("patch_" + std::to_string(nl) + "_" + std::to_string(nu) + (symmetry ? "_sym" : "") + "_" + discretization +
                                (order == 2 ? "_p2" : ""));
   opts.output_dir = dir.string();
   RunResult res;
@@ -302,7 +303,7 @@ TEST(DeformableContact, PatchTestGradedMeshesConvergesAtMasterKinks) {
     Config cfg = read_deck(kInputs + "contact_patch2d_graded.xml");  // two_blocks.geo with nl, nu, gl, gu set
     cfg.contact[0].discretization = disc;
     RunOptions opts;
-    const fs::path dir = kDir / ("patch_graded_" + disc);
+    const fs::path dir = work_dir() / ("patch_graded_" + disc);
     opts.output_dir = dir.string();
     RunResult res;
     ASSERT_EQ(run_simulation(cfg, opts, &res), 0) << disc;
@@ -731,7 +732,7 @@ S3 run_s3(double mu, const std::string& tag, const std::string& discretization =
   cfg.stepping.num_steps = 100;
   cfg.output.fields = false;
   RunOptions opts;
-  const fs::path dir = kDir / tag;
+  const fs::path dir = work_dir() / tag;
   opts.output_dir = dir.string();
   EXPECT_EQ(run_simulation(cfg, opts, nullptr), 0);
   return {stentor::testing::read_csv(dir / "s3_ring_foundation_energy.csv"), stentor::testing::read_csv(dir / "s3_ring_foundation_history.csv")};
@@ -786,7 +787,7 @@ TEST(CurvedObstacle, BalloonInflateDeflateConvergesWithoutCutbacks) {
   c.radius_ramp.factors = {0.0, 1.0, 0.0};
   cfg.stepping.num_steps = 8;
   RunOptions opts;
-  const fs::path dir = kDir / "balloon";
+  const fs::path dir = work_dir() / "balloon";
   opts.output_dir = dir.string();
   RunResult res;
   ASSERT_EQ(run_simulation(cfg, opts, &res), 0);
@@ -826,7 +827,7 @@ PatchResult patch3d(int nl, int nu, bool tet = false, int order = 1, const std::
   cfg.contact[0].discretization = discretization;
   cfg.output.fields = false;
   RunOptions opts;
-  const fs::path dir = kDir / tag;
+  const fs::path dir = work_dir() / tag;
   opts.output_dir = dir.string();
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0);
@@ -1072,7 +1073,7 @@ TEST(DeformableContact, TangentMatchesFiniteDifferences3DFacetEdges) {
 TEST(DeformableContact, TangentMatchesFiniteDifferencesOnObliquePlanes) {
   Config cfg = patch3d_deck(3, 4, false, 1);
   MeshConfig mc = cfg.mesh;
-  const fs::path msh = stentor::testing::rotated_msh(read_mesh(mc), kDir / "patch3d_rotated.msh");
+  const fs::path msh = stentor::testing::rotated_msh(read_mesh(mc), work_dir() / "patch3d_rotated.msh");
   cfg.mesh.file = msh.string();
   int planes = 0;
   for (auto& l : cfg.loads) {

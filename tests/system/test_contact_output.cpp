@@ -24,6 +24,7 @@
 #include "H5Results.hpp"
 #include "deck/Config.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
@@ -31,14 +32,14 @@ using H5 = stentor::testing::H5Results;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "contact_output";
+fs::path work_dir() { return stentor::testing::test_dir("contact_output"); }
 const std::string kInputs = std::string(STENTOR_SOURCE_DIR) + "/inputs/";
 constexpr double kP = 1e4;  // the applied traction [Pa]: 2 % strain of the rubber below
 
 // A structured unit cube of 3 x 3 x 3 hexahedra with the face groups of inputs/block3d.geo.
 std::string hex_cube_geo() {
-  fs::create_directories(kDir);
-  const fs::path p = kDir / "hex_cube.geo";
+  fs::create_directories(work_dir());
+  const fs::path p = work_dir() / "hex_cube.geo";
   std::ofstream(p) << R"X(SetFactory("OpenCASCADE");
 Box(1) = {0, 0, 0, 1, 1, 1};
 Transfinite Curve{:} = 4;
@@ -117,7 +118,7 @@ std::string read_text(const fs::path& p) {
 }
 
 fs::path run_deck(const std::string& name, const std::string& deck) {
-  const fs::path dir = kDir / name;
+  const fs::path dir = work_dir() / name;
   fs::create_directories(dir);
   const fs::path p = dir / "deck.xml";
   std::ofstream(p) << deck;
@@ -176,11 +177,11 @@ TEST(ContactOutput, PressureAndMasterTractionUniformOnTri6Interface) {
   std::string geo = read_text(kInputs + "two_blocks3d.geo");
   for (const auto& [from, to] : {std::pair<std::string, std::string>{"nu = DefineNumber[4", "nu = DefineNumber[3"}, {"tet = DefineNumber[0", "tet = DefineNumber[1"}})
     geo.replace(geo.find(from), from.size(), to);
-  fs::create_directories(kDir);
-  std::ofstream(kDir / "two_tet_blocks.geo") << geo;
+  fs::create_directories(work_dir());
+  std::ofstream(work_dir() / "two_tet_blocks.geo") << geo;
   const std::string file = R"X(<Parameter name="file" type="string" value="two_blocks3d.geo"/>)X";
   deck.replace(deck.find(file), file.size(),
-               R"X(<Parameter name="file" type="string" value=")X" + (kDir / "two_tet_blocks.geo").string() +
+               R"X(<Parameter name="file" type="string" value=")X" + (work_dir() / "two_tet_blocks.geo").string() +
                    R"X("/><Parameter name="order" type="int" value="2"/>)X");
   const fs::path out = run_deck("tri6_interface", deck);
   H5 h5(out / "contact_patch3d.h5");

@@ -33,6 +33,7 @@
 #include "parallel/Distribution.hpp"
 #include "CsvSeries.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 using stentor::testing::read_csv;
@@ -41,7 +42,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "contact_verification";
+fs::path work_dir() { return stentor::testing::test_dir("contact_verification"); }
 const std::string kInputs = std::string(STENTOR_SOURCE_DIR) + "/inputs/";
 
 
@@ -54,7 +55,7 @@ struct Outcome {
 
 Outcome run(const Config& cfg, const std::string& tag, bool verbose = false) {
   RunOptions opts;
-  const fs::path dir = kDir / tag;
+  const fs::path dir = work_dir() / tag;
   opts.output_dir = dir.string();
   opts.verbose = verbose;
   Outcome r;
@@ -84,8 +85,8 @@ std::string geo_variant(const std::string& geo, const std::string& key, const st
   const auto pos = s.find(key);
   if (pos == std::string::npos) throw std::runtime_error(geo + ": no '" + key + "'");
   s.replace(pos, key.size(), replacement);
-  fs::create_directories(kDir);
-  const fs::path out = kDir / (tag + ".geo");
+  fs::create_directories(work_dir());
+  const fs::path out = work_dir() / (tag + ".geo");
   std::ofstream(out) << s;
   return out.string();
 }

@@ -14,13 +14,14 @@
 #include <vector>
 
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "cook";
+fs::path work_dir() { return stentor::testing::test_dir("cook"); }
 
 // Vertical displacement of the node at (48, 60) (a geometry vertex: always a mesh node).
 double tip_displacement(int order, double size) {
@@ -30,7 +31,7 @@ double tip_displacement(int order, double size) {
   cfg.output.fields = false;
   cfg.stepping.num_steps = 2;  // the deck's 5 steps give the same end state (to 1e-13), slower
   RunOptions opts;
-  opts.output_dir = (kDir / ("cook_p" + std::to_string(order) + "_" + std::to_string(size))).string();
+  opts.output_dir = (work_dir() / ("cook_p" + std::to_string(order) + "_" + std::to_string(size))).string();
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0);
   EXPECT_TRUE(res.converged);

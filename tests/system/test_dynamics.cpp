@@ -28,6 +28,7 @@
 
 #include "CsvSeries.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 using stentor::testing::read_csv;
@@ -36,7 +37,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "dynamics";
+fs::path work_dir() { return stentor::testing::test_dir("dynamics"); }
 
 // ---- Energy CSV.
 
@@ -53,10 +54,10 @@ struct RunOut {
 
 RunOut run(const Config& cfg, const std::string& tag) {
   RunOptions opts;
-  opts.output_dir = (kDir / tag).string();
+  opts.output_dir = (work_dir() / tag).string();
   RunOut r;
   r.status = run_simulation(cfg, opts, &r.res);
-  const fs::path dir = r.status == 0 ? kDir / tag : fs::path((kDir / tag).string() + ".partial");
+  const fs::path dir = r.status == 0 ? work_dir() / tag : fs::path((work_dir() / tag).string() + ".partial");
   r.energy = read_csv(dir / (cfg.output.basename + "_energy.csv"));
   return r;
 }
@@ -133,8 +134,8 @@ Config make_deck(const Spec& s, const std::string& tag) {
     << " <ParameterList name=\"Output\"><Parameter name=\"fields\" type=\"bool\" value=\"false\"/>"
     << "<Parameter name=\"basename\" type=\"string\" value=\"run\"/></ParameterList>\n"
     << "</ParameterList>\n";
-  fs::create_directories(kDir);
-  const fs::path deck = kDir / (tag + ".xml");
+  fs::create_directories(work_dir());
+  const fs::path deck = work_dir() / (tag + ".xml");
   std::ofstream(deck) << x.str();
   return read_deck(deck.string());
 }
@@ -246,8 +247,8 @@ Physical Surface("strip") = {1};
 )";
 
 TEST(Dynamics, StiffSpinningStripMidpointBlowsUpGonzalezDoesNot) {
-  fs::create_directories(kDir);
-  const fs::path geo = kDir / "strip.geo";
+  fs::create_directories(work_dir());
+  const fs::path geo = work_dir() / "strip.geo";
   std::ofstream(geo) << kStripGeo;
   const std::vector<double> dts = {0.0025, 0.005, 0.01, 0.02};
   std::vector<double> mid;
@@ -470,8 +471,8 @@ TEST(Dynamics, VelocityPredictorSameSolution) {
 // supports: the cumulative support work equals E(t) and the per-step balance closes to
 // solver tolerance (it was 2 W_sup per step while the support work had the wrong sign).
 TEST(Dynamics, MovingSupportWorkEqualsEnergy) {
-  fs::create_directories(kDir);
-  const fs::path deck = kDir / "moving_support.xml";
+  fs::create_directories(work_dir());
+  const fs::path deck = work_dir() / "moving_support.xml";
   std::ofstream(deck) << R"XML(<ParameterList name="stentor">
   <ParameterList name="Problem"><Parameter name="analysis" type="string" value="dynamic"/></ParameterList>
   <ParameterList name="Mesh">
@@ -520,7 +521,7 @@ TEST(Dynamics, MovingSupportWorkEqualsEnergy) {
 // a_0 = a, so every node ends at u(T) = a T^2 / 2 (Newmark with a_0 = 0 would end at
 // a (T^2 - T dt + dt^2 / 2) / 2, 22% short with 4 steps).
 TEST(Dynamics, NewmarkInitialAccelerationUnderBodyForceDefaultSolver) {
-  fs::create_directories(kDir);
+  fs::create_directories(work_dir());
   for (const int dim : {2, 3}) {
     for (const std::string scheme : {"newmark", "hht"}) {
       const std::string tag = "free_fall_" + scheme + "_" + std::to_string(dim) + "d";
@@ -528,7 +529,7 @@ TEST(Dynamics, NewmarkInitialAccelerationUnderBodyForceDefaultSolver) {
       const double rho = 2.0, T = 0.1;
       std::ostringstream force;
       force << "{" << b[0] << ", " << b[1] << (dim == 3 ? ", " + std::to_string(b[2]) : std::string()) << "}";
-      const fs::path deck = kDir / (tag + ".xml");
+      const fs::path deck = work_dir() / (tag + ".xml");
       std::ofstream(deck) << R"XML(<ParameterList name="stentor">
   <ParameterList name="Problem"><Parameter name="analysis" type="string" value="dynamic"/></ParameterList>
   <ParameterList name="Mesh">
@@ -576,8 +577,8 @@ TEST(Dynamics, NewmarkInitialAccelerationUnderBodyForceDefaultSolver) {
 //   p0 = m v;  L0_z = m ((c + d) x v)_z + I w (about the origin, on x = X + d).
 // The bars are 0.01 m apart, so no contact in the 4 steps: K + W stays at K0 (Gonzalez).
 TEST(Dynamics, PerBodyInitialVelocityRotationAndDisplacement) {
-  fs::create_directories(kDir);
-  const fs::path deck = kDir / "body_initial.xml";
+  fs::create_directories(work_dir());
+  const fs::path deck = work_dir() / "body_initial.xml";
   std::ofstream(deck) << R"XML(<ParameterList name="stentor">
   <ParameterList name="Problem"><Parameter name="analysis" type="string" value="dynamic"/></ParameterList>
   <ParameterList name="Mesh"><Parameter name="file" type="string" value=")XML"

@@ -19,18 +19,19 @@
 #include <string>
 
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "fbar_cylinder";
+fs::path work_dir() { return stentor::testing::test_dir("fbar_cylinder"); }
 constexpr double kRi = 1.0, kRo = 2.0, kT = 0.1;
 
 std::string write_file(const std::string& name, const std::string& text) {
-  fs::create_directories(kDir);
-  const fs::path p = kDir / name;
+  fs::create_directories(work_dir());
+  const fs::path p = work_dir() / name;
   std::ofstream(p) << text;
   return p.string();
 }
@@ -94,7 +95,7 @@ Config deck(const Case& c, const std::string& material, const std::string& loadi
 
 RunResult run(const Config& cfg, const std::string& tag) {
   RunOptions opts;
-  opts.output_dir = (kDir / tag).string();
+  opts.output_dir = (work_dir() / tag).string();
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
   EXPECT_TRUE(res.converged) << tag;

@@ -16,13 +16,14 @@
 #include <vector>
 
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "lame";
+fs::path work_dir() { return stentor::testing::test_dir("lame"); }
 
 Config cylinder_deck(int order, double size) {
   Config cfg = read_deck(std::string(STENTOR_SOURCE_DIR) + "/inputs/cylinder.xml");
@@ -34,7 +35,7 @@ Config cylinder_deck(int order, double size) {
 
 RunResult run(const Config& cfg, const std::string& tag) {
   RunOptions opts;
-  opts.output_dir = (kDir / tag).string();
+  opts.output_dir = (work_dir() / tag).string();
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
   EXPECT_TRUE(res.converged) << tag;

@@ -28,6 +28,7 @@
 #include "H5Results.hpp"
 #include "PlasticTubeReference.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 using namespace stentor::testing::tube;
@@ -35,7 +36,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "mandrel_tube";
+fs::path work_dir() { return stentor::testing::test_dir("mandrel_tube"); }
 constexpr double kA = 1.0, kB = 2.0, kE = 200.0, kNu = 0.3, kY = 1.0, kUmax = 0.01;
 const double kK = kY / std::sqrt(3.0);  // yield stress in shear
 
@@ -157,8 +158,8 @@ TEST(MandrelTube, FiniteStrainReferenceConverges) {
 namespace {
 
 std::string write_file(const std::string& name, const std::string& text) {
-  fs::create_directories(kDir);
-  const fs::path p = kDir / name;
+  fs::create_directories(work_dir());
+  const fs::path p = work_dir() / name;
   std::ofstream(p) << text;
   return p.string();
 }
@@ -305,7 +306,7 @@ double extrapolate_to_bore(const std::vector<double>& R, const std::vector<doubl
 Measured run_mandrel(const Case& c, std::vector<double>* hoop_cells = nullptr, std::vector<double>* R_cells = nullptr) {
   const Config cfg = mandrel_deck(c);
   RunOptions opts;
-  const fs::path dir = kDir / c.tag();
+  const fs::path dir = work_dir() / c.tag();
   opts.output_dir = dir.string();
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << c.tag();

@@ -25,13 +25,14 @@
 #include "deck/Config.hpp"
 #include "mesh/MeshComm.hpp"
 #include "parallel/Distribution.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "material_dispatch";
+fs::path work_dir() { return stentor::testing::test_dir("material_dispatch"); }
 constexpr double kMu = 1.0e6, kLambda = 1.5e6;
 
 std::string param(const std::string& name, const std::string& type, const std::string& value) {
@@ -74,8 +75,8 @@ std::string two_block_deck() {
 }
 
 Config write_and_read(const std::string& text, const std::string& name) {
-  fs::create_directories(kDir);
-  const fs::path p = kDir / (name + ".xml");
+  fs::create_directories(work_dir());
+  const fs::path p = work_dir() / (name + ".xml");
   std::ofstream(p) << text;
   return read_deck(p.string());
 }

@@ -24,6 +24,7 @@
 #include "material/CiarletGeymonat.hpp"
 #include "material/Kinematics.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
@@ -31,7 +32,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const double kPi = 3.14159265358979323846;
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "mms";
+fs::path work_dir() { return stentor::testing::test_dir("mms"); }
 
 struct Manufactured {
   int dim = 2;
@@ -175,7 +176,7 @@ Level solve_and_measure(const Manufactured& ms, int order, double size) {
   cfg.output.fields = false;
   cfg.output.basename = "mms";
   RunOptions opts;
-  opts.output_dir = (kDir / ("out_" + std::to_string(dim) + "d_p" + std::to_string(order) + "_" + std::to_string(size))).string();
+  opts.output_dir = (work_dir() / ("out_" + std::to_string(dim) + "d_p" + std::to_string(order) + "_" + std::to_string(size))).string();
 
   RunResult res;
   Level lv;

@@ -17,6 +17,7 @@
 #include "solver/LinearSolver.hpp"
 #include "solver/SolverParams.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 using stentor::testing::rel_diff;
@@ -24,11 +25,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "muelu";
+fs::path work_dir() { return stentor::testing::test_dir("muelu"); }
 
 // The inputs/block{2,3}d decks' problem (symmetric constraints, right face pulled 20%), P1.
 std::string write_deck(int dim, double size, int steps, const std::string& muelu_xml = "") {
-  fs::create_directories(kDir);
+  fs::create_directories(work_dir());
   const std::string geo = (fs::path(STENTOR_SOURCE_DIR) / "inputs" / (dim == 3 ? "block3d.geo" : "block2d.geo")).string();
   auto dirichlet = [](const char* name, const char* comp, const char* value) {
     std::string s = std::string("    <ParameterList name=\"") + name + "\">\n" +
@@ -40,7 +41,7 @@ std::string write_deck(int dim, double size, int steps, const std::string& muelu
   };
   std::string bcs = dirichlet("left", "x", nullptr) + dirichlet("bottom", dim == 3 ? "z" : "y", nullptr) + dirichlet("pull", "x", "0.2");
   if (dim == 3) bcs += dirichlet("front", "y", nullptr);
-  const fs::path deck = kDir / ("block" + std::to_string(dim) + "d.xml");
+  const fs::path deck = work_dir() / ("block" + std::to_string(dim) + "d.xml");
   std::ofstream(deck) << R"(<ParameterList name="stentor">
   <ParameterList name="Problem"><Parameter name="title" type="string" value="MueLu vs Schwarz"/></ParameterList>
   <ParameterList name="Mesh">
@@ -83,7 +84,7 @@ RunResult run(const std::string& deck, const std::string& prec, const std::strin
   Config cfg = read_deck(deck);
   cfg.linear.preconditioner = prec;
   RunOptions opts;
-  opts.output_dir = (kDir / ("out_" + tag)).string();
+  opts.output_dir = (work_dir() / ("out_" + tag)).string();
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
   return res;
@@ -204,11 +205,11 @@ TEST(SolverParams, SchwarzKlu2SameSolutionAsRiluk) {
   Config cfg = read_deck(deck);
   cfg.linear.preconditioner = "schwarz";
   RunOptions opts;
-  opts.output_dir = (kDir / "out_riluk").string();
+  opts.output_dir = (work_dir() / "out_riluk").string();
   RunResult a, b;
   ASSERT_EQ(run_simulation(cfg, opts, &a), 0);
   cfg.linear.subdomain_solver = "KLU2";
-  opts.output_dir = (kDir / "out_klu2").string();
+  opts.output_dir = (work_dir() / "out_klu2").string();
   ASSERT_EQ(run_simulation(cfg, opts, &b), 0);
   EXPECT_LT(rel_diff(b.displacement, a.displacement), 1e-8);
   EXPECT_LE(b.linear_iterations, a.linear_iterations);
@@ -249,7 +250,7 @@ TEST(MueLu, PassThroughSublist) {
   Config cfg = read_deck(write_deck(2, 0.1, 2, bad));
   cfg.linear.preconditioner = "muelu";
   RunOptions opts;
-  opts.output_dir = (kDir / "out_bad").string();
+  opts.output_dir = (work_dir() / "out_bad").string();
   EXPECT_THROW(run_simulation(cfg, opts), InputError);
 }
 #endif  // STENTOR_HAVE_MUELU

@@ -23,6 +23,7 @@
 #include "deck/Config.hpp"
 #include "run/Simulation.hpp"
 #include "solver/LinearSolver.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
@@ -123,7 +124,7 @@ TEST(Mumps, SingularMatrixIsAFailureNamingMumps) {
 
 TEST(Mumps, SameNewtonPathAsKlu2OnTheBlock) {
   if (Tpetra::getDefaultComm()->getSize() > 1) GTEST_SKIP() << "a whole run: 1 rank (the 2-rank runs are mpi.consistency's)";
-  const fs::path dir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "mumps";
+  const fs::path dir = stentor::testing::test_dir("mumps");
   fs::create_directories(dir);
   const std::string geo = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
   const std::string bcs = stentor::testing::dirichlet_xml("left", "left", "x") + stentor::testing::dirichlet_xml("front", "front", "y") +

@@ -24,13 +24,14 @@
 #include "material/Kinematics.hpp"
 #include "material/Plasticity.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "necking";
+fs::path work_dir() { return stentor::testing::test_dir("necking"); }
 
 // Simo's steel moduli (E = 206.9 GPa, nu = 0.29: mu = 2 C1, lambda = 4 D) and yield
 // stress, with linear hardening H > Y (plane strain needs H > (sqrt 3 / 2) Y).
@@ -294,15 +295,15 @@ TEST(Necking, PlaneStrainStripPeakLoadAndLocalisation) {
   const double F_y = y.P * w0_neck, F_c = mp.P_max * w0_neck;
   const double u_y = (lam_y - 1.0) * 0.5 * kL * (1.0 - 0.5 * kImperfection);
   const std::string name = "strip";
-  fs::create_directories(kDir);
-  const fs::path deck = kDir / (name + ".xml");
+  fs::create_directories(work_dir());
+  const fs::path deck = work_dir() / (name + ".xml");
   std::ofstream(deck) << strip_deck(m, u_y, name);
   const Config cfg = read_deck(deck.string());
   RunOptions o;
-  o.output_dir = (kDir / name).string();
+  o.output_dir = (work_dir() / name).string();
   o.overwrite = true;
   ASSERT_EQ(run_simulation(cfg, o), 0);
-  const auto h = stentor::testing::read_csv(kDir / name / (name + "_history.csv"));
+  const auto h = stentor::testing::read_csv(work_dir() / name / (name + "_history.csv"));
   ASSERT_GE(h.rows(), static_cast<std::size_t>(kSteps));
   const std::size_t n = h.rows() + 1, last = n - 1;  // row 0: the undeformed state
   std::vector<double> F(n, 0.0), w_neck(n, w0_neck), w_end(n, kW), Dp(n, 0.0);

@@ -18,13 +18,14 @@
 #include "H5Results.hpp"
 #include "deck/Config.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "neo_hookean_inelastic";
+fs::path work_dir() { return stentor::testing::test_dir("neo_hookean_inelastic"); }
 constexpr double kMu = 1.0e6, kLambda = 1.5e6, kY = 0.1e6;
 
 std::string num(double v) {
@@ -87,9 +88,9 @@ std::string impact_deck(const std::string& material, const std::string& name) {
          "</ParameterList></ParameterList>";
 }
 
-// Writes and runs a deck in kDir/<name>; returns the output folder.
+// Writes and runs a deck in work_dir()/<name>; returns the output folder.
 fs::path run(const std::string& deck, const std::string& name) {
-  const fs::path dir = kDir / name;
+  const fs::path dir = work_dir() / name;
   fs::create_directories(dir);
   std::ofstream(dir / "deck.xml") << deck;
   const Config cfg = read_deck((dir / "deck.xml").string());

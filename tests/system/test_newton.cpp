@@ -27,6 +27,7 @@
 #include "solver/LinearSolver.hpp"
 #include "solver/ReusePolicy.hpp"
 #include "solver/Newton.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 using stentor::testing::rel_diff;
@@ -34,7 +35,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "newton";
+fs::path work_dir() { return stentor::testing::test_dir("newton"); }
 
 la::RCP<const la::Comm> comm() { return Tpetra::getDefaultComm(); }
 
@@ -631,7 +632,7 @@ namespace {
 // in `steps` load steps, with the given Stepping/Newton/Linear Solver parameters.
 std::string write_block(const std::string& tag, int steps, const std::string& stepping, const std::string& newton,
                         const std::string& linear) {
-  fs::create_directories(kDir);
+  fs::create_directories(work_dir());
   const std::string geo = (fs::path(STENTOR_SOURCE_DIR) / "inputs" / "block3d.geo").string();
   auto dirichlet = [](const char* name, const char* boundary, const char* comp, const char* value) {
     std::string s = std::string("    <ParameterList name=\"") + name + "\">\n" +
@@ -641,7 +642,7 @@ std::string write_block(const std::string& tag, int steps, const std::string& st
     if (value) s += std::string("      <Parameter name=\"values\" type=\"Array(double)\" value=\"{") + value + "}\"/>\n";
     return s + "    </ParameterList>\n";
   };
-  const fs::path deck = kDir / (tag + ".xml");
+  const fs::path deck = work_dir() / (tag + ".xml");
   std::ofstream(deck) << R"(<ParameterList name="stentor">
   <ParameterList name="Mesh">
     <Parameter name="file" type="string" value=")" << geo << R"("/>
@@ -683,7 +684,7 @@ RunResult run_block(const std::string& tag, int steps, const std::string& steppi
                     const std::string& linear = "") {
   const Config cfg = read_deck(write_block(tag, steps, stepping, newton, linear));
   RunOptions opts;
-  opts.output_dir = (kDir / ("out_" + tag)).string();
+  opts.output_dir = (work_dir() / ("out_" + tag)).string();
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, opts, &res), 0) << tag;
   return res;
@@ -739,9 +740,9 @@ TEST(Newton, EisenstatWalkerAndReuseSameSolution) {
 // the same block converges in 2 iterations for 1e-3 and 1e-6 Pa, and the displacement is
 // the 1 Pa solution scaled (linear elasticity at these strains) to the precision left.
 TEST(Newton, TinyLoadsConvergeToMachinePrecision) {
-  fs::create_directories(kDir);
+  fs::create_directories(work_dir());
   auto run = [](const std::string& load) {
-    const fs::path deck = kDir / ("tiny_" + load + ".xml");
+    const fs::path deck = work_dir() / ("tiny_" + load + ".xml");
     std::ofstream(deck) << R"X(<ParameterList name="stentor">
   <ParameterList name="Mesh"><Parameter name="file" type="string" value=")X"
                         << STENTOR_SOURCE_DIR << R"X(/inputs/block2d.geo"/><Parameter name="size" type="double" value="0.25"/></ParameterList>
@@ -757,7 +758,7 @@ TEST(Newton, TinyLoadsConvergeToMachinePrecision) {
 </ParameterList>
 )X";
     RunOptions opts;
-    opts.output_dir = (kDir / ("out_tiny_" + load)).string();
+    opts.output_dir = (work_dir() / ("out_tiny_" + load)).string();
     RunResult res;
     EXPECT_EQ(run_simulation(read_deck(deck.string()), opts, &res), 0) << load;
     return res;

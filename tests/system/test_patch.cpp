@@ -23,13 +23,14 @@
 #include "fem/Quadrature.hpp"
 #include "fem/Shape.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "patch";
+fs::path work_dir() { return stentor::testing::test_dir("patch"); }
 
 // 2D: quadrilateral with a circular top side, four boundary groups, three embedded points
 // with small sizes at irregular positions.
@@ -81,8 +82,8 @@ Physical Surface("sides") = {out[2], out[3], out[4], out[5]};
 )";
 
 std::string write_geo(const std::string& name, const char* text, double s = 1.0) {
-  fs::create_directories(kDir);
-  const fs::path p = kDir / name;
+  fs::create_directories(work_dir());
+  const fs::path p = work_dir() / name;
   std::ofstream(p) << "s = " << s << ";\n" << text;
   return p.string();
 }
@@ -160,7 +161,7 @@ PatchResult run_patch(const std::string& geo, int dim, int order, bool recombine
   cfg.output.fields = false;
   cfg.output.basename = tag;
   RunOptions opts;
-  opts.output_dir = (kDir / ("out_" + tag)).string();
+  opts.output_dir = (work_dir() / ("out_" + tag)).string();
 
   RunResult res;
   PatchResult pr;

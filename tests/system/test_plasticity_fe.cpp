@@ -26,13 +26,14 @@
 #include "mesh/MeshComm.hpp"
 #include "parallel/Distribution.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "plasticity_fe";
+fs::path work_dir() { return stentor::testing::test_dir("plasticity_fe"); }
 constexpr double kC1 = 0.5e6, kC2 = 0.005e6, kD = 0.35e6, kY = 0.1e6;
 
 // Unit cube (inputs/block3d.geo) pulled to x = 1 + stretch on the right face, symmetry
@@ -88,8 +89,8 @@ std::string plastic_params(double Y, double H) {
 }
 
 Config write_and_read(const std::string& text, const std::string& name) {
-  fs::create_directories(kDir);
-  const fs::path p = kDir / (name + ".xml");
+  fs::create_directories(work_dir());
+  const fs::path p = work_dir() / (name + ".xml");
   std::ofstream(p) << text;
   return read_deck(p.string());
 }
@@ -277,10 +278,10 @@ TEST(PlasticityFE, UniaxialTensionMatchesClosedForm) {
     const std::string name = H == 0.0 ? "uniaxial_perfect" : "uniaxial_hardening";
     const Config cfg = write_and_read(deck_text(plastic_params(kY, H), 0.2, 10, 25, name, true), name);
     RunOptions o;
-    o.output_dir = (kDir / name).string();
+    o.output_dir = (work_dir() / name).string();
     RunResult res;
     ASSERT_EQ(run_simulation(cfg, o, &res), 0);
-    const auto hist = stentor::testing::read_csv(kDir / name / (name + "_history.csv"));
+    const auto hist = stentor::testing::read_csv(work_dir() / name / (name + "_history.csv"));
     double worst = 0.0;
     for (std::size_t i = 0; i < hist.rows(); ++i) {
       const double lambda = 1.0 + 0.2 * hist["time"][i];
@@ -291,7 +292,7 @@ TEST(PlasticityFE, UniaxialTensionMatchesClosedForm) {
     EXPECT_LT(worst, 1e-8);
     // Output: cell fields of the last step (homogeneous state: every cell the same) and the
     // per-step plastic dissipation column (unit volume), whose sum is the accumulated field.
-    const fs::path h5 = kDir / name / (name + ".h5");
+    const fs::path h5 = work_dir() / name / (name + ".h5");
     const auto alpha = last_cell_field(h5, 10, "equivalent_plastic_strain");
     const auto q = last_cell_field(h5, 10, "mandel_hill_norm");
     const auto flag = last_cell_field(h5, 10, "yielding");
@@ -328,7 +329,7 @@ TEST(PlasticityFE, CutBacksKeepTheCommittedState) {
   Config cfg = write_and_read(deck_text(plastic_params(kY, 0.0), 0.2, 2, 3, name), name);
   cfg.stepping.predictor = "extrapolate";  // the first step's lifting (auto) needs no cut-back
   RunOptions o;
-  o.output_dir = (kDir / name).string();
+  o.output_dir = (work_dir() / name).string();
   RunResult res;
   ASSERT_EQ(run_simulation(cfg, o, &res), 0);
   EXPECT_GT(res.cutbacks, 0);
@@ -372,12 +373,12 @@ TEST(PlasticityFE, StateCarriesOverBetweenStages) {
   const Config cfg = write_and_read(text, name);
   ASSERT_EQ(cfg.stages.size(), 2u);
   RunOptions o;
-  o.output_dir = (kDir / name).string();
+  o.output_dir = (work_dir() / name).string();
   RunResult res;
   ASSERT_EQ(run_simulation(cfg, o, &res), 0);
   const double alpha1 = alpha_uniaxial(1.2, kY, 0.0), lambda_p = std::exp(alpha1);
   ASSERT_GT(alpha1, 0.1);
-  const auto hist = stentor::testing::read_csv(kDir / name / (name + "_history.csv"));
+  const auto hist = stentor::testing::read_csv(work_dir() / name / (name + "_history.csv"));
   ASSERT_EQ(hist.rows(), 14u);
   double worst = 0.0;
   for (std::size_t i = 10; i < hist.rows(); ++i) {  // the unloading stage
@@ -391,7 +392,7 @@ TEST(PlasticityFE, StateCarriesOverBetweenStages) {
   std::cout << "[ plastic ] stage 2 unloading from lambda 1.2 to 1.18 about lambda_p = " << lambda_p
             << ": max |reaction - P11 closed form| / Y = " << worst << "\n";
   EXPECT_LT(worst, 1e-8);
-  const fs::path h5 = kDir / name / (name + ".h5");
+  const fs::path h5 = work_dir() / name / (name + ".h5");
   const int last = last_step(h5);
   ASSERT_GE(last, 14);
   const auto alpha = last_cell_field(h5, last, "equivalent_plastic_strain");
@@ -453,10 +454,10 @@ TEST(PlasticityFE, DynamicImpactEnergyBalanceWithPlasticDissipation) {
   const std::string name = "impact";
   const Config cfg = write_and_read(impact_deck(kY, name), name);
   RunOptions o;
-  o.output_dir = (kDir / name).string();
+  o.output_dir = (work_dir() / name).string();
   RunResult res;
   ASSERT_EQ(run_simulation(cfg, o, &res), 0);
-  const auto e = stentor::testing::read_csv(kDir / name / (name + "_energy.csv"));
+  const auto e = stentor::testing::read_csv(work_dir() / name / (name + "_energy.csv"));
   ASSERT_EQ(e.rows(), 21u);
   const double E0 = e["total"][0];
   double worst = 0.0, dmin = 1e300;
@@ -565,18 +566,18 @@ ImpactReplay impact_replay(const std::string& scheme) {
   const std::string extra = "<Parameter name=\"plastic dynamic step\" type=\"string\" value=\"" + scheme + "\"/>";
   const Config cfg = write_and_read(impact_deck(kY, name, extra, true), name);
   RunOptions o;
-  o.output_dir = (kDir / name).string();
+  o.output_dir = (work_dir() / name).string();
   RunResult res;
   ImpactReplay out;
   const auto t0 = std::chrono::steady_clock::now();
   if (run_simulation(cfg, o, &res) != 0) return out;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   out.newton = res.newton_iterations;
-  const auto e = stentor::testing::read_csv(kDir / name / (name + "_energy.csv"));
+  const auto e = stentor::testing::read_csv(work_dir() / name / (name + "_energy.csv"));
   for (std::size_t i = 1; i < e.rows(); ++i)
     out.balance = std::max(out.balance, std::abs(e["balance_residual"][i]) / e["total"][0]);
   const auto law = std::get<CiarletGeymonatPlasticity>(make_material(cfg.materials[0]));
-  stentor::testing::H5Results h5(kDir / name / (name + ".h5"));
+  stentor::testing::H5Results h5(work_dir() / name / (name + ".h5"));
   const std::vector<double> X = h5.read("/mesh/coordinates");
   std::vector<long long> topo;
   {
@@ -689,7 +690,7 @@ std::vector<double> pulled_cube(int steps, const std::string& scheme) {
   const std::string name = "order_" + scheme.substr(0, 4) + "_" + std::to_string(steps);
   const Config cfg = write_and_read(text, name);
   RunOptions o;
-  o.output_dir = (kDir / name).string();
+  o.output_dir = (work_dir() / name).string();
   RunResult res;
   if (run_simulation(cfg, o, &res) != 0 || res.cutbacks != 0) return {};
   return res.displacement;

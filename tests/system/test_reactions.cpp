@@ -20,6 +20,7 @@
 #include "CsvSeries.hpp"
 #include "deck/Config.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
@@ -43,7 +44,7 @@ using stentor::testing::dirichlet_xml;
 }  // namespace
 
 TEST(Reactions, UniaxialBlockPerConstrainedComponent) {
-  const fs::path dir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "reactions";
+  const fs::path dir = stentor::testing::test_dir("reactions");
   fs::create_directories(dir);
   const std::string geo = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
   // left_again constrains what left does (same nodes, x): its reaction is 0, left's the whole.

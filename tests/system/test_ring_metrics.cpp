@@ -32,13 +32,14 @@
 #include "deck/Config.hpp"
 #include "run/Model.hpp"
 #include "run/RingMetrics.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "ring_metrics";
+fs::path work_dir() { return stentor::testing::test_dir("ring_metrics"); }
 
 std::string deck(const std::string& sector, const std::string& extra_stent = "") {
   return R"(<ParameterList name="stentor">
@@ -78,8 +79,8 @@ struct Rig {
   std::unique_ptr<Model> m;
   std::unique_ptr<RingMetrics> rm;
   explicit Rig(const std::string& text, const std::string& name) {
-    fs::create_directories(kDir);
-    const fs::path p = kDir / (name + ".xml");
+    fs::create_directories(work_dir());
+    const fs::path p = work_dir() / (name + ".xml");
     std::ofstream(p) << text;
     cfg = read_deck(p.string());
     m = std::make_unique<Model>(cfg, RunOptions{}, timers);

@@ -30,6 +30,7 @@
 #include "deck/Config.hpp"
 #include "mesh/MeshQuery.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 using stentor::testing::read_csv;
@@ -38,7 +39,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "s4_small";
+fs::path work_dir() { return stentor::testing::test_dir("s4_small"); }
 const std::string kDeck = std::string(STENTOR_SOURCE_DIR) + "/tests/cli/decks/par_s4.xml";
 
 using H5 = stentor::testing::H5Results;
@@ -90,11 +91,11 @@ TEST(S4Small, EnergyIdentityAndStentMetricsInEveryStage) {
   const Config cfg = read_deck(kDeck);
   ASSERT_EQ(cfg.stages.size(), 3u);
   RunOptions opts;
-  opts.output_dir = (kDir / "out").string();
+  opts.output_dir = (work_dir() / "out").string();
   opts.overwrite = true;
   RunResult res;
   ASSERT_EQ(run_simulation(cfg, opts, &res), 0);
-  const fs::path out = kDir / "out";
+  const fs::path out = work_dir() / "out";
   const std::string stem = (out / cfg.output.basename).string();
   const Series e = read_csv(stem + "_energy.csv"), h = read_csv(stem + "_history.csv");
   const Series st = read_csv(stem + "_stages.csv"), ms = read_csv(stem + "_metrics.csv");

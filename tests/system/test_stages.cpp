@@ -15,6 +15,7 @@
 #include "CsvSeries.hpp"
 #include "deck/Config.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 using namespace stentor::testing;
@@ -22,7 +23,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "stages";
+fs::path work_dir() { return stentor::testing::test_dir("stages"); }
 const std::string kGeo = std::string(STENTOR_SOURCE_DIR) + "/inputs/block2d.geo";
 
 std::string p(const std::string& name, const std::string& type, const std::string& value) {
@@ -53,12 +54,12 @@ struct Outcome {
 };
 
 Outcome run(const std::string& xml, const std::string& tag) {
-  fs::create_directories(kDir);
-  const fs::path file = kDir / (tag + ".xml");
+  fs::create_directories(work_dir());
+  const fs::path file = work_dir() / (tag + ".xml");
   std::ofstream(file) << xml;
   const Config cfg = read_deck(file.string());
   RunOptions opts;
-  opts.output_dir = (kDir / tag).string();
+  opts.output_dir = (work_dir() / tag).string();
   Outcome o;
   std::ostringstream capture;
   std::streambuf* old = std::cout.rdbuf(capture.rdbuf());
@@ -71,7 +72,7 @@ Outcome run(const std::string& xml, const std::string& tag) {
   std::cout.rdbuf(old);
   o.log = capture.str();
   EXPECT_EQ(o.status, 0) << tag << "\n" << o.log;
-  o.history = read_csv(kDir / tag / "stentor_history.csv");
+  o.history = read_csv(work_dir() / tag / "stentor_history.csv");
   return o;
 }
 
@@ -238,7 +239,7 @@ TEST(Stages, StaticPreloadThenDynamicReleaseKeepsTheStaticEnergy) {
   const Outcome o = run(deck(false, loads("", "") + stages), "static_then_dynamic");
   EXPECT_NE(o.log.find("analysis per stage: load static, release dynamic (gonzalez)"), std::string::npos) << o.log;
   EXPECT_NE(o.log.find("stage 2/2 'release': t 1 -> 1.04, 16 step(s) of 0.0025, dynamic (gonzalez)"), std::string::npos) << o.log;
-  const Series e = read_csv(kDir / "static_then_dynamic" / "stentor_energy.csv");
+  const Series e = read_csv(work_dir() / "static_then_dynamic" / "stentor_energy.csv");
   ASSERT_EQ(e.rows(), 17u) << "one row at the start of the dynamic stage and one per step";
   const double w_static = o.history["strain_energy"][3];  // the last static step
   ASSERT_GT(w_static, 0.0);
@@ -280,7 +281,7 @@ TEST(Stages, DynamicThenStaticFindsTheStaticEquilibrium) {
   }
   EXPECT_LT(diff, 1e-8 * scale);
   // The dynamic stage did leave the block away from equilibrium (moving).
-  const Series e = read_csv(kDir / "dynamic_then_static" / "stentor_energy.csv");
+  const Series e = read_csv(work_dir() / "dynamic_then_static" / "stentor_energy.csv");
   ASSERT_EQ(e.rows(), 5u) << "rows of the dynamic stage only (t = 0 and 4 steps)";
   EXPECT_GT(e["kinetic"].back(), 1e-3 * e["strain"].back());
   std::printf("[stages] dynamic -> static: max |u - u_static| %.2e (|u| %.2e), K at the switch %.3e\n", diff, scale, e["kinetic"].back());
@@ -301,7 +302,7 @@ TEST(Stages, GonzalezThenNewmarkStartsFromTheCurrentAcceleration) {
       "</ParameterList>\n";
   const Outcome a = run(deck(true, loads("", "") + stages), "gonzalez_then_newmark");
   EXPECT_NE(a.log.find("analysis per stage: squeeze dynamic (gonzalez), ring dynamic (newmark)"), std::string::npos) << a.log;
-  const Series e = read_csv(kDir / "gonzalez_then_newmark" / "stentor_energy.csv");
+  const Series e = read_csv(work_dir() / "gonzalez_then_newmark" / "stentor_energy.csv");
   ASSERT_EQ(e.rows(), 13u);
   double emax = 0.0, gonzalez = 0.0, later = 0.0;
   for (std::size_t i = 0; i < e.rows(); ++i) emax = std::max(emax, e["total"][i]);
@@ -343,7 +344,7 @@ TEST(Stages, StaticInflationThenDynamicHoldStaysAtRest) {
   EXPECT_EQ(o.history["contact_balloon_active"].back(), o.history["contact_balloon_active"][3]);
   double dw = 0.0;
   for (std::size_t i = 4; i < 8; ++i) dw = std::max(dw, std::abs(u_ref[i] - w));
-  const Series e = read_csv(kDir / "inflate_static_hold_dynamic" / "stentor_energy.csv");
+  const Series e = read_csv(work_dir() / "inflate_static_hold_dynamic" / "stentor_energy.csv");
   ASSERT_EQ(e.rows(), 5u);
   double kmax = 0.0;
   for (std::size_t i = 0; i < e.rows(); ++i) kmax = std::max(kmax, e["kinetic"][i]);

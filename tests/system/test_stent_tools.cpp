@@ -30,6 +30,7 @@
 #include "io/Obstacles.hpp"
 #include "mesh/MeshQuery.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 using stentor::testing::read_csv;
@@ -38,7 +39,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "stent_tools";
+fs::path work_dir() { return stentor::testing::test_dir("stent_tools"); }
 const std::string kInputs = std::string(STENTOR_SOURCE_DIR) + "/inputs/";
 
 contact::Obstacle capsule(int dim) {
@@ -134,9 +135,9 @@ TEST(StentTools, CapsuleOfLengthZeroIsACircle) {
       c.length = 0.0;
     }
     RunOptions opts;
-    opts.output_dir = (kDir / tag).string();
+    opts.output_dir = (work_dir() / tag).string();
     EXPECT_EQ(run_simulation(cfg, opts, &res), 0);
-    return read_csv(kDir / tag / "balloon_stages_history.csv");
+    return read_csv(work_dir() / tag / "balloon_stages_history.csv");
   };
   RunResult a, b;
   const Series ha = run(false, "circle", a), hb = run(true, "capsule", b);
@@ -152,7 +153,7 @@ TEST(StentTools, CapsuleOfLengthZeroIsACircle) {
   // The balloon for ParaView: outputs at t = 0 and every step, the field file's times; at
   // t = 1 (output 4, end of inflation) its radius is 0.45 + 0.15 about (0.5, -0.5).
   using H5 = stentor::testing::H5Results;
-  H5 obstacles(kDir / "capsule" / "balloon_stages_obstacles.h5"), fields(kDir / "capsule" / "balloon_stages.h5");
+  H5 obstacles(work_dir() / "capsule" / "balloon_stages_obstacles.h5"), fields(work_dir() / "capsule" / "balloon_stages.h5");
   ASSERT_GE(obstacles.f, 0);
   const std::vector<double> t = obstacles.times();
   EXPECT_EQ(t.size(), ha.rows() + 1);
@@ -181,12 +182,12 @@ TEST(StentTools, MetricsOfAPressurisedArteryRing) {
   m.stent = m.lumen = "lumen";
   m.artery = "artery";
   RunOptions opts;
-  opts.output_dir = (kDir / "ring").string();
+  opts.output_dir = (work_dir() / "ring").string();
   RunResult res;
   ASSERT_EQ(run_simulation(cfg, opts, &res), 0);
-  const Series s = read_csv(kDir / "ring" / (cfg.output.basename + "_metrics.csv"));
+  const Series s = read_csv(work_dir() / "ring" / (cfg.output.basename + "_metrics.csv"));
   ASSERT_EQ(s.rows(), 2u);  // t = 0 and the one step
-  const Series st = read_csv(kDir / "ring" / (cfg.output.basename + "_stages.csv"));
+  const Series st = read_csv(work_dir() / "ring" / (cfg.output.basename + "_stages.csv"));
   ASSERT_EQ(st.rows(), 1u);
 
   // Independent: the lumen nodes' current radii and the polygon through them.

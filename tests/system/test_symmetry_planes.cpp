@@ -49,13 +49,14 @@
 #include "mesh/GmshReader.hpp"
 #include "run/Model.hpp"
 #include "run/Simulation.hpp"
+#include "TestDir.hpp"
 
 using namespace stentor;
 namespace fs = std::filesystem;
 
 namespace {
 
-const fs::path kDir = fs::path(STENTOR_BINARY_DIR) / "system_tests" / "symmetry_planes";
+fs::path work_dir() { return stentor::testing::test_dir("symmetry_planes"); }
 
 std::string roller(const std::string& name, const std::string& group, const std::string& comps, const std::string& values = "") {
   return stentor::testing::dirichlet_xml(name, group, comps, values);
@@ -66,12 +67,12 @@ std::string block_deck(const std::string& mesh, const std::string& bcs, const st
 }
 
 RunResult run(const std::string& text, const std::string& name) {
-  fs::create_directories(kDir);
-  const fs::path p = kDir / (name + ".xml");
+  fs::create_directories(work_dir());
+  const fs::path p = work_dir() / (name + ".xml");
   std::ofstream(p) << text;
   const Config cfg = read_deck(p.string());
   RunOptions o;
-  o.output_dir = (kDir / name).string();
+  o.output_dir = (work_dir() / name).string();
   o.overwrite = true;
   RunResult res;
   EXPECT_EQ(run_simulation(cfg, o, &res), 0) << name;
@@ -81,7 +82,7 @@ RunResult run(const std::string& text, const std::string& name) {
 using stentor::testing::rotate;
 
 // The mesh rotated node by node, written as <name>.msh (the same cells and groups).
-fs::path rotated_msh(const Mesh& m, const std::string& name) { return stentor::testing::rotated_msh(m, kDir / (name + ".msh")); }
+fs::path rotated_msh(const Mesh& m, const std::string& name) { return stentor::testing::rotated_msh(m, work_dir() / (name + ".msh")); }
 
 std::string ring_deck(const std::string& sector) {
   std::ifstream in(std::string(STENTOR_SOURCE_DIR) + "/tests/cli/decks/restart_stent.xml");
@@ -103,12 +104,12 @@ std::string ring_deck(const std::string& sector) {
 }  // namespace
 
 TEST(SymmetryPlanes, RotatedUniaxialBlockOnRollersEqualsTheAlignedOne) {
-  fs::create_directories(kDir);
+  fs::create_directories(work_dir());
   const std::string geo = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
   std::ifstream in(geo);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   text = std::regex_replace(text, std::regex("Physical Volume"), "Rotate {{1, 1, 1}, {0, 0, 0}, 40 * Pi / 180} { Volume{1}; }\nPhysical Volume");
-  const fs::path rgeo = kDir / "block_rotated.geo";
+  const fs::path rgeo = work_dir() / "block_rotated.geo";
   std::ofstream(rgeo) << text;
 
   const RunResult a = run(block_deck(geo, roller("left", "left", "x") + roller("front", "front", "y") + roller("bottom", "bottom", "z") +
@@ -171,7 +172,7 @@ TEST(SymmetryPlanes, OneStrutSectorOfTheRingEqualsTheQuarter) {
 }
 
 TEST(SymmetryPlanes, RotatedContactPatchEqualsTheAlignedOne) {
-  fs::create_directories(kDir);
+  fs::create_directories(work_dir());
   std::ifstream in(std::string(STENTOR_SOURCE_DIR) + "/inputs/contact_patch3d.xml");
   const std::string aligned((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   // The aligned mesh, rotated node by node, as a .msh (the same cells and groups).
@@ -200,7 +201,7 @@ TEST(SymmetryPlanes, RotatedContactPatchEqualsTheAlignedOne) {
 }
 
 TEST(SymmetryPlanes, RotatedBlockVibratesLikeTheAlignedOne) {
-  fs::create_directories(kDir);
+  fs::create_directories(work_dir());
   const std::string geo = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
   // The aligned mesh (Mesh->size 0.5, as block_deck asks) rotated node by node: the same cells.
   MeshConfig mc;
@@ -242,8 +243,8 @@ TEST(SymmetryPlanes, RotatedBlockVibratesLikeTheAlignedOne) {
     const RunResult a = run(deck(geo, "xyz", {1.0, 0.5, 0.3}, an, scheme), an);
     const RunResult r = run(deck(rgeo.string(), "normal", rotate({1.0, 0.5, 0.3}), rn, scheme), rn);
     ASSERT_TRUE(a.converged && r.converged);
-    const auto ea = stentor::testing::read_csv(kDir / an / (an + "_energy.csv"));
-    const auto er = stentor::testing::read_csv(kDir / rn / (rn + "_energy.csv"));
+    const auto ea = stentor::testing::read_csv(work_dir() / an / (an + "_energy.csv"));
+    const auto er = stentor::testing::read_csv(work_dir() / rn / (rn + "_energy.csv"));
     ASSERT_EQ(ea.rows(), er.rows());
     ASSERT_GE(er.rows(), 20u);
     const double E0 = ea["total"][0];
@@ -267,7 +268,7 @@ TEST(SymmetryPlanes, RotatedBlockVibratesLikeTheAlignedOne) {
 }
 
 TEST(SymmetryPlanes, ProjectedTangentAgainstFiniteDifferences) {
-  fs::create_directories(kDir);
+  fs::create_directories(work_dir());
   MeshConfig mc;
   mc.file = std::string(STENTOR_SOURCE_DIR) + "/inputs/block3d.geo";
   mc.size = 0.5;
@@ -275,7 +276,7 @@ TEST(SymmetryPlanes, ProjectedTangentAgainstFiniteDifferences) {
   const std::string press =
       R"X(<ParameterList name="p"><Parameter name="type" type="string" value="pressure"/>
       <Parameter name="boundary" type="string" value="right"/><Parameter name="pressure" type="double" value="1e5"/></ParameterList>)X";
-  const fs::path deck = kDir / "block_fd.xml";
+  const fs::path deck = work_dir() / "block_fd.xml";
   std::ofstream(deck) << block_deck(msh.string(), roller("left", "left", "normal") + roller("front", "front", "normal") +
                                                       roller("bottom", "bottom", "normal") + press,
                                     "fd");
@@ -304,11 +305,11 @@ TEST(SymmetryPlanes, ProjectedTangentAgainstFiniteDifferences) {
 }
 
 TEST(SymmetryPlanes, CurvedGroupAndExtraValuesAreRefusedNamingThem) {
-  fs::create_directories(kDir);
+  fs::create_directories(work_dir());
   std::string curved = ring_deck("quarter");
   curved = std::regex_replace(curved, std::regex(R"X(value="symmetry_x"/>\s*<Parameter name="components" type="string" value="x"/>)X"),
                               R"X(value="inner"/><Parameter name="components" type="string" value="normal"/>)X");
-  const fs::path p = kDir / "curved.xml";
+  const fs::path p = work_dir() / "curved.xml";
   std::ofstream(p) << curved;
   const Config cfg = read_deck(p.string());
   Timers timers;
@@ -322,7 +323,7 @@ TEST(SymmetryPlanes, CurvedGroupAndExtraValuesAreRefusedNamingThem) {
   }
   std::string two = std::regex_replace(ring_deck("period"), std::regex(R"X(value="normal"/>)X"),
                                        R"X(value="normal"/><Parameter name="values" type="Array(double)" value="{0, 1}"/>)X");
-  const fs::path q = kDir / "two_values.xml";
+  const fs::path q = work_dir() / "two_values.xml";
   std::ofstream(q) << two;
   try {
     read_deck(q.string());
