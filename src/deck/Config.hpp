@@ -82,7 +82,8 @@ struct MaterialConfig {
   // Holzapfel-Gasser-Ogden (material/HolzapfelGasserOgden.hpp): "k1" [Pa], "k2" [-], "fibre angle" beta
   // [deg] to the circumferential direction of the frame through "axis point" along "axis" (unit).
   // "kappa": the fibre dispersion of Gasser et al. 2006, in [0, 1/3] (0: aligned fibres).
-  double k1 = 0, k2 = 0, fibre_angle = 0, kappa = 0;
+  // "anisotropy": rho of Holzapfel et al. 2005 in (0, 1] (1: the fibres alone).
+  double k1 = 0, k2 = 0, fibre_angle = 0, kappa = 0, anisotropy = 1;
   std::array<double, 3> axis_point{0, 0, 0}, axis{0, 0, 1};
   double density = 0;                     // "density" [kg/m^3], >= 0
   double viscosity = 0;                   // "viscosity" eta (Curnier), >= 0; unused in statics

@@ -238,14 +238,15 @@ void DeckReader::read_elastic_constants(const ParameterList& sub, const ListSpec
          "; Ciarlet-Geymonat needs D > 0 (nu > 0, and 'C2' below lambda/4 = " + num(0.25 * l.lambda) + ")");
 }
 
-// Holzapfel-Gasser-Ogden: k1, k2, fibre angle required, frame and kappa optional; none of them with other models.
+// Holzapfel-Gasser-Ogden: k1, k2, fibre angle required, frame, kappa and anisotropy optional (not kappa > 0
+// with anisotropy < 1: two different ways of spreading the fibres' stiffness); none of them with other models.
 void DeckReader::read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) {
-  const char* keys[] = {"k1", "k2", "fibre angle", "axis point", "axis", "kappa"};
+  const char* keys[] = {"k1", "k2", "fibre angle", "axis point", "axis", "kappa", "anisotropy"};
   const bool hgo = m.model == "Holzapfel-Gasser-Ogden";
   for (const char* k : keys) {
     const std::string key(k);
     if (!hgo && sub.isParameter(k)) fail(quoted(path + "->" + k) + " needs 'model' = Holzapfel-Gasser-Ogden");
-    if (hgo && key != "axis point" && key != "axis" && key != "kappa" && !sub.isParameter(k)) {
+    if (hgo && key != "axis point" && key != "axis" && key != "kappa" && key != "anisotropy" && !sub.isParameter(k)) {
       const ParamSpec& p = spec(ls, k);
       fail("missing required parameter " + quoted(path + "->" + k) + " (double, " + p.allowed_text() +
            ") for model = Holzapfel-Gasser-Ogden: " + p.doc);
@@ -256,6 +257,10 @@ void DeckReader::read_fibres(const ParameterList& sub, const ListSpec& ls, const
   m.k2 = get_double(sub, ls, "k2");
   m.fibre_angle = get_double(sub, ls, "fibre angle");
   if (sub.isParameter("kappa")) m.kappa = get_double(sub, ls, "kappa");
+  if (sub.isParameter("anisotropy")) m.anisotropy = get_double(sub, ls, "anisotropy");
+  if (m.kappa > 0.0 && m.anisotropy < 1.0)
+    fail(quoted(path + "->anisotropy") + " = " + num(m.anisotropy) + " with " + quoted(path + "->kappa") + " = " + num(m.kappa) +
+         ": give one of them (the dispersion kappa of Gasser et al. 2006 or the anisotropy rho of Holzapfel et al. 2005)");
   if (sub.isParameter("axis point")) {
     const auto p = get_array(sub, ls, "axis point");
     check_dim_length(p, path + "->axis point");

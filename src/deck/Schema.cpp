@@ -305,7 +305,8 @@ std::vector<ListSpec> build_schema() {
       "with C1 = mu/2 - C2, lam = lambda - 4 C2 from E + nu or mu + lambda and `C2` (default 0). "
       "Holzapfel-Gasser-Ogden (arteries): the neo-Hookean matrix from E + nu or mu + lambda plus two fibre families, "
       "sum k1/(2 k2) [exp(k2 (I4* - 1)^2) - 1] over I4* = kappa I1 + (1 - 3 kappa) a0.C a0 > 1 (tension only; "
-      "unmodified invariants; `kappa` the fibre dispersion, 0 by default), a0 at "
+      "unmodified invariants; `kappa` the fibre dispersion, 0 by default; `anisotropy` rho < 1 adds "
+      "(1 - rho) (I1 - 3)^2 to each exponent, Holzapfel et al. 2005), a0 at "
       "+-`fibre angle` to the circumferential direction of the cylindrical frame of `axis point` and `axis`. "
       "Plane strain in 2D. "
       "`Ciarlet-Geymonat plasticity` and `neo-Hookean plasticity` add multiplicative von Mises plasticity "
@@ -343,6 +344,13 @@ std::vector<ListSpec> build_schema() {
            "invariant is I4* = kappa I1 + (1 - 3 kappa) I4; 0 aligned fibres, 1/3 isotropic (docs/artery.md).")
            .ge(0.0)
            .le(1.0 / 3.0),
+       dbl("anisotropy", 1.0,
+           "Anisotropy rho [-] of `Holzapfel-Gasser-Ogden` in the form of Holzapfel, Sommer, Gasser & Regitnig (2005), "
+           "whose human coronary layers use it: each family's exponent is k2 [(1 - rho) (I1 - 3)^2 + rho <I4* - 1>^2]; "
+           "1 the fibres alone (the 2000 law), below 1 an isotropic part stiffens every direction (docs/artery.md). "
+           "Not with `kappa` > 0.")
+           .gt(0.0)
+           .le(1.0),
        arr("axis point",
            "A point of the vessel axis of the fibre frame [length] of `Holzapfel-Gasser-Ogden` (one value per dimension; "
            "the radial direction at X is that of X minus its projection on the axis).")

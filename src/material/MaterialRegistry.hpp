@@ -42,7 +42,7 @@ inline ElasticLaw elastic_law(const MaterialConfig& m) {
     return ElasticLaw::mooney_rivlin(MooneyRivlin{c.C1, c.C2, c.lam});
   }
   if (m.model == "Holzapfel-Gasser-Ogden") {
-    const HolzapfelGasserOgden h{NeoHookean{m.mu, m.lambda}, m.k1, m.k2, {1.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, m.kappa};
+    const HolzapfelGasserOgden h{NeoHookean{m.mu, m.lambda}, m.k1, m.k2, {1.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, m.kappa, m.anisotropy};
     const FibreFrame f{{m.axis_point[0], m.axis_point[1], m.axis_point[2]}, {m.axis[0], m.axis[1], m.axis[2]},
                        m.fibre_angle * 3.14159265358979323846 / 180.0};
     return ElasticLaw::holzapfel_gasser_ogden(h, f);

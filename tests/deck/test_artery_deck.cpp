@@ -94,6 +94,9 @@ TEST_F(ArteryDeck, EveryParameterReachesTheConfig) {
   EXPECT_TRUE(a.half_length);
   EXPECT_EQ(c.material("media").kappa, 0.226);
   EXPECT_EQ(read_deck(write(deck(artery()))).material("media").kappa, 0.0);
+  EXPECT_EQ(read_deck(write(deck(artery()))).material("media").anisotropy, 1.0);
+  const Config r = read_deck(write(deck(artery(), R"XML(<Parameter name="anisotropy" type="double" value="0.51"/>)XML")));
+  EXPECT_EQ(r.material("media").anisotropy, 0.51);
 }
 
 TEST_F(ArteryDeck, BadInputNamesTheParameter) {
@@ -106,6 +109,13 @@ TEST_F(ArteryDeck, BadInputNamesTheParameter) {
             std::string::npos);
   const std::string k = error(deck(artery(), R"XML(<Parameter name="kappa" type="double" value="0.4"/>)XML"));
   EXPECT_NE(k.find("kappa"), std::string::npos) << k;
+  const std::string r = error(deck(artery(), R"XML(<Parameter name="anisotropy" type="double" value="0"/>)XML"));
+  EXPECT_NE(r.find("anisotropy"), std::string::npos) << r;
+  const std::string both = error(deck(artery(), R"XML(<Parameter name="kappa" type="double" value="0.1"/>
+      <Parameter name="anisotropy" type="double" value="0.5"/>)XML"));
+  EXPECT_NE(both.find("'Materials->media->anisotropy' = 0.5 with 'Materials->media->kappa' = 0.1: give one of them"),
+            std::string::npos)
+      << both;
 }
 
 // The plaque's parameters reach the configuration (defaults: none, concentric, centred, 2

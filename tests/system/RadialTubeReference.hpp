@@ -33,9 +33,9 @@ struct Layer {
 // The law with both fibre families at +-beta (radians) to the circumferential direction,
 // in the basis (r, theta, z) of the reference.
 inline HolzapfelGasserOgden cylindrical_law(double mu, double lambda, double k1, double k2, double beta,
-                                            double kappa = 0.0) {
+                                            double kappa = 0.0, double rho = 1.0) {
   return HolzapfelGasserOgden{NeoHookean{mu, lambda}, k1, k2, {0.0, std::cos(beta), std::sin(beta)},
-                              {0.0, std::cos(beta), -std::sin(beta)}, kappa};
+                              {0.0, std::cos(beta), -std::sin(beta)}, kappa, rho};
 }
 
 // r' with P_rR(r', r/R, lz) = P (Newton from the guess d, halving a step that would leave

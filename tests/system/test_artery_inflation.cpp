@@ -34,7 +34,7 @@ std::vector<Layer> layers(const Config& cfg) {
   for (int l = 0; l < 3; ++l) {
     const MaterialConfig& m = cfg.material(kArteryLayer[l]);
     const double b = m.fibre_angle * 3.14159265358979323846 / 180.0;
-    out.push_back({cylindrical_law(m.mu, m.lambda, m.k1, m.k2, b, m.kappa),
+    out.push_back({cylindrical_law(m.mu, m.lambda, m.k1, m.k2, b, m.kappa, m.anisotropy),
                    l == 0 ? a.inner_radius() : a.layer_outer_radius(l - 1), a.layer_outer_radius(l)});
   }
   return out;
@@ -78,12 +78,11 @@ TEST(ArteryInflation, RadialSolutionTendsToTheIncompressibleClosedForm) {
   }
 }
 
-// The coarse deck (32 cells around, 2 through each layer) at 4, 8 and 16 kPa: the FE outer
-// and lumen radii within 2.5e-3 relative of the reference (measured 1.8e-3; the finer
-// meshes of docs/artery.md show the error is the mesh's, falling 4x per refinement).
+// A deck's quarter tube at 1/4, 1/2 and all of its pressure: the FE outer and lumen radii
+// against the reference; returns the largest relative difference.
 // STENTOR_ARTERY_REFINE=k multiplies the cells around and through the layers by k.
-TEST(ArteryInflation, LayeredWallMatchesTheRadialSolution) {
-  Config cfg = read_deck(std::string(STENTOR_SOURCE_DIR) + "/inputs/artery_layers.xml");
+double layered_wall_error(const std::string& deck, const std::string& tag) {
+  Config cfg = read_deck(std::string(STENTOR_SOURCE_DIR) + "/inputs/" + deck);
   cfg.output.fields = false;
   const int k = std::getenv("STENTOR_ARTERY_REFINE") ? std::atoi(std::getenv("STENTOR_ARTERY_REFINE")) : 1;
   cfg.mesh.artery.elements_around *= k;
@@ -93,7 +92,7 @@ TEST(ArteryInflation, LayeredWallMatchesTheRadialSolution) {
   double p_full = 0.0;
   for (const auto& l : cfg.loads)
     if (l.type == LoadConfig::Type::Pressure) p_full = l.value;
-  ASSERT_GT(p_full, 0.0);
+  EXPECT_GT(p_full, 0.0);
   double worst = 0.0;
   for (double f : {0.25, 0.5, 1.0}) {
     Config c = cfg;
@@ -102,18 +101,34 @@ TEST(ArteryInflation, LayeredWallMatchesTheRadialSolution) {
     RunOptions opts;
     opts.output_dir = (work_dir() / ("p" + std::to_string(f) + "_k" + std::to_string(k))).string();
     RunResult res;
-    ASSERT_EQ(run_simulation(c, opts, &res), 0);
-    ASSERT_TRUE(res.converged);
+    EXPECT_EQ(run_simulation(c, opts, &res), 0);
+    EXPECT_TRUE(res.converged);
     double ri, ro;
     reference_radii(L, f * p_full, ri, ro);
     const double fi = fe_radius(res, Ri), fo = fe_radius(res, Ro);
     const double ei = (fi - ri) / ri, eo = (fo - ro) / ro;
-    std::printf("[artery] k %d (%d around, %d through): p %.4f: lumen %.6f (ref %.6f, rel %+.2e), outer %.6f (ref %.6f, rel %+.2e); "
-                "outer radius gain %.3f%%\n",
-                k, c.mesh.artery.elements_around, c.mesh.artery.cells_through(), f * p_full, fi, ri, ei, fo, ro, eo,
-                100.0 * (ro / Ro - 1.0));
-    ASSERT_TRUE(std::isfinite(ri) && std::isfinite(ro) && std::isfinite(fi) && std::isfinite(fo));
+    std::printf("[artery] %s k %d (%d around, %d through): p %.4f: lumen %.6f (ref %.6f, rel %+.2e), outer %.6f (ref %.6f, rel "
+                "%+.2e); lumen radius gain %.3f%%, outer %.3f%%\n",
+                tag.c_str(), k, c.mesh.artery.elements_around, c.mesh.artery.cells_through(), f * p_full, fi, ri, ei, fo, ro, eo,
+                100.0 * (ri / Ri - 1.0), 100.0 * (ro / Ro - 1.0));
+    if (!(std::isfinite(ri) && std::isfinite(ro) && std::isfinite(fi) && std::isfinite(fo))) return 1.0;
     worst = std::fmax(worst, std::fmax(std::fabs(ei), std::fabs(eo)));
   }
-  EXPECT_LT(worst, 2.5e-3);
+  return worst;
+}
+
+// The coarse deck (32 cells around, 2 through each layer) at 4, 8 and 16 kPa: the FE outer
+// and lumen radii within 2.5e-3 relative of the reference (measured 1.8e-3; the finer
+// meshes of docs/artery.md show the error is the mesh's, falling 4x per refinement).
+TEST(ArteryInflation, LayeredWallMatchesTheRadialSolution) {
+  EXPECT_LT(layered_wall_error("artery_layers.xml", "rabbit carotid"), 2.5e-3);
+}
+
+// The human coronary layers of Holzapfel et al. 2005 (the anisotropy rho; inputs/
+// artery_coronary.xml), the same mesh and pressures: a stiff wall whose fibres carry the
+// pressure from a few percent of stretch. Within 8e-3 (measured 6.2e-3 on the lumen, where
+// the intima's k2 = 171 makes the stress steep across its two cells; 1.6e-3 with the cells
+// doubled, docs/artery.md).
+TEST(ArteryInflation, CoronaryWallMatchesTheRadialSolution) {
+  EXPECT_LT(layered_wall_error("artery_coronary.xml", "human coronary"), 8e-3);
 }
