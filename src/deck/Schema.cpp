@@ -801,7 +801,8 @@ std::vector<ListSpec> build_schema() {
        dbl("malapposition threshold", 0.0,
            "A generated stent in a generated artery: an `outer` node of the stent farther than this from the lumen "
            "surface [length] counts as malapposed (the `malapposed_area` metric: the share of the stent's outer "
-           "surface off the wall; docs/artery.md, \"Artery metrics\"). 0: a tenth of the strut thickness.")
+           "surface off the wall), and so does a strut whose outer surface's mean distance exceeds it (`malapposed_struts`; "
+           "docs/artery.md, \"Artery metrics\"). 0: a tenth of the strut thickness.")
            .ge(0.0)}));
   {
     auto l = list("Output/Probes", "Output->Probes", "Points whose displacement history is recorded. Probe names "

@@ -71,8 +71,10 @@ std::vector<GId> boundary_nodes(const Mesh& m, const std::string& group) {
 
 std::vector<GId> volume_nodes(const Mesh& m, const std::string& group) { return nodes_of(volume_blocks(m, group)); }
 
-std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group, bool axisymmetric) {
-  std::map<GId, double> area;
+namespace {
+// tributary_areas(_by): the facets' HRZ shares, each facet's into the map of its class.
+void add_tributary_areas(const Mesh& mesh, const std::string& group, bool axisymmetric,
+                         const std::function<int(const double*)>& classify, std::vector<std::map<GId, double>>& area) {
   for (const CellBlock* b : boundary_blocks(mesh, group)) {
     if (cell_dim(b->type) != mesh.dim - 1) continue;
     const int nn = b->nodes_per_cell;
@@ -80,6 +82,11 @@ std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group
     double qp[kMaxQuadPoints][3], qw[kMaxQuadPoints];
     const int nq = quadrature(b->type, 4, qp, qw);
     for (std::size_t f = 0; f < b->num_cells(); ++f) {
+      double centroid[3] = {0, 0, 0};
+      for (int a = 0; a < nn; ++a)
+        for (int c = 0; c < 3; ++c) centroid[c] += mesh.coord(b->conn[f * nn + a])[c] / nn;
+      const int cls = classify ? classify(centroid) : 0;
+      if (cls < 0 || cls >= static_cast<int>(area.size())) continue;
       std::vector<double> m2(static_cast<std::size_t>(nn), 0.0);
       double A = 0.0;
       for (int q = 0; q < nq; ++q) {
@@ -107,9 +114,22 @@ std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group
       }
       double s = 0.0;
       for (double v : m2) s += v;
-      for (int a = 0; a < nn; ++a) area[b->conn[f * nn + a]] += A * m2[static_cast<std::size_t>(a)] / s;
+      for (int a = 0; a < nn; ++a) area[static_cast<std::size_t>(cls)][b->conn[f * nn + a]] += A * m2[static_cast<std::size_t>(a)] / s;
     }
   }
+}
+}  // namespace
+
+std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group, bool axisymmetric) {
+  std::vector<std::map<GId, double>> area(1);
+  add_tributary_areas(mesh, group, axisymmetric, nullptr, area);
+  return area[0];
+}
+
+std::vector<std::map<GId, double>> tributary_areas_by(const Mesh& mesh, const std::string& group, int classes,
+                                                      const std::function<int(const double*)>& classify) {
+  std::vector<std::map<GId, double>> area(static_cast<std::size_t>(std::max(classes, 0)));
+  add_tributary_areas(mesh, group, false, classify, area);
   return area;
 }
 

@@ -2,6 +2,7 @@
 // InputError "physical group 'left' not found in mesh <file>; available boundary
 // groups: bottom, left, ..." so a misspelled deck name is easy to fix.
 #pragma once
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -33,5 +34,11 @@ std::vector<GId> volume_nodes(const Mesh& m, const std::string& group);
 // (contact's per-area c_normal and c_tangent, the artery metrics' malapposed area).
 // Axisymmetric: the areas of the revolved facets (dA = 2 pi r ds).
 std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group, bool axisymmetric = false);
+
+// The same split by facet: classify(the facet's reference centroid) gives the index of the
+// class it belongs to (0 .. classes - 1, or -1: left out); one map per class (a node on
+// facets of two classes has its share in both).
+std::vector<std::map<GId, double>> tributary_areas_by(const Mesh& mesh, const std::string& group, int classes,
+                                                      const std::function<int(const double*)>& classify);
 
 }  // namespace stentor

@@ -11,7 +11,8 @@ namespace stentor {
 
 namespace {
 const char* const kLayers[] = {"plaque", "intima", "media", "adventitia"};
-constexpr std::size_t kLayerColumn = 6;  // the first layer's column (after the lumen's and the apposition's)
+constexpr std::size_t kLayerColumn = 8;  // the first layer's column (after the lumen's and the apposition's)
+constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 
 ArteryMetrics::ArteryMetrics(const Model& model) : m_(model) {
@@ -50,6 +51,27 @@ ArteryMetrics::ArteryMetrics(const Model& model) : m_(model) {
     const double* x = mesh.coord(g);
     outer_w_.push_back(sector && (std::abs(x[1]) < tol || std::abs(st * x[0] - ct * x[1]) < tol) ? 0.5 : 1.0);
   }
+  // Struts: each ring's outer facets by the half crown pitch their centroid lies in.
+  const int per_ring = 2 * s.crowns;
+  const int rings = s.half_length ? s.rings / 2 : s.rings;
+  const auto pitch_of = [&](const double* c) {
+    double theta = std::atan2(c[1], c[0]);
+    if (theta < 0.0) theta += 2.0 * kPi;
+    return std::min(per_ring - 1, static_cast<int>(std::floor(theta / (kPi / s.crowns))));
+  };
+  for (int k = 0; k < rings; ++k) {
+    const auto parts = tributary_areas_by(mesh, "ring_" + std::to_string(k), per_ring, pitch_of);
+    for (int j = 0; j < per_ring; ++j) {
+      if (parts[static_cast<std::size_t>(j)].empty()) continue;
+      Strut st;
+      st.ring = k, st.index = j;
+      for (const auto& [g, a] : parts[static_cast<std::size_t>(j)]) {
+        st.idx.push_back(static_cast<std::size_t>(std::lower_bound(outer_.begin(), outer_.end(), g) - outer_.begin()));
+        st.area.push_back(a);
+      }
+      struts_.push_back(std::move(st));
+    }
+  }
   threshold_ = m_.cfg.output.metrics.malapposition_threshold > 0.0 ? m_.cfg.output.metrics.malapposition_threshold : 0.1 * s.thickness;
   layer_of_block_.assign(mesh.volumes.size(), -1);
   for (const char* name : kLayers) {
@@ -65,7 +87,8 @@ std::vector<std::string> ArteryMetrics::columns() const {
   const std::string S = stress_unit_.empty() ? "" : " [" + stress_unit_ + "]";
   const std::string A = length_unit_.empty() ? "" : " [" + length_unit_ + "^2]";
   std::vector<std::string> c = {"lumen_D_mean" + L, "lumen_D_min" + L, "lumen_contact_area" + A,
-                                "stent_wall_gap_max" + L, "malapposed_area [%]", "prolapse_max" + L};
+                                "stent_wall_gap_max" + L, "malapposed_area [%]", "prolapse_max" + L,
+                                "malapposed_struts [%]", "strut_gap_max" + L};
   for (const std::string& l : layers_) c.insert(c.end(), {l + "_sigma1_max" + S, l + "_sigma1_p99" + S});
   return c;
 }
@@ -139,7 +162,16 @@ std::vector<double> ArteryMetrics::evaluate(const la::Vector& u) {
     if (gaps[i] > threshold_) a_off += outer_area_[i];
   }
   const double malapposed = a_all > 0.0 ? 100.0 * (a_off / a_all) : 0.0;
-  now_ = {sum / static_cast<double>(stations_.size()), dmin, area, gap_max, malapposed, prolapse(x, xo)};
+  const std::vector<double> ds = strut_distances(gaps);
+  int off = 0;
+  farthest_ = -1;
+  for (std::size_t k = 0; k < ds.size(); ++k) {
+    off += ds[k] > threshold_;
+    if (farthest_ < 0 || ds[k] > ds[static_cast<std::size_t>(farthest_)]) farthest_ = static_cast<int>(k);
+  }
+  const double struts_off = ds.empty() ? 0.0 : 100.0 * off / static_cast<double>(ds.size());
+  now_ = {sum / static_cast<double>(stations_.size()), dmin, area, gap_max, malapposed, prolapse(x, xo), struts_off,
+          farthest_ >= 0 ? ds[static_cast<std::size_t>(farthest_)] : 0.0};
   if (D_mean0_ < 0.0) D_mean0_ = now_[0], D_min0_ = now_[1];
   layer_stresses(u, now_);
   return now_;
@@ -184,6 +216,16 @@ std::vector<double> ArteryMetrics::wall_gaps(const std::vector<double>& xo, cons
   return d;
 }
 
+std::vector<double> ArteryMetrics::strut_distances(const std::vector<double>& gaps) const {
+  std::vector<double> d;
+  for (const Strut& st : struts_) {
+    double ga = 0.0, a = 0.0;
+    for (std::size_t i = 0; i < st.idx.size(); ++i) ga += st.area[i] * gaps[st.idx[i]], a += st.area[i];
+    d.push_back(a > 0.0 ? ga / a : 0.0);
+  }
+  return d;
+}
+
 double ArteryMetrics::prolapse(const std::vector<double>& xl, const std::vector<double>& xo) const {
   // Each station's current axial position (its nodes' weighted mean).
   std::vector<double> zs(stations_.size(), 0.0);
@@ -216,6 +258,12 @@ void ArteryMetrics::table(std::ostream& log) const {
       << (length_unit_.empty() ? "" : " " + length_unit_ + "^2") << "\n";
   log << std::setprecision(4) << "  stent against the wall: largest gap " << now_[3] << L << ", malapposed " << std::setprecision(2) << now_[4]
       << " % of the outer surface (gap > " << std::setprecision(4) << threshold_ << L << "), tissue prolapse " << now_[5] << L << "\n";
+  if (!struts_.empty()) {
+    const Strut& far = struts_[static_cast<std::size_t>(std::max(farthest_, 0))];
+    log << "  struts (" << struts_.size() << " in the model; a strut's distance: its outer surface's mean distance to the lumen): "
+        << std::setprecision(2) << now_[6] << " % malapposed (distance > " << std::setprecision(4) << threshold_ << L
+        << "), the farthest " << now_[7] << L << " (ring " << far.ring << ", strut " << far.index << ")\n";
+  }
   if (layers_.empty()) return;
   log << "  artery: largest principal stress, max / 99th percentile of the cells:" << std::scientific << std::setprecision(3);
   for (std::size_t l = 0; l < layers_.size(); ++l)

@@ -21,6 +21,13 @@
 //   stent's outer surface farther than `malapposition threshold` from the wall
 //   (`malapposed_area`, %: the nodes' reference tributary areas, mesh/MeshQuery.hpp; the
 //   model's surface, so on a symmetry sector the whole stent's share);
+// * per strut (a ring's outer surface between two successive crown apices, theta = m pi /
+//   crowns, the generator's node lines: one strut per half crown pitch; the links are not
+//   struts): the strut's distance to the wall, the mean of its outer nodes' distances
+//   weighted by their tributary areas on the strut; the share of the model's struts farther
+//   than `malapposition threshold` (`malapposed_struts`, %: OCT's malapposed strut count,
+//   the same on the whole stent since every strut of the model stands for the same number
+//   of copies) and the farthest strut's distance (`strut_gap_max`);
 // * tissue prolapse: at each lumen station, the stent's contour radius R_s (the mean
 //   current distance from the axis of the `outer` nodes whose current axial position lies
 //   within the station's band, half-way to the neighbouring stations) less the radius of each
@@ -72,6 +79,13 @@ class ArteryMetrics {
     std::vector<std::size_t> idx;  // indices into lumen_
     std::vector<double> w;         // symmetry weights
   };
+  struct Strut {
+    int ring = 0, index = 0;       // ring, and the half crown pitch around it
+    std::vector<std::size_t> idx;  // indices into outer_
+    std::vector<double> area;      // their tributary areas on the strut
+  };
+  // The struts' distances to the wall from the outer nodes' gaps.
+  std::vector<double> strut_distances(const std::vector<double>& gaps) const;
   void layer_stresses(const la::Vector& u, std::vector<double>& out) const;  // collective: max, p99 per layer
   // Signed distances of the outer nodes (at x_outer) to the lumen.
   std::vector<double> wall_gaps(const std::vector<double>& x_outer, const la::Vector& u) const;
@@ -84,6 +98,8 @@ class ArteryMetrics {
   std::vector<GId> outer_;              // the stent's outer nodes, sorted
   std::vector<double> outer_area_;      // their tributary areas (reference)
   std::vector<double> outer_w_;         // their symmetry weights (1/2 on a sector's plane)
+  std::vector<Strut> struts_;           // the model's struts, by ring and angle
+  int farthest_ = -1;                   // the last evaluation's farthest strut (index into struts_)
   double threshold_ = 0.0;              // malapposition threshold [length]
   std::vector<std::string> layers_;     // the wall's volume groups in the mesh
   std::vector<int> layer_of_block_;     // Mesh::volumes index -> index into layers_ or -1

@@ -110,7 +110,8 @@ NewtonResult Stepper::newton(la::Vector& u) {
 // The initial guess (Stepping->predictor). auto, statics: extrapolate the last converged
 // increment, so that a prescribed boundary motion is spread into the interior instead of
 // squeezing the boundary layer of cells (which can invert them); where there is no
-// increment yet, lift; extrapolate: the same without the lifting. Dynamics, auto / none:
+// increment yet (the first step, and a stage's first step: run_stages), lift; extrapolate:
+// the same without the lifting. Dynamics, auto / none:
 // u_n; velocity: the scheme's constant-velocity (acceleration) guess. lifting: lift every
 // step. none: u_n.
 void Stepper::predict(RunState& s, double dt, double t_new, bool& predicted, NewtonResult& lifted) {

@@ -3,8 +3,8 @@
 # by a rigid balloon into the layered artery (the pair `lumen` -> stent `outer`) and
 # deflated; and the same deck with the wall's pair left out of the stages (the stent
 # expanded freely, the artery untouched).
-# Checks: both runs end at t = 1.5; the stent against the wall (gap, malapposition,
-# prolapse, the wall_gap field: below); the lumen's nodes never penetrate the stent (smallest
+# Checks: both runs end at t = 1.5; the stent against the wall (gap, malapposition per area
+# and per strut, prolapse, the wall_gap field: below); the lumen's nodes never penetrate the stent (smallest
 # gap >= -1e-9 mm) and rest on it after deflation; the lumen opened (minimum lumen diameter
 # from 3.1 to more than 3.4 mm) but not beyond the stent (mean lumen diameter <= the
 # stent's outer D_max); the wall pushes the stent back: its recoil exceeds the free
@@ -69,6 +69,19 @@ awk -v g="$g" -v a="$ma" -v p="$p" 'BEGIN { exit !(g >= 0 && g < 0.01 && a < 50 
   fail "at the end: gap $g, malapposed $ma %, prolapse $p"
 awk -v p="$pf" -v lo="$Dfmin" -v hi="$Dfmax" 'BEGIN { exit !(p >= lo / 2 - 1.55 - 1e-9 && p <= hi / 2 - 1.55 + 1e-9 && p > 0.1) }' ||
   fail "free run: prolapse $pf, not within the stent's radii less 1.55 mm ($Dfmin .. $Dfmax)"
+# Per strut (one strut in the one-strut sector): its outer surface's mean distance. As cut
+# all of it lies inside the lumen, between 1.55 cos(pi / 64) - 1.5 = 0.04813 mm (at a
+# facet's middle; 64 cells around) and the largest node gap: malapposed; at the end it rests on the wall, its mean distance within the largest node
+# gap: apposed.
+s0=$(first $m "malapposed_struts [%]") d0=$(first $m "strut_gap_max [mm]")
+s=$(last $m "malapposed_struts [%]") d=$(last $m "strut_gap_max [mm]")
+echo "struts: as cut $s0 % malapposed, distance $d0 mm; at the end $s %, $d mm"
+awk -v s="$s0" -v d="$d0" -v g="$g0" 'BEGIN { exit !(s == 100 && d > 1.55 * cos(3.14159265358979 / 64) - 1.5 && d <= g + 1e-12) }' ||
+  fail "as cut: struts $s0 % malapposed, distance $d0 (largest node gap $g0)"
+awk -v s="$s" -v d="$d" -v g="$g" 'BEGIN { exit !(s == 0 && d <= g && d < 0.01) }' ||
+  fail "at the end: struts $s % malapposed, distance $d (largest node gap $g)"
+grep -q "struts (1 in the model; a strut's distance: its outer surface's mean distance to the lumen): 0.00 % malapposed" log.txt ||
+  fail "no struts line in the log"
 grep -q "artery (stented segment): lumen D mean 3.1000 -> " log.txt || fail "no artery paragraph in the log"
 grep -q "stent against the wall: largest gap " log.txt || fail "no apposition line in the log"
 # KLU2's factorizations are about half of this 3D run: a build with MUMPS advises it.

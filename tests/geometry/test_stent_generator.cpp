@@ -6,6 +6,7 @@
 #include <array>
 #include <functional>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <string>
@@ -14,6 +15,7 @@
 #include "deck/Config.hpp"
 #include "geometry/StentGenerator.hpp"
 #include "mesh/MeshCheck.hpp"
+#include "mesh/MeshQuery.hpp"
 #include "MeshMeasures.hpp"
 #include "StentFixtures.hpp"
 
@@ -273,4 +275,41 @@ TEST(StentGenerator, RefusesWhatCannotBeBuilt) {
                   "'Mesh->Stent->link width'"));
   EXPECT_TRUE(has(error([](StentConfig& s) { s.element_length = 1e-4; }), "'Mesh->max cells'"));
   EXPECT_EQ(error([](StentConfig&) {}), "");
+}
+
+// A ring's outer surface split into struts at its crown apices (tributary_areas_by with the
+// half crown pitch of the facet's centroid, as the artery metrics' per-strut malapposition
+// does): every facet lies within one half pitch (the apex lines are node lines of the
+// pattern), the 16 struts of the 8-crown ring have the same area (the pattern's symmetry),
+// and their shares add up to the ring's tributary areas node by node.
+TEST(StentGenerator, OuterSurfaceSplitsIntoStrutsAtTheCrownApices) {
+  const StentConfig s = stentor::test::s6_ring_as_cut();
+  const Mesh m = generate_stent(s, 1e6, "test");
+  const double pi = 3.14159265358979323846, h = pi / s.crowns;
+  int straddling = 0;
+  const auto pitch_of = [&](const double* c) {
+    double theta = std::atan2(c[1], c[0]);
+    if (theta < 0.0) theta += 2.0 * pi;
+    const double j = theta / h;
+    // The facet's centroid is off the apex lines by far more than round-off.
+    if (std::abs(j - std::round(j)) < 1e-3) ++straddling;
+    return std::min(2 * s.crowns - 1, static_cast<int>(std::floor(j)));
+  };
+  const auto parts = tributary_areas_by(m, "ring_0", 2 * s.crowns, pitch_of);
+  const auto whole = tributary_areas(m, "ring_0");
+  EXPECT_EQ(straddling, 0);
+  ASSERT_EQ(parts.size(), 16u);
+  std::vector<double> area;
+  std::map<GId, double> sum;
+  for (const auto& p : parts) {
+    double a = 0.0;
+    for (const auto& [g, v] : p) a += v, sum[g] += v;
+    area.push_back(a);
+  }
+  const double lo = *std::min_element(area.begin(), area.end()), hi = *std::max_element(area.begin(), area.end());
+  std::printf("[stent] struts of one ring: 16 of outer area %.6f .. %.6f mm^2\n", lo, hi);
+  EXPECT_GT(lo, 0.0);
+  EXPECT_LT((hi - lo) / hi, 1e-10);
+  ASSERT_EQ(sum.size(), whole.size());
+  for (const auto& [g, v] : whole) EXPECT_NEAR(sum.at(g), v, 1e-14 * (1.0 + v)) << g;
 }

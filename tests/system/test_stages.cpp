@@ -79,7 +79,9 @@ Outcome run(const std::string& xml, const std::string& tag) {
 // Every column of `one` (and the final displacement) equals `staged`'s to `tol` relative
 // to the largest value of the column or, for a vector's component (name ending _x, _y,
 // _z), of the vector's components: a component that is zero up to round-off is compared
-// with the force it is a component of.
+// with the force it is a component of. The Newton and linear iteration counts are the
+// path's, not the result's: a static stage's first step lifts its prescribed motion where
+// one interval extrapolates the step before (run_stages), so they may differ there.
 void expect_same(const Outcome& staged, const Outcome& one, double tol) {
   ASSERT_EQ(staged.history.rows(), one.history.rows());
   auto stem = [](const std::string& n) {
@@ -90,6 +92,7 @@ void expect_same(const Outcome& staged, const Outcome& one, double tol) {
   for (const auto& [name, v] : one.history.col)
     for (double x : v) scale_of[stem(name)] = std::max(scale_of[stem(name)], std::abs(x));
   for (const auto& [name, v] : one.history.col) {
+    if (name == "newton_iterations" || name == "linear_iterations") continue;
     const auto& w = staged.history[name];
     const double scale = std::max(1e-300, scale_of[stem(name)]);
     double diff = 0.0;
