@@ -41,4 +41,33 @@ inline Mat3 sym_unit(int I, int J) {
   return E;
 }
 
+// max |S - 2 dW/dC (central differences of step h)| / (max |S| + modulus).
+template <class Law>
+double stress_fd_error(const Law& m, const Mat3& C, double modulus, double h = 1e-5) {
+  const Mat3 S = m.stress(C);
+  Mat3 Sfd;
+  for (int I = 0; I < 3; ++I)
+    for (int J = 0; J < 3; ++J) {
+      const Mat3 E = sym_unit(I, J);
+      Sfd(I, J) = (m.energy(C + h * E) - m.energy(C - h * E)) / h;
+    }
+  return max_abs(S - Sfd) / (max_abs(S) + modulus);
+}
+
+// max |CC - 2 dS/dC (central differences of step h)| / max |CC|.
+template <class Law>
+double tangent_fd_error(const Law& m, const Mat3& C, double h = 1e-6) {
+  Mat3 S;
+  Ten4 CC, diff;
+  m.stress_and_tangent(C, S, CC);
+  for (int K = 0; K < 3; ++K)
+    for (int L = 0; L < 3; ++L) {
+      const Mat3 E = sym_unit(K, L);
+      const Mat3 dS = (1.0 / h) * (m.stress(C + h * E) - m.stress(C - h * E));
+      for (int I = 0; I < 3; ++I)
+        for (int J = 0; J < 3; ++J) diff(I, J, K, L) = CC(I, J, K, L) - dS(I, J);
+    }
+  return max_abs(diff) / max_abs(CC);
+}
+
 }  // namespace stentor::testing

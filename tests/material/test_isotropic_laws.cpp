@@ -35,44 +35,15 @@ using stentor::NeoHookean;
 using stentor::Ten4;
 using stentor::testing::random_F;
 using stentor::testing::diag;
+using stentor::testing::stress_fd_error;
 using stentor::testing::sym_unit;
+using stentor::testing::tangent_fd_error;
 
 namespace {
 
 // Moderate and nearly incompressible parameter sets.
 const NeoHookean kNH[] = {{1.2, 2.5}, {0.8, 4000.0}};
 const MooneyRivlin kMR[] = {{0.4, 0.25, 1.8}, {0.5, 0.15, 5000.0}, {0.3, 0.0, 1.0}};
-
-// max |S - 2 dW/dC (central differences)| / (max |S| + modulus).
-template <class Law>
-double stress_fd_error(const Law& m, const Mat3& C, double modulus) {
-  const double h = 1e-5;
-  const Mat3 S = m.stress(C);
-  Mat3 Sfd;
-  for (int I = 0; I < 3; ++I)
-    for (int J = 0; J < 3; ++J) {
-      const Mat3 E = sym_unit(I, J);
-      Sfd(I, J) = (m.energy(C + h * E) - m.energy(C - h * E)) / h;
-    }
-  return max_abs(S - Sfd) / (max_abs(S) + modulus);
-}
-
-// max |CC - 2 dS/dC (central differences)| / max |CC|.
-template <class Law>
-double tangent_fd_error(const Law& m, const Mat3& C) {
-  const double h = 1e-6;
-  Mat3 S;
-  Ten4 CC, diff;
-  m.stress_and_tangent(C, S, CC);
-  for (int K = 0; K < 3; ++K)
-    for (int L = 0; L < 3; ++L) {
-      const Mat3 E = sym_unit(K, L);
-      const Mat3 dS = (1.0 / h) * (m.stress(C + h * E) - m.stress(C - h * E));
-      for (int I = 0; I < 3; ++I)
-        for (int J = 0; J < 3; ++J) diff(I, J, K, L) = CC(I, J, K, L) - dS(I, J);
-    }
-  return max_abs(diff) / max_abs(CC);
-}
 
 // CC(I) = lambda I⊗I + 2 mu II, entrywise.
 template <class Law>
