@@ -403,11 +403,7 @@ class Solve {
     // (An increment test too: off with `increment tolerance` = 0, as the other one.)
     const bool roundoff = cfg_.increment_tolerance > 0.0 &&
                           up.du_full <= 8.0 * std::numeric_limits<double>::epsilon() * (sys_.coordinate_scale() + un);
-    // (The residual test beyond the first iteration also asks the last correction to be small
-    // against what Newton moved in the step: kCorrection.)
-    u_trial_.update(1.0, u_, -1.0, u_first_, 0.0);
-    const bool settled_correction = it == 1 || step <= kCorrection * u_trial_.norm2();
-    const bool small = (rn_ <= target_ && settled_correction) || roundoff ||
+    const bool small = (rn_ <= target_ && correction_small(it, step)) || roundoff ||
                        (step <= cfg_.increment_tolerance * std::max(un, 1e-300) && rn_ <= std::sqrt(cfg_.residual_tolerance) * ref_);
     if (small && t.settled) return verify_held();
     if (watch_.armed && !t.relaxed) {
@@ -415,6 +411,15 @@ class Solve {
       else --watch_.left;
     }
     return 0;
+  }
+
+  // The residual test's second half (kCorrection): beyond the first iteration, the last
+  // correction |alpha du| = step is small against what Newton moved in the step. Called
+  // only once the residual is below its target (the same on every rank: collective).
+  bool correction_small(int it, double step) {
+    if (it == 1) return true;
+    u_trial_.update(1.0, u_, -1.0, u_first_, 0.0);  // a scratch vector until the next line search
+    return step <= kCorrection * u_trial_.norm2();
   }
 
   // Converged with the sets settled: the conditions the iteration held fixed are checked
