@@ -65,6 +65,8 @@ struct StentConfig {
   double sector_angle() const;
   // How many copies of the kept part make the whole stent (sectors x halves).
   double symmetry_copies() const;
+  // The rings the model holds (ring_0 .. ring_<n-1>): half of them with `half length`.
+  int model_rings() const { return half_length ? rings / 2 : rings; }
 };
 
 // "" when the stent can be built, else the message (naming the parameter, as

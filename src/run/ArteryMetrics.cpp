@@ -53,13 +53,12 @@ ArteryMetrics::ArteryMetrics(const Model& model) : m_(model) {
   }
   // Struts: each ring's outer facets by the half crown pitch their centroid lies in.
   const int per_ring = 2 * s.crowns;
-  const int rings = s.half_length ? s.rings / 2 : s.rings;
   const auto pitch_of = [&](const double* c) {
     double theta = std::atan2(c[1], c[0]);
     if (theta < 0.0) theta += 2.0 * kPi;
     return std::min(per_ring - 1, static_cast<int>(std::floor(theta / (kPi / s.crowns))));
   };
-  for (int k = 0; k < rings; ++k) {
+  for (int k = 0; k < s.model_rings(); ++k) {
     const auto parts = tributary_areas_by(mesh, "ring_" + std::to_string(k), per_ring, pitch_of);
     for (int j = 0; j < per_ring; ++j) {
       if (parts[static_cast<std::size_t>(j)].empty()) continue;

@@ -17,8 +17,6 @@ namespace {
 // The generator's metal: its volume group `stent` (a deck's `Mesh->Balloon` adds another).
 bool metal(const CellBlock& b) { return b.name == "stent"; }
 
-// The model's rings: a half length keeps the first half of them.
-int model_rings(const StentConfig& s) { return s.half_length ? s.rings / 2 : s.rings; }
 bool has_links(const StentConfig& s) { return s.rings > 1 && s.links_per_ring > 0; }
 
 // A node's place on the tube, the same for every radial layer: (theta, z) on a grid far
@@ -32,7 +30,7 @@ std::pair<long long, long long> key(const double* x, double ro) {
 std::vector<std::string> RingMetrics::whole_groups(const Config& cfg) {
   const StentConfig& s = cfg.mesh.stent;
   std::vector<std::string> g = {"outer", "inner"};
-  for (int k = 0; k < model_rings(s); ++k) g.push_back("ring_" + std::to_string(k));
+  for (int k = 0; k < s.model_rings(); ++k) g.push_back("ring_" + std::to_string(k));
   if (has_links(s)) g.push_back("links");
   return g;
 }
@@ -40,7 +38,7 @@ std::vector<std::string> RingMetrics::whole_groups(const Config& cfg) {
 RingMetrics::RingMetrics(const Model& model) : m_(model) {
   const StentConfig& s = m_.cfg.mesh.stent;
   const Mesh& mesh = m_.mesh;
-  rings_ = model_rings(s), rings_full_ = s.rings;
+  rings_ = s.model_rings(), rings_full_ = s.rings;
   const bool sector = s.sector != "full";
   sym_area_ = s.symmetry_copies();
   sym_length_ = s.half_length ? 2.0 : 1.0;
