@@ -105,6 +105,8 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
     throw InputError(where + "->formulation = persistence needs a dynamic analysis ('Problem->analysis' = dynamic); use gap in statics");
   const std::vector<GId> nodes = boundary_nodes(mesh, pc.slave);  // throws InputError naming the group
   const auto areas = tributary_areas(mesh, pc.slave, axi_);
+  const auto parts = surface_parts(mesh, pc.slave);
+  for (const auto& [g, part] : parts) p.parts = std::max(p.parts, part + 1);
   p.surface = std::make_unique<SurfaceProjection>(mesh, std::vector<std::string>{pc.slave}, axi_);
   long excluded = 0, partial = 0, planar = 0;
   for (GId g : nodes) {
@@ -150,6 +152,10 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
     nd.gid = g;
     auto it = areas.find(g);
     nd.area = it == areas.end() ? 0.0 : it->second;
+    const auto at = parts.find(g);
+    nd.part = at == parts.end() ? -1 : at->second;
+    const double r = mesh.coord(g)[0];
+    nd.size = dim_ == 3 ? std::sqrt(nd.area) : axi_ ? (r > 1e-12 * model_size_ ? nd.area / (2.0 * M_PI * r) : 0.0) : nd.area;
     for (int c = 0; c < 3; ++c) nd.X[c] = mesh.coord(g)[c];
     for (int c = 0; c < dim_; ++c) nd.col[static_cast<std::size_t>(c)] = colmap->getLocalElement(static_cast<la::GO>(g) * dim_ + c);
     p.nodes.push_back(nd);

@@ -108,6 +108,23 @@ class Contact {
   // stick/slip M times[, held])",
   // the most changed first; "" when none changed. Collective.
   std::string most_changed_nodes(int k) const;
+  // Stepping->contact approach: the largest fraction f <= 1 of the step t_n -> t_n + dt
+  // after which no slave node on a part of its slave surface that is out of contact at u_n
+  // (a connected part of the group without an active node: a strut before it touches, a
+  // ring before the balloon reaches it) is predicted deeper than `depth` times
+  // its size (its tributary length, or the square root of its tributary area in 3D) inside
+  // its obstacle or master surface: the nodes and master nodes moved from u_n to u_pred (a
+  // predicted state), the rigid obstacles to t_n + dt, the gap against the master facet of
+  // the last evaluation linearly interpolated. The node that sets f, with its gap now and
+  // the predicted one (f = 1, pair -1: no node limits the step). Node-to-segment and rigid
+  // pairs; mortar pairs are not predicted. Collective.
+  struct Approach {
+    double fraction = 1.0;
+    GId node = 0;
+    int pair = -1;
+    double gap = 0.0, predicted = 0.0, allowed = 0.0;
+  };
+  Approach approach(const la::Vector& u_n, const la::Vector& u_pred, double t_n, double dt, double depth) const;
   // Which pairs enforce contact (one flag per Config::contact entry; all by default): the
   // slave nodes of an inactive pair are free. "Stages" switch pairs per stage.
   void set_active_pairs(const std::vector<bool>& active);
@@ -214,6 +231,8 @@ class Contact {
     double d_n = 0.0, d_prev = 0.0;
     double scale = 1.0;                // s_p
     double area = 0.0;                 // tributary area A_p (reference, HRZ-lumped): scales the deck's c_normal, c_tangent
+    double size = 0.0;                 // its length scale: A_p in 2D (per unit thickness, or A_p / 2 pi r), sqrt(A_p) in 3D
+    int part = -1;                     // the connected part of the slave surface it lies on (surface_parts; -1: on no facet)
     bool was_active = false;           // active at the end of the last accepted step
     int state = contact::Free;
     int prev_state = contact::Free;
@@ -267,6 +286,7 @@ class Contact {
     std::vector<la::LO> krow_col;
     std::vector<double> krow_val;
     std::vector<contact::NodeOutput> out;   // per slave node, last apply()
+    int parts = 0;                          // connected parts of the slave surface (Slave::part)
     long excluded = 0;                      // slave nodes with every component prescribed (left out), global
     long partial = 0;                       // slave nodes with some prescribed components (kept), global
     bool active = true;                     // set_active_pairs()

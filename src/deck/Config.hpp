@@ -175,6 +175,7 @@ struct SteppingConfig {
   int max_steps = 0;       // "Stepping"->"max steps": cap on steps tried (0: 100 x steps + 1000, see step_cap())
   std::string predictor = "auto";  // "Stepping"->"predictor": auto | none | velocity | lifting (Newton's first iterate)
   double stabilization = 0.0;  // "Stepping"->"stabilization": static steps' viscous factor xi (0: off; StepSystem)
+  double contact_approach = 0.0;  // "Stepping"->"contact approach": first-touch depth per step, in slave node sizes (0: off)
   // The values in force, 0 resolved to the defaults.
   double min_step() const { return min_dt > 0.0 ? min_dt : 1e-6 * end_time / num_steps; }
   long step_cap() const { return max_steps > 0 ? max_steps : 100L * num_steps + 1000L; }

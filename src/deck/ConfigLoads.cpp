@@ -371,6 +371,7 @@ void DeckReader::read_stepping(const ParameterList& pl) {
          "would shrink every step)");
   cfg_.stepping.predictor = get_string(pl, ls, "predictor");
   cfg_.stepping.stabilization = get_double(pl, ls, "stabilization");
+  cfg_.stepping.contact_approach = get_double(pl, ls, "contact approach");
   cfg_.stepping.min_dt = get_double(pl, ls, "min dt");
   cfg_.stepping.max_steps = get_int(pl, ls, "max steps");
 }

@@ -582,6 +582,16 @@ std::vector<ListSpec> build_schema() {
                "Contact scenes: docs/contact.md, \"Step size\".")
            .ge(0)
            .le(1000),
+       dbl("contact approach", 0.0,
+           "Steps that land on the contact: a step is shortened so that no slave node of a part of its slave surface "
+           "that touches nothing yet (a strut, a stent ring before the balloon reaches it) is predicted to end it "
+           "deeper than this many times its size (tributary length, or the square root of its tributary area in 3D) "
+           "inside its obstacle or master surface; nodes and master nodes move as the predictor extrapolates (statics) "
+           "or with their velocity (dynamics), rigid obstacles as prescribed. Printed with its reason; the step then "
+           "grows back by `growth`. Node-to-segment and rigid pairs. 0: off. docs/contact.md, \"Steps that land on "
+           "the contact\".")
+           .ge(0.0)
+           .le(1.0),
        dbl("min dt", 0.0, "Smallest step [time]: a cut-back below it ends the run (exit 3). 0: 1e-6 x (end time / steps).")
            .ge(0.0)
            .dflt_doc("`0` (1e-6 x end time / steps)"),

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "deck/Config.hpp"
 #include "fem/Quadrature.hpp"
@@ -131,6 +132,33 @@ std::vector<std::map<GId, double>> tributary_areas_by(const Mesh& mesh, const st
   std::vector<std::map<GId, double>> area(static_cast<std::size_t>(std::max(classes, 0)));
   add_tributary_areas(mesh, group, false, classify, area);
   return area;
+}
+
+std::map<GId, int> surface_parts(const Mesh& mesh, const std::string& group) {
+  std::map<GId, GId> up;  // union-find over node ids
+  std::function<GId(GId)> root = [&](GId g) {
+    GId r = g;
+    while (up[r] != r) r = up[r];
+    while (up[g] != r) g = std::exchange(up[g], r);
+    return r;
+  };
+  for (const CellBlock* b : boundary_blocks(mesh, group)) {
+    if (cell_dim(b->type) != mesh.dim - 1) continue;
+    const auto nn = static_cast<std::size_t>(b->nodes_per_cell);
+    for (std::size_t f = 0; f < b->num_cells(); ++f)
+      for (std::size_t a = 0; a < nn; ++a) {
+        const GId g = b->conn[f * nn + a];
+        up.emplace(g, g);
+        const GId r0 = root(b->conn[f * nn]), r1 = root(g);
+        if (r0 != r1) up[std::max(r0, r1)] = std::min(r0, r1);  // a part's root is its smallest node
+      }
+  }
+  std::map<GId, int> index, part;
+  for (const auto& [g, parent] : up) {
+    const GId r = root(g);
+    part[g] = index.emplace(r, static_cast<int>(index.size())).first->second;  // roots meet in increasing order
+  }
+  return part;
 }
 
 }  // namespace stentor

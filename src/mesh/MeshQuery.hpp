@@ -41,4 +41,9 @@ std::map<GId, double> tributary_areas(const Mesh& mesh, const std::string& group
 std::vector<std::map<GId, double>> tributary_areas_by(const Mesh& mesh, const std::string& group, int classes,
                                                       const std::function<int(const double*)>& classify);
 
+// The connected parts of a boundary group: facets that share a node are one part. Each
+// node of the group's facets maps to its part's index, 0 .. parts - 1 in the order of the
+// parts' smallest node id (the same numbering on every rank, which holds the whole group).
+std::map<GId, int> surface_parts(const Mesh& mesh, const std::string& group);
+
 }  // namespace stentor

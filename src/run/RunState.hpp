@@ -36,6 +36,7 @@ class StepControl {
     ++consecutive_;
     ++total_;
     dt_ = 0.5 * tried_;
+    cap_ = 0.0;  // the retried step proposes its own
     return Cut::Ok;
   }
   // A new interval (stage) with its own step and minimum; the cut-back total carries on.
@@ -49,6 +50,13 @@ class StepControl {
   void accepted(int iterations = 0, long events = 0) {
     consecutive_ = 0;
     reason_.clear();
+    if (cap_ > 0.0) {
+      const double before = dt_;
+      dt_ = std::max(min_dt_, std::min(dt_, cap_));
+      cap_ = 0.0;
+      if (dt_ < before) reason_ = "the contact that started in the step may deepen by its allowed depth in the next";
+      return;
+    }
     if (target_iterations_ <= 0) {
       dt_ = std::min(target_, growth_ * dt_);
       return;
@@ -63,6 +71,13 @@ class StepControl {
       reason_ = std::to_string(iterations) + " Newton iterations < target " + std::to_string(target_iterations_);
     }
     if (dt_ == before) reason_.clear();
+  }
+  // The step about to be tried shortened to dt (<= the proposed one; Stepping->contact
+  // approach), and the step after it, once accepted, at most `then`: it grows back from there
+  // as after any step.
+  void shorten(double dt, double then) {
+    tried_ = dt_ = dt;
+    cap_ = then;
   }
   // Why the last accepted() changed the step ("" when it did not, or without a target).
   const std::string& reason() const { return reason_; }
@@ -86,6 +101,7 @@ class StepControl {
   double target_, dt_, tried_ = 0.0, growth_, min_dt_;
   int max_cutbacks_;
   int target_iterations_ = 0;
+  double cap_ = 0.0;  // shorten(): the step after the shortened one (0: none)
   int consecutive_ = 0, total_ = 0;
   std::string reason_;
 };

@@ -300,7 +300,14 @@ bool run_interval(Run& r, double end) {
       return false;
     }
     ++s.attempts;
-    const double dt = s.control.propose(next_stop(r.model.cfg, s.t, end, r.model.dynamic) - s.t);  // to an output time or a table's point
+    double dt = s.control.propose(next_stop(r.model.cfg, s.t, end, r.model.dynamic) - s.t);  // to an output time or a table's point
+    std::string landing_why;
+    double then = 0.0;
+    const double landing = r.stepper.approach_limit(s, dt, s.control.min_dt(), landing_why, then);
+    if (landing < dt) {
+      r.reporter.step_size_line(dt, landing, landing_why);
+      s.control.shorten(dt = landing, then);
+    }
     const NewtonResult nr = r.stepper.solve(s, dt);
     if (nr.converged) {
       if (!accept_step(r, dt, nr, end)) return false;

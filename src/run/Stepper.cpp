@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace stentor {
 
@@ -212,6 +213,31 @@ NewtonResult Stepper::solve(RunState& s, double dt) {
   s.newton_iterations += nr.iterations;
   s.linear_iterations += nr.linear_iterations;
   return nr;
+}
+
+double Stepper::approach_limit(const RunState& s, double dt, double min_dt, std::string& why, double& then) {
+  why.clear();
+  then = 0.0;
+  const double depth = m_.cfg.stepping.contact_approach;
+  if (!m_.contact || !(depth > 0.0)) return dt;
+  Timers::Scope sc{timers_, "contact"};
+  la::Vector u_pred(s.u, Teuchos::Copy);
+  if (m_.dynamic)
+    u_pred.update(dt, m_.integrator->velocity(), 1.0);
+  else if (s.step > 0 && s.dt_last > 0.0)
+    u_pred.update(dt / s.dt_last, s.u, -dt / s.dt_last, s.u_before_last, 1.0);
+  m_.assembler->apply_dirichlet(u_pred, s.t + dt, m_.cfg.stepping.end_time);
+  const Contact::Approach a = m_.contact->approach(s.u, u_pred, s.t, dt, depth);
+  if (!(a.fraction < 1.0)) return dt;
+  const double shorter = std::max(min_dt, a.fraction * dt);
+  if (!(shorter < dt)) return dt;
+  then = dt * a.allowed / (std::max(a.gap, 0.0) - a.predicted);
+  std::ostringstream os;
+  os.precision(3);
+  os << "node " << a.node << " of 'Contact->" << m_.contact->pair_name(static_cast<std::size_t>(a.pair)) << "' would go from gap "
+     << a.gap << " to " << a.predicted << " (first touch of its part; allowed depth " << a.allowed << ")";
+  why = os.str();
+  return shorter;
 }
 
 double StepSystem::current_scale() const { return std::max(a_.external_force().norm2(), a_.static_residual().norm2()); }

@@ -111,6 +111,14 @@ class Stepper {
   // Solves the step s.t -> s.t + dt from u_n = s.u: on return s.u_prev = u_n and s.u holds
   // Newton's last iterate (u_{n+1} when converged).
   NewtonResult solve(RunState& s, double dt);
+  // Stepping->contact approach: the step dt from s.t shortened (never below `min_dt`) so that
+  // no slave node of a part of its surface that touches nothing is predicted to end it
+  // deeper than the deck's depth inside its obstacle or master surface (Contact::approach;
+  // the prediction: statics, u_n plus the last increment scaled to dt; dynamics, u_n + dt
+  // v_n; prescribed dofs at their values at s.t + dt). `why` says why when it shortened it,
+  // and `then` is the step in which that node's predicted approach is the allowed depth (the
+  // contact's own pace, for the step after it).
+  double approach_limit(const RunState& s, double dt, double min_dt, std::string& why, double& then);
   // A failed step: back to u_n.
   void reject(RunState& s);
   // A converged step becomes u_{n+1}: time, contact history, velocities, energy totals.

@@ -309,6 +309,70 @@ TEST(Contact, LinearisedSetsDoNotDependOnC) {
   }
 }
 
+// ---- 1b. Steps that land on the contact (Stepping->contact approach): the block of test 1
+// starts 0.06 above the plane and its top moves down by 0.1 in 4 static steps, so the bottom
+// touches at t = 0.6, inside the third step (0.5 -> 0.75), which would end 0.015 deep. With
+// `contact approach` = 0.05 the third step is shortened so that the deepest predicted
+// bottom node (the predictor extrapolates the last increment, 0.025 per 0.25 s) ends it at
+// 0.05 of its size: the corner nodes, half an element (0.0625): 0.003125 deep, i.e. dt =
+// 0.25 (0.01 + 0.003125) / 0.025 = 0.13125; the step after it is the time in which the
+// contact deepens by that much, 0.25 x 0.003125 / 0.025 = 0.03125, and the steps grow back
+// by 1.5. The end state is the one of the fixed steps (elastic, path-independent).
+TEST(Contact, ContactApproachLandsOnTheFirstTouch) {
+  Config cfg = read_deck(kInputs + "contact_block_static.xml");
+  cfg.contact[0].point[1] = -0.06;
+  const Outcome fixed = run(cfg, "approach_off");
+  cfg.stepping.contact_approach = 0.05;
+  const Outcome landing = run(cfg, "approach_on");
+  const Series& h = landing.history;
+  ASSERT_GE(h.rows(), 5u);
+  EXPECT_EQ(h["contact_floor_active"][1], 0.0);
+  EXPECT_NEAR(h["dt"][2], 0.13125, 1e-12);
+  EXPECT_GT(h["contact_floor_active"][2], 0.0);
+  EXPECT_NEAR(h["dt"][3], 0.03125, 1e-12);
+  EXPECT_NEAR(h["dt"][4], 1.5 * 0.03125, 1e-12);
+  EXPECT_EQ(landing.res.cutbacks, 0);
+  const double f_fixed = fixed.history["reaction_press_y"].back(), f_landing = h["reaction_press_y"].back();
+  std::printf("[contact] contact approach: %zu steps (fixed: %zu), top reaction at t = 1: %.12e (fixed: %.12e)\n", h.rows(),
+              fixed.history.rows(), f_landing, f_fixed);
+  EXPECT_NEAR(f_landing, f_fixed, 1e-8 * std::abs(f_fixed));
+}
+
+// The same landing on 2 ranks (the bottom's nodes split between them): the same steps, to
+// the round-off of the solves that the predictor extrapolates.
+TEST(Contact, ContactApproachSameStepsOnTwoRanks) {
+  if (std::system("command -v mpirun > /dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
+  const fs::path dir = work_dir() / "approach_mpi";
+  fs::create_directories(dir);
+  fs::copy_file(kInputs + "block2d.geo", dir / "block2d.geo", fs::copy_options::overwrite_existing);
+  std::ifstream in(kInputs + "contact_block_static.xml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string deck = text.str();
+  const auto replace = [&](const std::string& a, const std::string& b) {
+    const auto at = deck.find(a);
+    ASSERT_NE(at, std::string::npos) << a;
+    deck.replace(at, a.size(), b);
+  };
+  replace("value=\"{0.0, 0.0}\"", "value=\"{0.0, -0.06}\"");
+  replace("<Parameter name=\"steps\" type=\"int\" value=\"4\"/>",
+          "<Parameter name=\"steps\" type=\"int\" value=\"4\"/><Parameter name=\"contact approach\" type=\"double\" value=\"0.05\"/>");
+  std::ofstream(dir / "deck.xml") << deck;
+  Series h[2];
+  for (int np = 1; np <= 2; ++np) {
+    const fs::path out = dir / ("np" + std::to_string(np));
+    const std::string cmd = "env -i PATH=\"$PATH\" HOME=\"$HOME\" OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMP_NUM_THREADS=1 mpirun --oversubscribe -np " +
+                            std::to_string(np) + " " + std::string(STENTOR_BINARY_DIR) + "/stentor " + (dir / "deck.xml").string() +
+                            " --output " + out.string() + " > " + out.string() + ".log 2>&1";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    h[np - 1] = read_csv(out / "contact_block_static_history.csv");
+  }
+  ASSERT_EQ(h[0].rows(), h[1].rows());
+  EXPECT_NEAR(h[1]["dt"][2], 0.13125, 1e-12);
+  for (std::size_t i = 0; i < h[0].rows(); ++i) EXPECT_NEAR(h[0]["dt"][i], h[1]["dt"][i], 1e-12) << "step " << i + 1;  // the solves' round-off
+  EXPECT_NEAR(h[0]["reaction_press_y"].back(), h[1]["reaction_press_y"].back(), 1e-9 * std::abs(h[0]["reaction_press_y"].back()));
+}
+
 // ---- 3e. A constructed set cycle: the block of contact_block_impact.xml falls onto a rigid
 // circle (R = 2 m, top at y = -0.02) while sliding sideways at 3 m/s, frictionless. On a
 // curved obstacle a node held on its linearised gap ends each solve slightly off the

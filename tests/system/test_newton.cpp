@@ -838,6 +838,34 @@ TEST(StepControl, FollowsNewtonIterations) {
   EXPECT_TRUE(plain.reason().empty());
 }
 
+// A step shortened before it is tried (Stepping->contact approach) is the step tried; once
+// accepted, the next is at most the given cap (the contact's pace), and grows from there; a
+// cut-back of the shortened step drops the cap (the retried step proposes its own).
+TEST(StepControl, ShortenedStepCapsTheNext) {
+  StepControl c(0.1, 6, 1.5, 1e-6);
+  EXPECT_DOUBLE_EQ(c.propose(1.0), 0.1);
+  c.shorten(0.06, 0.004);
+  c.accepted(3, 8);
+  EXPECT_DOUBLE_EQ(c.next(), 0.004);
+  EXPECT_NE(c.reason().find("allowed depth"), std::string::npos) << c.reason();
+  c.propose(1.0);
+  c.accepted(3, 0);
+  EXPECT_DOUBLE_EQ(c.next(), 0.006);
+  EXPECT_TRUE(c.reason().empty());
+  // A cap above the grown step changes nothing.
+  c.propose(1.0);
+  c.shorten(0.005, 0.5);
+  c.accepted(3, 0);
+  EXPECT_DOUBLE_EQ(c.next(), 0.005);
+  // Cut back: the cap is gone.
+  c.propose(1.0);
+  c.shorten(0.004, 1e-5);
+  ASSERT_EQ(c.cut(), StepControl::Cut::Ok);
+  EXPECT_DOUBLE_EQ(c.propose(1.0), 0.002);
+  c.accepted(3, 0);
+  EXPECT_DOUBLE_EQ(c.next(), 0.003);
+}
+
 // The deck's target reaches the run: the 20% stretch in 2 static steps from u_n (predictor
 // none: the first takes 6 iterations) at T = 4 takes more, smaller steps and ends at the
 // same equilibrium (hyperelastic statics do not depend on the path).
