@@ -71,6 +71,17 @@ std::string artery_config_error(const ArteryConfig& a) {
   if (a.elements_along < 1 || (a.half_length && a.elements_along % 2))
     return par("elements along") + " = " + std::to_string(a.elements_along) + " must be >= 1" +
            (a.half_length ? " and even ('half length' = true: the middle plane is a node plane)" : "");
+  if (a.curved()) {
+    if (!(a.centreline_radius > a.outer_radius()))
+      return par("centreline radius") + " = " + format_number(a.centreline_radius) + " must exceed the tube's outer radius " +
+             format_number(a.outer_radius()) + " (the inner side of the bend would cross its centre)";
+    if (a.length > kPi * a.centreline_radius)
+      return par("length") + " = " + format_number(a.length) + " bends the tube by more than 180 deg about a " +
+             par("centreline radius") + " of " + format_number(a.centreline_radius) + "; shorten it or widen the bend";
+    if (a.sector == "quarter")
+      return par("sector") + " = quarter cuts the tube on x = 0, which is no symmetry plane of a tube bent in the x-z plane ('" +
+             "centreline radius' > 0): use half (y >= 0) or full";
+  }
   const int div = a.sector == "quarter" ? 4 : a.sector == "half" ? 2 : 1;
   if (a.elements_around < 4 || a.elements_around % div)
     return par("elements around") + " = " + std::to_string(a.elements_around) + " must be >= 4" +

@@ -1,6 +1,6 @@
-// The parametric artery of `Mesh->Artery` (docs/artery.md): a straight circular tube of
-// three concentric layers (intima, media, adventitia) along z, its axis the z axis,
-// z from 0 to `length`. Plain data, Teuchos-free; src/geometry/ArteryGenerator.hpp meshes it.
+// The parametric artery of `Mesh->Artery` (docs/artery.md): a circular tube of three
+// concentric layers (intima, media, adventitia) along z, its axis the z axis, z from 0 to
+// `length`; with `centreline radius` the same tube bent in the x-z plane. Plain data, Teuchos-free; src/geometry/ArteryGenerator.hpp meshes it.
 //
 // In a stent deck (`Mesh->generator` = stent, `around_stent`) the same tube is put around
 // the generated stent: centred on it (its z from the stent's middle - length / 2), with the
@@ -36,6 +36,11 @@ struct ArteryConfig {
   double plaque_centre = -1.0;              // "plaque centre": zc (< 0: the middle of `length`)
   std::string plaque_shape = "concentric";  // "plaque shape": "concentric" | "eccentric"
   int elements_plaque = 2;                  // "elements through plaque"
+  // "centreline radius" R > 0: the tube bent in the x-z plane towards +x, its centreline the
+  // arc of radius R about the bend's centre (R, 0, length / 2) through (0, 0, length / 2),
+  // where it is tangent to z: the straight tube's point (x, y, z) goes to (R - (R - x) cos phi,
+  // y, length / 2 + (R - x) sin phi), phi = (z - length / 2) / R. 0: straight.
+  double centreline_radius = 0.0;
 
   double inner_radius() const { return 0.5 * inner_diameter; }
   // Radius of the outer surface of layer l (0 intima, 1 media, 2 adventitia).
@@ -53,6 +58,7 @@ struct ArteryConfig {
   int cells_along() const { return half_length ? elements_along / 2 : elements_along; }
   double modelled_length() const { return half_length ? 0.5 * length : length; }
   double cells() const { return static_cast<double>(cells_around()) * cells_through() * cells_along(); }
+  bool curved() const { return centreline_radius > 0.0; }
 };
 
 // The artery around the stent s (around_stent): cells around the stent's kept sector

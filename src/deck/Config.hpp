@@ -85,6 +85,10 @@ struct MaterialConfig {
   // "anisotropy": rho of Holzapfel et al. 2005 in (0, 1] (1: the fibres alone).
   double k1 = 0, k2 = 0, fibre_angle = 0, kappa = 0, anisotropy = 1;
   std::array<double, 3> axis_point{0, 0, 0}, axis{0, 0, 1};
+  // "centreline radius" (0: the straight axis) and "bend direction" (unit, normal to axis):
+  // a curved vessel's fibre frame follows the arc of that radius (FibreFrame::bend).
+  double centreline_radius = 0.0;
+  std::array<double, 3> bend_direction{1, 0, 0};
   double density = 0;                     // "density" [kg/m^3], >= 0
   double viscosity = 0;                   // "viscosity" eta (Curnier), >= 0; unused in statics
   double yield_stress = 0;                // "yield stress" Y [Pa], > 0 (plasticity only)

@@ -140,6 +140,9 @@ void DeckReader::read_artery(const ParameterList& pl, bool around_stent) {
       if (pl.isParameter(p))
         fail(quoted(std::string("Mesh->Artery->") + p) + " does not apply with 'Mesh->generator' = stent: the artery around "
              "the stent takes the stent's " + quoted(std::string("Mesh->Stent->") + p) + "; remove it");
+  if (around_stent && pl.isParameter("centreline radius"))
+    fail("'Mesh->Artery->centreline radius' (a curved artery) is for 'Mesh->generator' = artery: the artery around a "
+         "generated stent is straight; remove it");
   a.inner_diameter = get_double(pl, ls, "inner diameter");
   a.length = get_double(pl, ls, "length");
   for (int l = 0; l < 3; ++l) {
@@ -155,6 +158,7 @@ void DeckReader::read_artery(const ParameterList& pl, bool around_stent) {
   a.plaque_centre = get_double(pl, ls, "plaque centre");
   a.plaque_shape = lower(get_string(pl, ls, "plaque shape"));
   a.elements_plaque = get_int(pl, ls, "elements through plaque");
+  a.centreline_radius = get_double(pl, ls, "centreline radius");
   const std::string why = around_stent ? artery_around_stent_error(a, cfg_.mesh.stent) : artery_config_error(a);
   if (!why.empty()) fail(why);
 }
@@ -241,12 +245,14 @@ void DeckReader::read_elastic_constants(const ParameterList& sub, const ListSpec
 // Holzapfel-Gasser-Ogden: k1, k2, fibre angle required, frame, kappa and anisotropy optional (not kappa > 0
 // with anisotropy < 1: two different ways of spreading the fibres' stiffness); none of them with other models.
 void DeckReader::read_fibres(const ParameterList& sub, const ListSpec& ls, const std::string& path, MaterialConfig& m) {
-  const char* keys[] = {"k1", "k2", "fibre angle", "axis point", "axis", "kappa", "anisotropy"};
+  const char* keys[] = {"k1", "k2", "fibre angle", "axis point", "axis", "kappa", "anisotropy", "centreline radius", "bend direction"};
   const bool hgo = m.model == "Holzapfel-Gasser-Ogden";
   for (const char* k : keys) {
     const std::string key(k);
     if (!hgo && sub.isParameter(k)) fail(quoted(path + "->" + k) + " needs 'model' = Holzapfel-Gasser-Ogden");
-    if (hgo && key != "axis point" && key != "axis" && key != "kappa" && key != "anisotropy" && !sub.isParameter(k)) {
+    const bool optional = key == "axis point" || key == "axis" || key == "kappa" || key == "anisotropy" || key == "centreline radius" ||
+                          key == "bend direction";
+    if (hgo && !optional && !sub.isParameter(k)) {
       const ParamSpec& p = spec(ls, k);
       fail("missing required parameter " + quoted(path + "->" + k) + " (double, " + p.allowed_text() +
            ") for model = Holzapfel-Gasser-Ogden: " + p.doc);
@@ -270,6 +276,22 @@ void DeckReader::read_fibres(const ParameterList& sub, const ListSpec& ls, const
     const auto a = get_array(sub, ls, "axis");
     for (std::size_t c = 0; c < 3; ++c) m.axis[c] = a[c];
     unit_direction(m.axis, path + "->axis");
+  }
+  if (sub.isParameter("centreline radius")) m.centreline_radius = get_double(sub, ls, "centreline radius");
+  if (sub.isParameter("bend direction")) {
+    if (!(m.centreline_radius > 0.0))
+      fail(quoted(path + "->bend direction") + " needs " + quoted(path + "->centreline radius") + " > 0 (a curved vessel)");
+    const auto b = get_array(sub, ls, "bend direction");
+    for (std::size_t c = 0; c < 3; ++c) m.bend_direction[c] = b[c];
+    unit_direction(m.bend_direction, path + "->bend direction");
+  }
+  if (m.centreline_radius > 0.0) {
+    const auto& a = m.axis;
+    auto& b = m.bend_direction;
+    const double ab = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    if (std::abs(ab) > 1e-6)
+      fail(quoted(path + "->bend direction") + " must be normal to " + quoted(path + "->axis") + " (the centreline's tangent at " +
+           quoted(path + "->axis point") + "), got a cosine of " + num(ab) + " between them");
   }
 }
 

@@ -286,7 +286,15 @@ std::vector<ListSpec> build_schema() {
                "Hex8 cells added through the innermost layer when there is a plaque (it then spans Ri - h .. Ri + "
                "intima thickness).")
            .ge(1)
-           .le(100)}));
+           .le(100),
+       dbl("centreline radius", 0.0,
+           "A gently curved artery: the tube bent in the x-z plane towards +x, its centreline an arc of this radius R "
+           "[length] through (0, 0, `length` / 2), tangent to z there (the straight tube's point (x, y, z) goes to "
+           "(R - (R - x) cos phi, y, `length` / 2 + (R - x) sin phi), phi = (z - `length` / 2) / R); the end planes stay "
+           "planes through the bend's axis. Above the outer radius, `length` / R at most 180 deg, with `sector` full or "
+           "half; not around a stent. The layers' Holzapfel-Gasser-Ogden fibres follow it with the material's "
+           "`centreline radius` (docs/artery.md, \"A curved artery\"). 0: straight.")
+           .ge(0.0)}));
 
   {
     auto l = list("Materials", "Materials", "Material definitions, referred to by `Bodies-><body>->material`.");
@@ -360,6 +368,18 @@ std::vector<ListSpec> build_schema() {
                    "for a 2D cross-section of a vessel, in the plane for an axial section.")
            .len(3, 3)
            .dflt_doc("(0, 0, 1)"),
+       dbl("centreline radius", 0.0,
+           "A curved vessel (`Holzapfel-Gasser-Ogden`): the radius [length] of its circular centreline, which passes "
+           "through `axis point` tangent to `axis` and curves towards `bend direction`; the fibre frame at X is the "
+           "meridian frame of the centreline's point nearest X (axis: the centreline's tangent there). 0: the straight "
+           "axis. The curved artery of `Mesh->Artery->centreline radius` R is this frame with `axis point` (0, 0, "
+           "`length` / 2), `axis` (0, 0, 1), `bend direction` (1, 0, 0) (docs/artery.md).")
+           .ge(0.0),
+       arr("bend direction",
+           "Unit direction from `axis point` towards the centre of a curved vessel's centreline (normal to `axis`; with "
+           "`centreline radius` > 0).")
+           .len(3, 3)
+           .dflt_doc("(1, 0, 0)"),
        dbl("density", 0.0, "Mass density [density] (dynamics).").ge(0.0),
        dbl("viscosity", 0.0, "Viscosity eta [stress x time] (Curnier); unused in statics.").ge(0.0),
        dbl("yield stress", 0.0,

@@ -74,6 +74,19 @@ std::vector<double> nodes(const ArteryConfig& a, TubeGrid g, double z0) {
   return x;
 }
 
+// A curved artery (ArteryConfig::centreline_radius): the nodes of the straight tube, from
+// `first` on, mapped onto the bent one. The map takes the tube's cross-sections z = const to
+// the planes through the bend's axis at the angle phi = (z - length / 2) / R, rigidly, so
+// every cell keeps its orientation and the plaque its profile along the centreline.
+void bend(const ArteryConfig& a, std::size_t first, std::vector<double>& x) {
+  const double R = a.centreline_radius, zm = 0.5 * a.length;
+  for (std::size_t n = 3 * first; n + 2 < x.size(); n += 3) {
+    const double rho = R - x[n], phi = (x[n + 2] - zm) / R;
+    x[n] = R - rho * std::cos(phi);
+    x[n + 2] = zm + rho * std::sin(phi);
+  }
+}
+
 CellBlock hex_block(const std::string& name, int tag) {
   CellBlock b;
   b.name = name;
@@ -125,6 +138,7 @@ void boundaries(const ArteryConfig& a, const TubeGrid& g, const Frame& fr, int f
 void add_tube(const ArteryConfig& a, const TubeGrid& g, const Frame& fr, int tag, int facet_tag,
               const std::string& source, Mesh& m) {
   const std::vector<double> x = nodes(a, g, fr.z0);
+  const std::size_t first = m.x.size() / 3;
   m.x.insert(m.x.end(), x.begin(), x.end());
   // Cell ids consecutive within each block, in the order the blocks are appended (the
   // plaque's cells, picked out of the innermost layer, after the layers': output writers
@@ -159,6 +173,7 @@ void add_tube(const ArteryConfig& a, const TubeGrid& g, const Frame& fr, int tag
     number(plaque);
     m.volumes.push_back(std::move(plaque));
   }
+  if (a.curved()) bend(a, first, m.x);
   boundaries(a, g, fr, facet_tag, m);
 }
 

@@ -14,6 +14,12 @@
 // Reductions: `sector` half keeps 0 <= theta <= pi (y >= 0), quarter 0 <= theta <= pi/2;
 // `half length` keeps 0 <= z <= length / 2.
 //
+// Curved (`centreline radius` R > 0, not around a stent): the straight tube's nodes are then
+// mapped by (x, y, z) -> (R - (R - x) cos phi, y, length / 2 + (R - x) sin phi), phi =
+// (z - length / 2) / R, a rotation of each cross-section about the bend's axis (its cells
+// keep their orientation; the plaque's cells are picked before the map); the end groups
+// are planes through the bend's axis.
+//
 // Groups (Mesh::volumes / Mesh::boundaries): volumes `intima`, `media`, `adventitia`
 // (hex8, physical tags 1, 2, 3); quad4 facets, oriented outward: `lumen` (r = Ri),
 // `outer` (the adventitia's outer surface), `end_proximal` (z = 0), `end_distal`

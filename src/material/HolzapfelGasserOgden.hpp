@@ -184,9 +184,50 @@ struct HolzapfelGasserOgden {
 struct FibreFrame {
   double point[3], axis[3];  // axis: unit
   double beta;
+  // A curved vessel: its centreline a circular arc of radius `bend` (0: the straight axis)
+  // through `point`, tangent to `axis` there, curving towards the unit direction `towards`
+  // (normal to `axis`); the frame at X is that of the arc's point nearest X, with the arc's
+  // tangent as the axis (a torus' meridian frame).
+  double bend = 0.0;
+  double towards[3] = {0.0, 0.0, 0.0};
+
+  // The centreline's point nearest X and its unit tangent there (bend > 0).
+  KOKKOS_INLINE_FUNCTION void on_centreline(const double* X, double* q, double* t) const {
+    const double nb[3] = {axis[1] * towards[2] - axis[2] * towards[1], axis[2] * towards[0] - axis[0] * towards[2],
+                          axis[0] * towards[1] - axis[1] * towards[0]};  // the bend plane's normal
+    double d[3], dn = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      d[i] = X[i] - point[i] - bend * towards[i];  // from the bend's centre
+      dn += d[i] * nb[i];
+    }
+    double n2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      d[i] -= dn * nb[i];
+      n2 += d[i] * d[i];
+    }
+    if (!(n2 > 1e-300)) {  // on the bend's axis: the arc's point at `point`
+      for (int i = 0; i < 3; ++i) d[i] = -towards[i], n2 = 1.0;
+    }
+    const double inv = 1.0 / std::sqrt(n2);
+    for (int i = 0; i < 3; ++i) {
+      d[i] *= inv;
+      q[i] = point[i] + bend * (towards[i] + d[i]);
+    }
+    t[0] = nb[1] * d[2] - nb[2] * d[1];
+    t[1] = nb[2] * d[0] - nb[0] * d[2];
+    t[2] = nb[0] * d[1] - nb[1] * d[0];
+  }
 
   // a0, g0 at the reference point X.
   KOKKOS_INLINE_FUNCTION void directions(const double* X, double* a, double* g) const {
+    double p[3] = {point[0], point[1], point[2]}, ax[3] = {axis[0], axis[1], axis[2]};
+    if (bend > 0.0) on_centreline(X, p, ax);
+    directions_about(X, p, ax, a, g);
+  }
+
+  // The same about the straight axis through p along the unit ax.
+  KOKKOS_INLINE_FUNCTION void directions_about(const double* X, const double* point, const double* axis, double* a,
+                                               double* g) const {
     double r[3], d = 0.0;
     for (int i = 0; i < 3; ++i) d += (X[i] - point[i]) * axis[i];
     double n2 = 0.0;

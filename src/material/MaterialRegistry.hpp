@@ -43,8 +43,11 @@ inline ElasticLaw elastic_law(const MaterialConfig& m) {
   }
   if (m.model == "Holzapfel-Gasser-Ogden") {
     const HolzapfelGasserOgden h{NeoHookean{m.mu, m.lambda}, m.k1, m.k2, {1.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, m.kappa, m.anisotropy};
-    const FibreFrame f{{m.axis_point[0], m.axis_point[1], m.axis_point[2]}, {m.axis[0], m.axis[1], m.axis[2]},
-                       m.fibre_angle * 3.14159265358979323846 / 180.0};
+    const FibreFrame f{{m.axis_point[0], m.axis_point[1], m.axis_point[2]},
+                       {m.axis[0], m.axis[1], m.axis[2]},
+                       m.fibre_angle * 3.14159265358979323846 / 180.0,
+                       m.centreline_radius,
+                       {m.bend_direction[0], m.bend_direction[1], m.bend_direction[2]}};
     return ElasticLaw::holzapfel_gasser_ogden(h, f);
   }
   return ElasticLaw::ciarlet_geymonat(CiarletGeymonat{m.C1, m.C2, m.D});

@@ -142,3 +142,35 @@ TEST_F(ArteryDeck, PlaqueParameters) {
   bad.replace(bad.find("value=\"0.2\""), 11, "value=\"1.2\"");
   EXPECT_NE(error(deck(bad)).find("'Mesh->Artery->plaque stenosis'"), std::string::npos) << error(deck(bad));
 }
+
+// A curved artery: `centreline radius` reaches the configuration (0 by default), and so do
+// the material's bend; what cannot be built is refused naming the parameter.
+TEST_F(ArteryDeck, CurvedArtery) {
+  auto curved = [](const std::string& radius, const std::string& sector = "half", const std::string& length = "5.0") {
+    std::string x = artery();
+    x.replace(x.find("quarter"), 7, sector);
+    x.replace(x.find(R"(value="5.0")"), 11, "value=\"" + length + "\"");
+    return x.replace(x.find("</ParameterList>"), 0,
+                     R"XML(<Parameter name="centreline radius" type="double" value=")XML" + radius + "\"/>");
+  };
+  EXPECT_EQ(read_deck(write(deck(artery()))).mesh.artery.centreline_radius, 0.0);
+  const std::string bend = R"XML(<Parameter name="centreline radius" type="double" value="20"/>
+      <Parameter name="bend direction" type="Array(double)" value="{1, 0, 0}"/>)XML";
+  const Config c = read_deck(write(deck(curved("20"), bend)));
+  EXPECT_EQ(c.mesh.artery.centreline_radius, 20.0);
+  EXPECT_TRUE(c.mesh.artery.curved());
+  EXPECT_EQ(c.material("media").centreline_radius, 20.0);
+  EXPECT_EQ(c.material("media").bend_direction[0], 1.0);
+  const std::string tight = error(deck(curved("2.0")));
+  EXPECT_NE(tight.find("'Mesh->Artery->centreline radius' = 2 must exceed the tube's outer radius"), std::string::npos) << tight;
+  const std::string quarter = error(deck(curved("20", "quarter")));
+  EXPECT_NE(quarter.find("'Mesh->Artery->sector' = quarter"), std::string::npos) << quarter;
+  const std::string long_ = error(deck(curved("20", "half", "70")));
+  EXPECT_NE(long_.find("'Mesh->Artery->length' = 70 bends the tube by more than 180 deg"), std::string::npos) << long_;
+  const std::string oblique = error(deck(curved("20"), R"XML(<Parameter name="centreline radius" type="double" value="20"/>
+      <Parameter name="bend direction" type="Array(double)" value="{1, 0, 1}"/>)XML"));
+  EXPECT_NE(oblique.find("'Materials->media->bend direction' must be normal to 'Materials->media->axis'"), std::string::npos)
+      << oblique;
+  const std::string alone = error(deck(artery(), R"XML(<Parameter name="bend direction" type="Array(double)" value="{1, 0, 0}"/>)XML"));
+  EXPECT_NE(alone.find("needs 'Materials->media->centreline radius' > 0"), std::string::npos) << alone;
+}

@@ -137,6 +137,9 @@ TEST_F(StentDeck, ArteryAroundTheStent) {
     EXPECT_NE(e.find(std::string("'Mesh->Artery->") + p + "' does not apply with 'Mesh->generator' = stent"), std::string::npos) << e;
     EXPECT_NE(e.find(std::string("'Mesh->Stent->") + p + "'"), std::string::npos) << e;
   }
+  const std::string curved = error(deck(artery(R"XML(<Parameter name="centreline radius" type="double" value="20"/>)XML")));
+  EXPECT_NE(curved.find("'Mesh->Artery->centreline radius' (a curved artery) is for 'Mesh->generator' = artery"), std::string::npos)
+      << curved;
   std::string narrow = artery("");
   narrow.replace(narrow.find("value=\"3.6\""), 11, "value=\"3.2\"");
   EXPECT_NE(error(deck(narrow)).find("'Mesh->Artery->inner diameter' = 3.2 puts the lumen's facets"), std::string::npos)

@@ -50,6 +50,43 @@ HolzapfelGasserOgden adventitia(const double* X, double beta_deg = 62.5, double 
 
 }  // namespace
 
+// A curved vessel's frame (FibreFrame::bend): the artery generator's bend of radius R maps
+// the straight tube's point (x, y, z) to (R - (R - x) cos phi, y, L/2 + (R - x) sin phi),
+// phi = (z - L/2) / R, a rotation by phi about the bend's axis (along y through (R, 0, L/2))
+// of the cross-section z = const. The bent frame's fibres at the mapped point are the
+// straight frame's fibres at (x, y, L/2) rotated by phi, for points on all sides of the
+// centreline; and a bend far larger than the tube is the straight frame.
+TEST(HolzapfelGasserOgden, CurvedFrameFollowsTheCentreline) {
+  const double R = 7.0, L = 6.0, beta = 0.6;
+  const FibreFrame straight{{0.0, 0.0, 0.5 * L}, {0.0, 0.0, 1.0}, beta};
+  FibreFrame bent = straight;
+  bent.bend = R;
+  bent.towards[0] = 1.0;
+  const double points[][3] = {{1.2, 0.3, 1.0}, {-0.8, -1.1, 4.7}, {0.4, 1.5, 3.0}, {-1.5, 0.0, 0.2}};
+  for (const auto& P : points) {
+    const double phi = (P[2] - 0.5 * L) / R, rho = R - P[0];
+    const double Xb[3] = {R - rho * std::cos(phi), P[1], 0.5 * L + rho * std::sin(phi)};
+    const double Xs[3] = {P[0], P[1], 0.5 * L};
+    double a[3], g[3], as[3], gs[3];
+    bent.directions(Xb, a, g);
+    straight.directions(Xs, as, gs);
+    // Rotate the straight fibres by phi about y: the map's linear part, (x, z) -> (x cos phi
+    // + z sin phi, -x sin phi + z cos phi) for directions (x towards -rho, z along the axis).
+    const double ar[3] = {as[0] * std::cos(phi) + as[2] * std::sin(phi), as[1], -as[0] * std::sin(phi) + as[2] * std::cos(phi)};
+    const double gr[3] = {gs[0] * std::cos(phi) + gs[2] * std::sin(phi), gs[1], -gs[0] * std::sin(phi) + gs[2] * std::cos(phi)};
+    for (int i = 0; i < 3; ++i) {
+      EXPECT_NEAR(a[i], ar[i], 1e-14) << "point " << P[0] << ", " << P[1] << ", " << P[2] << ", component " << i;
+      EXPECT_NEAR(g[i], gr[i], 1e-14);
+    }
+  }
+  bent.bend = 1e9;
+  const double X[3] = {0.7, -0.4, 2.0};
+  double a[3], g[3], as[3], gs[3];
+  bent.directions(X, a, g);
+  straight.directions(X, as, gs);
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(a[i], as[i], 1e-8);
+}
+
 TEST(HolzapfelGasserOgden, FibreFrameDirections) {
   // Axis z through the origin, point on the x axis: e_r = x, e_t = y.
   const FibreFrame f{{0.0, 0.0, 0.0}, {0.0, 0.0, 1.0}, 30.0 * kPi / 180.0};
