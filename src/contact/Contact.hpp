@@ -86,7 +86,8 @@ class Contact {
   // projection must lie on the facet or within kHoldBand of it, else the node is held on
   // its closest facet as a revision, once).
   // At convergence its conditions are checked from the converged contact force and slip,
-  // each to kKktTolerance of the pair's largest nodal force or slip: a held active node must
+  // each to kKktTolerance of the pair's largest nodal force or slip (lengths at least
+  // kKktTolerance of the node's size, Slave::size): a held active node must
   // press, a held slipping node must slip along its friction force (neither reversed nor,
   // in 3D, across it), a held sticking node must stay inside the Coulomb cone. Returns 0
   // when every held node meets them; 1 when a node failed and is held in its next state

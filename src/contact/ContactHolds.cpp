@@ -91,7 +91,7 @@ std::string held_message(const HeldFailure& w, const std::string& pair) {
        << Contact::kHoldBand << " in the facet's parameters";
     return os.str();
   }
-  os << " (tolerance " << Contact::kKktTolerance << " x the pair's largest nodal force or slip)";
+  os << " (tolerance " << Contact::kKktTolerance << " x the pair's largest nodal force or slip, or x the node's size)";
   return os.str();
 }
 }  // namespace
@@ -113,11 +113,16 @@ int Contact::verify_held(std::string& why) {
     Teuchos::reduceAll(*dist_.comm(), Teuchos::REDUCE_MAX, 3, loc, glob);
     const double ftol = kKktTolerance * glob[0], stol = kKktTolerance * glob[1], gtol = kKktTolerance * glob[2];
     for (auto& nd : p.nodes) {
+      // Lengths (gap, slip) are also allowed kKktTolerance of the node's own size: the
+      // pair's largest slip shrinks with the step, and with it a tolerance on it alone
+      // (measured: a slip of 5e-7 against the friction force, on cells of 0.01, failed a
+      // step cut to 1e-4 of its length).
+      const double gtol_n = std::max(gtol, kKktTolerance * nd.size), stol_n = std::max(stol, kKktTolerance * nd.size);
       if (nd.hold_inactive && nd.state != contact::Free) {
         // Released after it ended in tension: it must not penetrate (the law's normal measure).
         const double g = p.persistence ? nd.gap - nd.d_n : nd.gap;
-        if (nd.state < contact::Stick && g < -gtol) {
-          HeldFailure f{(-g - gtol) / std::max(gtol, 1e-300), g, 0.0, static_cast<long long>(nd.gid), static_cast<int>(ip), 4};
+        if (nd.state < contact::Stick && g < -gtol_n) {
+          HeldFailure f{(-g - gtol_n) / std::max(gtol_n, 1e-300), g, 0.0, static_cast<long long>(nd.gid), static_cast<int>(ip), 4};
           if (f.excess > w.excess) w = f;
         }
         continue;
@@ -145,7 +150,7 @@ int Contact::verify_held(std::string& why) {
       HeldFailure f;
       if (nd.hold_active && lam_n > ftol) f = {lam_n - ftol, lam_n, 0.0, 0, 0, 1};
       else if (nd.hold_tangent == contact::Stick && lam_t - bound > ftol) f = {(lam_t - bound - ftol) / std::max(ftol, 1e-300), lam_t, bound, 0, 0, 2};
-      else if (nd.hold_tangent == contact::Slip && off > stol) f = {(off - stol) / std::max(stol, 1e-300), off, 0.0, 0, 0, 3};
+      else if (nd.hold_tangent == contact::Slip && off > stol_n) f = {(off - stol_n) / std::max(stol_n, 1e-300), off, 0.0, 0, 0, 3};
       if (f.kind == 0) continue;
       // Revisions: a held slip off its friction direction is held sticking; a held stick
       // outside the cone slips along the force that held it (the direction the load
