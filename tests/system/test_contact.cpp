@@ -338,6 +338,32 @@ TEST(Contact, ContactApproachLandsOnTheFirstTouch) {
   EXPECT_NEAR(f_landing, f_fixed, 1e-8 * std::abs(f_fixed));
 }
 
+// In dynamics the nodes are predicted with their velocity: the block of contact_block_impact.xml
+// (v = -2 m/s, no other load: free flight is exact) 0.025 above the plane, steps of 0.01 s.
+// The first ends 0.005 above it; the second would end 0.015 deep, and is shortened so that
+// the corner nodes (size 0.1, allowed 0.005) end 0.005 deep: dt = 0.01 (0.005 + 0.005) /
+// 0.02 = 0.005; the next is the time to deepen by 0.005 at 2 m/s, 0.0025. The energy
+// identity holds through the impact as with fixed steps.
+TEST(Contact, ContactApproachPredictsWithTheVelocity) {
+  Config cfg = read_deck(kInputs + "contact_block_impact.xml");
+  cfg.contact[0].point[1] = -0.025;
+  cfg.stepping.end_time = 0.06;
+  cfg.stepping.num_steps = 6;
+  cfg.stepping.contact_approach = 0.05;
+  const Outcome r = run(cfg, "approach_dynamic");
+  const Series& h = r.history;
+  ASSERT_GE(h.rows(), 4u);
+  EXPECT_NEAR(h["dt"][0], 0.01, 1e-15);
+  EXPECT_EQ(h["contact_floor_active"][0], 0.0);
+  EXPECT_NEAR(h["dt"][1], 0.005, 1e-12);
+  EXPECT_NEAR(h["dt"][2], 0.0025, 1e-12);
+  double worst = 0.0;
+  for (double b : r.energy["balance_residual"]) worst = std::max(worst, std::abs(b));
+  std::printf("[contact] contact approach, dynamic: dt %.6g, %.6g, %.6g; %zu steps; max |balance| %.2e of E0 %.4e\n", h["dt"][0],
+              h["dt"][1], h["dt"][2], h.rows(), worst, r.energy["total"][0]);
+  EXPECT_LT(worst, 1e-12 * r.energy["total"][0]);
+}
+
 // The same landing on 2 ranks (the bottom's nodes split between them): the same steps, to
 // the round-off of the solves that the predictor extrapolates.
 TEST(Contact, ContactApproachSameStepsOnTwoRanks) {
