@@ -105,7 +105,8 @@ void Contact::setup_slaves(std::size_t ip, const Config& cfg, const Mesh& mesh, 
     throw InputError(where + "->formulation = persistence needs a dynamic analysis ('Problem->analysis' = dynamic); use gap in statics");
   const std::vector<GId> nodes = boundary_nodes(mesh, pc.slave);  // throws InputError naming the group
   const auto areas = tributary_areas(mesh, pc.slave, axi_);
-  const auto parts = surface_parts(mesh, pc.slave);
+  // The slave surface's connected parts: only `Stepping->contact approach` reads them.
+  const auto parts = cfg.stepping.contact_approach > 0.0 ? surface_parts(mesh, pc.slave) : std::map<GId, int>{};
   for (const auto& [g, part] : parts) p.parts = std::max(p.parts, part + 1);
   p.surface = std::make_unique<SurfaceProjection>(mesh, std::vector<std::string>{pc.slave}, axi_);
   long excluded = 0, partial = 0, planar = 0;

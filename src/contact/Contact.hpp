@@ -233,7 +233,8 @@ class Contact {
     double scale = 1.0;                // s_p
     double area = 0.0;                 // tributary area A_p (reference, HRZ-lumped): scales the deck's c_normal, c_tangent
     double size = 0.0;                 // its length scale: A_p in 2D (per unit thickness, or A_p / 2 pi r), sqrt(A_p) in 3D
-    int part = -1;                     // the connected part of the slave surface it lies on (surface_parts; -1: on no facet)
+    int part = -1;                     // the connected part of the slave surface it lies on (surface_parts, with
+                                       // Stepping->contact approach only; -1: on no facet, or not computed)
     bool was_active = false;           // active at the end of the last accepted step
     int state = contact::Free;
     int prev_state = contact::Free;

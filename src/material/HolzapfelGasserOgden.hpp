@@ -226,27 +226,26 @@ struct FibreFrame {
   }
 
   // The same about the straight axis through p along the unit ax.
-  KOKKOS_INLINE_FUNCTION void directions_about(const double* X, const double* point, const double* axis, double* a,
-                                               double* g) const {
+  KOKKOS_INLINE_FUNCTION void directions_about(const double* X, const double* p, const double* ax, double* a, double* g) const {
     double r[3], d = 0.0;
-    for (int i = 0; i < 3; ++i) d += (X[i] - point[i]) * axis[i];
+    for (int i = 0; i < 3; ++i) d += (X[i] - p[i]) * ax[i];
     double n2 = 0.0;
     for (int i = 0; i < 3; ++i) {
-      r[i] = X[i] - point[i] - d * axis[i];
+      r[i] = X[i] - p[i] - d * ax[i];
       n2 += r[i] * r[i];
     }
     if (!(n2 > 1e-300)) {  // on the axis: any normal to it
-      const int k = std::fabs(axis[0]) < 0.9 ? 0 : 1;
-      for (int i = 0; i < 3; ++i) r[i] = (i == k ? 1.0 : 0.0) - axis[k] * axis[i];
+      const int k = std::fabs(ax[0]) < 0.9 ? 0 : 1;
+      for (int i = 0; i < 3; ++i) r[i] = (i == k ? 1.0 : 0.0) - ax[k] * ax[i];
       n2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
     }
     const double inv = 1.0 / std::sqrt(n2);
     for (int i = 0; i < 3; ++i) r[i] *= inv;
-    const double t[3] = {axis[1] * r[2] - axis[2] * r[1], axis[2] * r[0] - axis[0] * r[2], axis[0] * r[1] - axis[1] * r[0]};
+    const double t[3] = {ax[1] * r[2] - ax[2] * r[1], ax[2] * r[0] - ax[0] * r[2], ax[0] * r[1] - ax[1] * r[0]};
     const double c = std::cos(beta), s = std::sin(beta);
     for (int i = 0; i < 3; ++i) {
-      a[i] = c * t[i] + s * axis[i];
-      g[i] = c * t[i] - s * axis[i];
+      a[i] = c * t[i] + s * ax[i];
+      g[i] = c * t[i] - s * ax[i];
     }
   }
 };

@@ -136,7 +136,7 @@ std::vector<std::map<GId, double>> tributary_areas_by(const Mesh& mesh, const st
 
 std::map<GId, int> surface_parts(const Mesh& mesh, const std::string& group) {
   std::map<GId, GId> up;  // union-find over node ids
-  std::function<GId(GId)> root = [&](GId g) {
+  auto root = [&up](GId g) {
     GId r = g;
     while (up[r] != r) r = up[r];
     while (up[g] != r) g = std::exchange(up[g], r);
